@@ -1,0 +1,41 @@
+# HexDom for FreeCAD. `make demo` and `make test` work on a fresh Debian 12 machine: each installs the
+# Debian packages it needs (scripts/install-deps.sh, idempotent), builds, then does its job.
+PYTHON   ?= /usr/bin/python3
+BUILD    ?= build
+JOBS     ?= $(shell nproc)
+HEXDOM_DATA ?= $(abspath $(CURDIR)/../shared/data)
+FREECAD_MOD ?= $(HOME)/.local/share/FreeCAD/Mod/HexDom
+export HEXDOM_DATA
+
+.PHONY: all deps build test test-cpp test-python demo install bench clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=$(PYTHON) \
+	  -DHEXDOM_BUILD_TESTS=ON > $(BUILD).cmake.log 2>&1 || (cat $(BUILD).cmake.log; exit 1)
+	@cmake --build $(BUILD) -j $(JOBS)
+
+test-cpp: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-python: build
+	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) -m pytest -q -rs tests/python tests/cli
+
+# C++ suites first, then every Python-driven suite; pytest's summary line closes the run.
+test: test-cpp test-python
+
+demo: build
+	@bash examples/run_demo.sh $(BUILD)
+
+install: build
+	@bash scripts/install-freecad.sh $(BUILD) $(FREECAD_MOD)
+
+bench: build
+	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) bench/bench_io_quality.py
+
+clean:
+	rm -rf $(BUILD) $(BUILD).cmake.log

@@ -1,0 +1,15 @@
+// Subcommands of the hexdom program. Each file registers one subcommand on the CLI11 app; its
+// callback parses nothing itself, calls one stage of the core and writes the result.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace hexdom::cli {
+
+void add_convert(CLI::App& app);
+void add_quality(CLI::App& app);
+
+/// Prints progress and warnings from the core's log callback on stderr.
+void print_log(int level, const std::string& message);
+
+}  // namespace hexdom::cli

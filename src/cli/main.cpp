@@ -1,0 +1,39 @@
+// hexdom: the command-line program. Exit codes: 0 success; 1 bad input or geometry; 2 usage;
+// 3 a meshing stage could not keep its contract; 4 internal error.
+#include <iostream>
+
+#include "commands.h"
+#include "hexdom/common/error.h"
+
+namespace hexdom::cli {
+void print_log(int level, const std::string& message) {
+  std::cerr << (level > 0 ? "hexdom: warning: " : "hexdom: ") << message << std::endl;
+}
+}  // namespace hexdom::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"HexDom: hex-dominant volume meshes from polycube structures"};
+  app.set_version_flag("--version", std::string("hexdom ") + HEXDOM_VERSION);
+  app.require_subcommand(1);
+  hexdom::cli::add_convert(app);
+  hexdom::cli::add_quality(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; usage errors exit 2 (CLI11's own codes are 105-109).
+    return app.exit(e) == 0 ? 0 : 2;
+  } catch (const hexdom::InputError& e) {
+    std::cerr << "hexdom: error: " << e.what() << std::endl;
+    return 1;
+  } catch (const hexdom::GeometryError& e) {
+    std::cerr << "hexdom: error: " << e.what() << std::endl;
+    return 1;
+  } catch (const hexdom::MeshingError& e) {
+    std::cerr << "hexdom: error: " << e.what() << std::endl;
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "hexdom: error: internal error: " << e.what() << std::endl;
+    return 4;
+  }
+  return 0;
+}

@@ -1,0 +1,28 @@
+// Reading and writing any supported format, chosen by file extension (and, for .k and .vtk, checked
+// against the file's first bytes, since the paper's data holds a .k file named .vtk).
+#pragma once
+
+#include <string>
+
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::io {
+
+/// Formats: k, vtk, stl, obj (read); k, vtk, vtu, inp, stl, obj (write).
+enum class Format { K, Vtk, Vtu, Inp, Stl, Obj };
+
+/// Format from the extension; throws InputError naming the path for an unknown one.
+Format format_of(const std::string& path);
+
+/// Reads a mesh of any readable format (surfaces come back as triangle cells).
+mesh::Mesh read_mesh(const std::string& path);
+/// Reads a triangle surface (k shells, stl, obj, vtk triangles/quads); quads are split.
+mesh::SurfaceMesh read_surface(const std::string& path);
+
+struct WriteOptions {
+  bool binary = false;  ///< legacy VTK only
+};
+/// Writes a mesh in the format of the extension. STL and OBJ take surface cells only.
+void write_mesh(const std::string& path, const mesh::Mesh& mesh, const WriteOptions& options = {});
+
+}  // namespace hexdom::io

@@ -1,0 +1,452 @@
+#include "hexdom/io/vtk.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <ostream>
+#include <stdexcept>
+
+#include "hexdom/common/error.h"
+#include "hexdom/io/text.h"
+
+namespace hexdom::io {
+
+using mesh::CellType;
+
+namespace {
+
+// Token and raw-byte reader over a legacy VTK buffer, keeping line numbers for messages.
+class Scanner {
+ public:
+  Scanner(const std::string& path, const std::string& text) : path_(path), s_(text) {}
+
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, line_, what); }
+
+  // Next blank-separated token; "" at end of file.
+  std::string token() {
+    skip_space();
+    size_t b = pos_;
+    while (pos_ < s_.size() && !std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
+    return s_.substr(b, pos_ - b);
+  }
+  std::string need_token(const char* what) {
+    std::string t = token();
+    if (t.empty()) fail(std::string("file ends where ") + what + " was expected (truncated?)");
+    return t;
+  }
+  long need_int(const char* what) {
+    std::string t = need_token(what);
+    long v;
+    if (!parse_int(t, v) || v < 0) fail(std::string(what) + " '" + t + "' is not a non-negative integer");
+    return v;
+  }
+  // Rest of the current line (after the last token).
+  std::string rest_of_line() {
+    size_t b = pos_;
+    while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
+    std::string r(s_.substr(b, pos_ - b));
+    if (pos_ < s_.size()) { ++pos_; ++line_; }
+    return std::string(trim(r));
+  }
+  std::string line() { return rest_of_line(); }
+  long line_no() const { return line_; }
+  bool at_end() { skip_space(); return pos_ >= s_.size(); }
+
+  // Reads `n` numbers of VTK data type `type`, ASCII or big-endian binary.
+  std::vector<double> numbers(size_t n, const std::string& type, bool binary, const char* what) {
+    std::vector<double> out(n);
+    if (!binary) {
+      for (size_t i = 0; i < n; ++i) {
+        std::string t = token();
+        if (t.empty())
+          fail(std::string(what) + ": file ends after " + std::to_string(i) + " of " +
+               std::to_string(n) + " values (truncated?)");
+        if (!parse_double(t, out[i])) fail(std::string(what) + ": '" + t + "' is not a finite number");
+      }
+      return out;
+    }
+    // Binary data starts right after the newline that ends the header line.
+    const size_t w = type_size(type);
+    if (pos_ + n * w > s_.size())
+      fail(std::string(what) + ": binary data needs " + std::to_string(n * w) + " bytes, " +
+           std::to_string(s_.size() - pos_) + " left (truncated?)");
+    const unsigned char* p = reinterpret_cast<const unsigned char*>(s_.data() + pos_);
+    for (size_t i = 0; i < n; ++i, p += w) out[i] = decode(p, w, type);
+    pos_ += n * w;
+    for (size_t i = 0; i < n; ++i)
+      if (!std::isfinite(out[i])) fail(std::string(what) + ": value " + std::to_string(i) + " is not finite");
+    return out;
+  }
+
+  // Skips a newline directly following binary data.
+  void end_binary() {
+    if (pos_ < s_.size() && s_[pos_] == '\n') { ++pos_; ++line_; }
+  }
+
+  size_t type_size(const std::string& type) const {
+    std::string t = lower(type);
+    if (t == "float" || t == "int" || t == "unsigned_int" || t == "vtktypeint32" || t == "vtktypeuint32") return 4;
+    if (t == "double" || t == "long" || t == "unsigned_long" || t == "vtktypeint64" || t == "vtktypeuint64" || t == "vtkidtype") return 8;
+    if (t == "short" || t == "unsigned_short") return 2;
+    if (t == "char" || t == "unsigned_char" || t == "bit") return 1;
+    fail("unsupported data type '" + type + "'");
+  }
+
+ private:
+  void skip_space() {
+    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) {
+      if (s_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+  }
+  double decode(const unsigned char* p, size_t w, const std::string& type) const {
+    uint64_t u = 0;
+    for (size_t i = 0; i < w; ++i) u = (u << 8) | p[i];
+    std::string t = lower(type);
+    if (t == "float") { uint32_t v = static_cast<uint32_t>(u); float f; std::memcpy(&f, &v, 4); return f; }
+    if (t == "double") { double d; std::memcpy(&d, &u, 8); return d; }
+    if (t.rfind("unsigned", 0) == 0 || t == "vtktypeuint32" || t == "vtktypeuint64" || t == "bit")
+      return static_cast<double>(u);
+    // signed integers: sign-extend
+    int64_t v = static_cast<int64_t>(u << (64 - 8 * w)) >> (64 - 8 * w);
+    return static_cast<double>(v);
+  }
+
+  std::string path_;
+  const std::string& s_;
+  size_t pos_ = 0;
+  long line_ = 1;
+};
+
+const char* const kRegionNames[] = {"region", "blockid", "regionid", "gmsh:physical", "medit:ref",
+                                    "cellentityids", "part"};
+
+int region_rank(const std::string& name) {
+  std::string n = lower(name);
+  for (int i = 0; i < 7; ++i)
+    if (n == kRegionNames[i]) return i;
+  return 100;
+}
+
+}  // namespace
+
+mesh::Mesh read_vtk(const std::string& path) {
+  const std::string text = load_file(path);
+  Scanner sc(path, text);
+  std::string head = sc.line();
+  if (!starts_with_ci(head, "# vtk DataFile"))
+    sc.fail("not a legacy VTK file (first line must be '# vtk DataFile Version ...')");
+  sc.line();  // title
+  std::string mode = lower(sc.line());
+  if (mode != "ascii" && mode != "binary") sc.fail("third line must be ASCII or BINARY, found '" + mode + "'");
+  const bool binary = mode == "binary";
+  std::string ds = sc.need_token("DATASET");
+  if (lower(ds) != "dataset") sc.fail("expected DATASET, found '" + ds + "'");
+  std::string kind = lower(sc.need_token("dataset type"));
+  sc.rest_of_line();
+  if (kind != "unstructured_grid" && kind != "polydata")
+    sc.fail("only UNSTRUCTURED_GRID and POLYDATA datasets are supported, found " + kind);
+
+  std::vector<double> pts;
+  long npts = -1;
+  std::vector<int64_t> offsets, conn;  // cell i uses conn[offsets[i] .. offsets[i+1])
+  std::vector<int> types;
+  std::vector<double> region;
+  int region_score = 1000;
+  long ncell_data = -1;
+  enum { None, PointData, CellData } attr = None;
+
+  auto read_offsets_layout = [&](long noff, long nconn) {
+    for (int part = 0; part < 2; ++part) {
+      std::string key = lower(sc.need_token("OFFSETS/CONNECTIVITY"));
+      std::string type = sc.need_token("data type");
+      sc.rest_of_line();
+      long n = key == "offsets" ? noff : key == "connectivity" ? nconn : -1;
+      if (n < 0) sc.fail("expected OFFSETS or CONNECTIVITY, found '" + key + "'");
+      auto v = sc.numbers(static_cast<size_t>(n), type, binary, key.c_str());
+      if (binary) sc.end_binary();
+      auto& dst = key == "offsets" ? offsets : conn;
+      dst.assign(v.begin(), v.end());
+    }
+  };
+
+  while (!sc.at_end()) {
+    std::string key = lower(sc.need_token("section keyword"));
+    if (key == "points") {
+      npts = sc.need_int("point count");
+      std::string type = sc.need_token("point data type");
+      sc.rest_of_line();
+      pts = sc.numbers(static_cast<size_t>(3 * npts), type, binary, "POINTS");
+      if (binary) sc.end_binary();
+    } else if (key == "cells" || key == "polygons") {
+      long n = sc.need_int("cell count"), size = sc.need_int("cell list size");
+      sc.rest_of_line();
+      if (sc.at_end()) sc.fail("file ends after the CELLS header (truncated?)");
+      // VTK 5.1 layout: "CELLS noffsets nconn" followed by OFFSETS and CONNECTIVITY arrays.
+      {
+        Scanner probe = sc;
+        std::string t = lower(probe.token());
+        if (t == "offsets") { read_offsets_layout(n, size); if (key == "polygons") types.assign(n - 1, -1); continue; }
+      }
+      auto v = sc.numbers(static_cast<size_t>(size), "int", binary, "CELLS");
+      if (binary) sc.end_binary();
+      offsets.assign(1, 0);
+      conn.clear();
+      size_t i = 0;
+      for (long c = 0; c < n; ++c) {
+        if (i >= v.size()) sc.fail("CELLS: list ends at cell " + std::to_string(c) + " of " + std::to_string(n));
+        long k = static_cast<long>(v[i++]);
+        if (k < 0 || i + k > v.size()) sc.fail("CELLS: cell " + std::to_string(c) + " claims " + std::to_string(k) + " nodes beyond the list");
+        for (long j = 0; j < k; ++j) conn.push_back(static_cast<int64_t>(v[i++]));
+        offsets.push_back(static_cast<int64_t>(conn.size()));
+      }
+      if (key == "polygons") types.assign(n, -1);
+    } else if (key == "cell_types") {
+      long n = sc.need_int("cell type count");
+      sc.rest_of_line();
+      auto v = sc.numbers(static_cast<size_t>(n), "int", binary, "CELL_TYPES");
+      if (binary) sc.end_binary();
+      types.assign(v.begin(), v.end());
+    } else if (key == "cell_data" || key == "point_data") {
+      long n = sc.need_int("attribute count");
+      sc.rest_of_line();
+      attr = key == "cell_data" ? CellData : PointData;
+      if (attr == CellData) ncell_data = n;
+      else if (n != npts) sc.fail("POINT_DATA count " + std::to_string(n) + " differs from POINTS " + std::to_string(npts));
+    } else if (key == "scalars" || key == "vectors" || key == "normals" || key == "tensors" ||
+               key == "texture_coordinates" || key == "color_scalars") {
+      if (attr == None) sc.fail(key + " outside CELL_DATA/POINT_DATA");
+      std::string name = sc.need_token("array name");
+      long ncomp = 1;
+      std::string type = "float";
+      if (key == "color_scalars") { ncomp = sc.need_int("component count"); type = binary ? "unsigned_char" : "float"; }
+      else if (key == "texture_coordinates") { ncomp = sc.need_int("dimension"); type = sc.need_token("data type"); }
+      else {
+        type = sc.need_token("data type");
+        if (key == "vectors" || key == "normals") ncomp = 3;
+        if (key == "tensors") ncomp = 9;
+      }
+      std::string rest = sc.rest_of_line();
+      if (key == "scalars" && !rest.empty()) {
+        long c;
+        if (!parse_int(rest, c) || c < 1 || c > 4) sc.fail("SCALARS component count '" + rest + "' must be 1..4");
+        ncomp = c;
+      }
+      if (key == "scalars") {
+        // Optional LOOKUP_TABLE line.
+        Scanner probe = sc;
+        if (lower(probe.token()) == "lookup_table") { sc.token(); sc.rest_of_line(); }
+      }
+      long count = attr == CellData ? ncell_data : npts;
+      auto v = sc.numbers(static_cast<size_t>(count * ncomp), type, binary, key.c_str());
+      if (binary) sc.end_binary();
+      if (attr == CellData && ncomp == 1 && region_rank(name) < region_score) {
+        region = v;
+        region_score = region_rank(name);
+      }
+    } else if (key == "lookup_table") {
+      sc.need_token("table name");
+      long n = sc.need_int("table size");
+      sc.rest_of_line();
+      sc.numbers(static_cast<size_t>(4 * n), binary ? "unsigned_char" : "float", binary, "LOOKUP_TABLE");
+      if (binary) sc.end_binary();
+    } else if (key == "field") {
+      sc.need_token("field name");
+      long narr = sc.need_int("array count");
+      sc.rest_of_line();
+      for (long a = 0; a < narr; ++a) {
+        std::string name = sc.need_token("array name");
+        if (lower(name) == "null_array") continue;
+        long ncomp = sc.need_int("component count"), ntup = sc.need_int("tuple count");
+        std::string type = sc.need_token("data type");
+        sc.rest_of_line();
+        if (lower(type) == "string") sc.fail("string field arrays are not supported");
+        auto v = sc.numbers(static_cast<size_t>(ncomp * ntup), type, binary, name.c_str());
+        if (binary) sc.end_binary();
+        if (attr == CellData && ncomp == 1 && ntup == ncell_data && region_rank(name) < region_score) {
+          region = v;
+          region_score = region_rank(name);
+        }
+        // VTK 9 may follow an array by a METADATA block ending at an empty line.
+        Scanner probe = sc;
+        if (lower(probe.token()) == "metadata") {
+          sc.token();
+          sc.rest_of_line();
+          while (!sc.at_end() && !sc.line().empty()) {}
+        }
+      }
+    } else if (key == "metadata") {
+      sc.rest_of_line();
+      while (!sc.at_end() && !sc.line().empty()) {}
+    } else if (key == "vertices" || key == "lines" || key == "triangle_strips") {
+      sc.fail("POLYDATA " + key + " are not supported: only polygons (triangles, quads)");
+    } else {
+      sc.fail("unknown section '" + key + "'");
+    }
+  }
+
+  if (npts < 0) sc.fail("no POINTS section");
+  if (offsets.empty()) sc.fail("no CELLS section");
+  const long ncells = static_cast<long>(offsets.size()) - 1;
+  if (types.size() != static_cast<size_t>(ncells))
+    sc.fail("CELL_TYPES count " + std::to_string(types.size()) + " differs from CELLS count " + std::to_string(ncells));
+  if (!region.empty() && static_cast<long>(region.size()) != ncells) region.clear();
+
+  mesh::MeshBuilder b;
+  for (long c = 0; c < ncells; ++c) {
+    const long k = static_cast<long>(offsets[c + 1] - offsets[c]);
+    int n[8];
+    if (k < 3 || k > 8) sc.fail("cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
+    for (long j = 0; j < k; ++j) {
+      int64_t v = conn[offsets[c] + j];
+      if (v < 0 || v >= npts)
+        sc.fail("cell " + std::to_string(c) + " refers to point " + std::to_string(v) + ", but there are " + std::to_string(npts) + " points");
+      n[j] = static_cast<int>(v);
+    }
+    int t = types[c];
+    if (t == -1) t = k == 3 ? 5 : k == 4 ? 9 : 0;  // POLYDATA polygons
+    const int rid = region.empty() ? 0 : static_cast<int>(std::lround(region[c]));
+    CellType ct;
+    try {
+      ct = mesh::cell_type_from_vtk(t);
+    } catch (const std::invalid_argument& e) {
+      sc.fail("cell " + std::to_string(c) + ": " + e.what() + " (supported: 5 triangle, 9 quad, 10 tet, 12 hex, 13 wedge)");
+    }
+    if (mesh::node_count(ct) != k)
+      sc.fail("cell " + std::to_string(c) + " of type " + std::to_string(t) + " has " + std::to_string(k) + " nodes, expected " + std::to_string(mesh::node_count(ct)));
+    if (ct == CellType::Hex) {
+      std::array<int, 8> h;
+      std::copy(n, n + 8, h.begin());
+      try {
+        auto d = mesh::classify_hex_nodes(h);
+        b.add(d.type, d.nodes.data(), rid);
+      } catch (const std::invalid_argument& e) {
+        sc.fail("cell " + std::to_string(c) + ": " + e.what());
+      }
+    } else {
+      b.add(ct, n, rid);
+    }
+  }
+  Eigen::MatrixXd V(npts, 3);
+  for (long i = 0; i < npts; ++i)
+    for (int k = 0; k < 3; ++k) V(i, k) = pts[3 * i + k];
+  return b.finish(std::move(V));
+}
+
+namespace {
+
+void put_be(std::ostream& out, const void* data, size_t w) {
+  unsigned char b[8];
+  std::memcpy(b, data, w);
+  for (size_t i = 0; i < w; ++i) out.put(static_cast<char>(b[w - 1 - i]));
+}
+
+}  // namespace
+
+void write_vtk(const std::string& path, const mesh::Mesh& m, bool binary) {
+  write_atomically(path, binary, [&](std::ostream& out) {
+    out << "# vtk DataFile Version 4.2\nHexDom mesh\n" << (binary ? "BINARY" : "ASCII")
+        << "\nDATASET UNSTRUCTURED_GRID\n";
+    out.precision(17);
+    out << "POINTS " << m.num_nodes() << " double\n";
+    for (int i = 0; i < m.num_nodes(); ++i) {
+      if (binary) for (int k = 0; k < 3; ++k) put_be(out, &m.V(i, k), 8);
+      else out << m.V(i, 0) << ' ' << m.V(i, 1) << ' ' << m.V(i, 2) << '\n';
+    }
+    if (binary) out << '\n';
+    long size = 0;
+    for (int c = 0; c < m.num_cells(); ++c) size += 1 + mesh::node_count(m.type(c));
+    out << "CELLS " << m.num_cells() << ' ' << size << '\n';
+    for (int c = 0; c < m.num_cells(); ++c) {
+      int32_t k = mesh::node_count(m.type(c));
+      if (binary) {
+        put_be(out, &k, 4);
+        for (int j = 0; j < k; ++j) { int32_t v = m.cells(c, j); put_be(out, &v, 4); }
+      } else {
+        out << k;
+        for (int j = 0; j < k; ++j) out << ' ' << m.cells(c, j);
+        out << '\n';
+      }
+    }
+    if (binary) out << '\n';
+    out << "CELL_TYPES " << m.num_cells() << '\n';
+    for (int c = 0; c < m.num_cells(); ++c) {
+      int32_t t = m.types(c);
+      if (binary) put_be(out, &t, 4);
+      else out << t << '\n';
+    }
+    if (binary) out << '\n';
+    out << "CELL_DATA " << m.num_cells() << "\nSCALARS region int 1\nLOOKUP_TABLE default\n";
+    for (int c = 0; c < m.num_cells(); ++c) {
+      int32_t r = m.region(c);
+      if (binary) put_be(out, &r, 4);
+      else out << r << '\n';
+    }
+    if (binary) out << '\n';
+  });
+}
+
+namespace {
+
+std::string base64(const unsigned char* data, size_t n) {
+  static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve(4 * ((n + 2) / 3));
+  for (size_t i = 0; i < n; i += 3) {
+    uint32_t v = static_cast<uint32_t>(data[i]) << 16;
+    if (i + 1 < n) v |= static_cast<uint32_t>(data[i + 1]) << 8;
+    if (i + 2 < n) v |= data[i + 2];
+    out += tbl[(v >> 18) & 63];
+    out += tbl[(v >> 12) & 63];
+    out += i + 1 < n ? tbl[(v >> 6) & 63] : '=';
+    out += i + 2 < n ? tbl[v & 63] : '=';
+  }
+  return out;
+}
+
+// One binary DataArray: a UInt64 byte count followed by the data, base64-encoded as one block.
+template <class T>
+void data_array(std::ostream& out, const char* vtk_type, const char* name, int ncomp,
+                const std::vector<T>& values) {
+  std::vector<unsigned char> bytes(8 + values.size() * sizeof(T));
+  uint64_t nbytes = values.size() * sizeof(T);
+  std::memcpy(bytes.data(), &nbytes, 8);
+  if (!values.empty()) std::memcpy(bytes.data() + 8, values.data(), nbytes);
+  out << "        <DataArray type=\"" << vtk_type << "\" Name=\"" << name
+      << "\" NumberOfComponents=\"" << ncomp << "\" format=\"binary\">\n          "
+      << base64(bytes.data(), bytes.size()) << "\n        </DataArray>\n";
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const mesh::Mesh& m) {
+  write_atomically(path, false, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+           "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
+        << "    <Piece NumberOfPoints=\"" << m.num_nodes() << "\" NumberOfCells=\"" << m.num_cells()
+        << "\">\n      <Points>\n";
+    std::vector<double> pts(3 * static_cast<size_t>(m.num_nodes()));
+    for (int i = 0; i < m.num_nodes(); ++i)
+      for (int k = 0; k < 3; ++k) pts[3 * i + k] = m.V(i, k);
+    data_array(out, "Float64", "Points", 3, pts);
+    out << "      </Points>\n      <Cells>\n";
+    std::vector<int64_t> conn, offsets;
+    std::vector<uint8_t> types;
+    for (int c = 0; c < m.num_cells(); ++c) {
+      int k = mesh::node_count(m.type(c));
+      for (int j = 0; j < k; ++j) conn.push_back(m.cells(c, j));
+      offsets.push_back(static_cast<int64_t>(conn.size()));
+      types.push_back(static_cast<uint8_t>(m.types(c)));
+    }
+    data_array(out, "Int64", "connectivity", 1, conn);
+    data_array(out, "Int64", "offsets", 1, offsets);
+    data_array(out, "UInt8", "types", 1, types);
+    out << "      </Cells>\n      <CellData Scalars=\"region\">\n";
+    std::vector<int32_t> reg(m.region.data(), m.region.data() + m.num_cells());
+    data_array(out, "Int32", "region", 1, reg);
+    out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  });
+}
+
+}  // namespace hexdom::io

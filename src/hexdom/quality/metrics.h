@@ -1,0 +1,45 @@
+// Element quality metrics, defined as VTK's Verdict library defines them so that our figures and
+// Verdict's agree to rounding.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::quality {
+
+/// Corner coordinates of one cell (rows 0..node_count-1 used), VTK order.
+using CellPoints = Eigen::Matrix<double, 8, 3>;
+
+/// Scaled Jacobian in [-1, 1] (1: ideal shape).
+/// Hex: minimum over the 8 corners and the centre of det[a b c] / (|a||b||c|), the centre using the
+///   three principal axes; a zero-length edge gives DBL_MAX, as in Verdict (an invalid cell).
+/// Tet: sqrt(2) det / (largest product of the three edge lengths meeting at a corner).
+/// Wedge: 2/sqrt(3) x minimum over the 6 corners of the corner determinant over its edge-length
+///   product; evaluated in Verdict's node order (VTK's reordered 1 0 2 4 3 5).
+/// 2D cells: NaN.
+double scaled_jacobian(mesh::CellType type, const CellPoints& P);
+
+/// Longest over shortest edge (the paper's "aspect ratio"); DBL_MAX for a zero-length edge.
+double edge_ratio(mesh::CellType type, const CellPoints& P);
+
+/// Volume of the trilinear (hex), bilinear-by-linear (wedge) or linear (tet) cell, by exact
+/// quadrature of its Jacobian determinant; negative when inverted.
+double volume(mesh::CellType type, const CellPoints& P);
+
+/// True when the cell is inverted or degenerate: scaled Jacobian <= 0, DBL_MAX or NaN.
+bool is_inverted(double scaled_jacobian);
+
+/// Points of cell `c` of `mesh`.
+CellPoints cell_points(const mesh::Mesh& mesh, int c);
+
+/// Per-cell metrics of a whole mesh (#C each; NaN for 2D cells).
+struct CellMetrics {
+  Eigen::VectorXd scaled_jacobian;
+  Eigen::VectorXd edge_ratio;
+  Eigen::VectorXd volume;
+};
+CellMetrics compute_metrics(const mesh::Mesh& mesh);
+
+}  // namespace hexdom::quality

@@ -1,0 +1,38 @@
+// Quality summary per cell type, as `hexdom quality` prints it.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/quality/metrics.h"
+
+namespace hexdom::quality {
+
+/// Figures for the cells of one type. With no cells, the minima/maxima are NaN.
+struct TypeStats {
+  int count = 0;
+  double sj_min = 0, sj_mean = 0;
+  int inverted = 0;  ///< scaled Jacobian <= 0 or degenerate
+  double edge_ratio_min = 0, edge_ratio_max = 0;
+  double volume = 0;
+  /// Scaled-Jacobian histogram: 20 bins of width 0.1 over [-1, 1]; invalid cells in bin 0.
+  std::array<int, 20> histogram{};
+};
+
+struct QualityReport {
+  TypeStats hex, prism, tet;
+  double total_volume = 0;
+};
+
+QualityReport quality_report(const mesh::Mesh& mesh);
+/// Same, from metrics already computed for `mesh`.
+QualityReport quality_report(const mesh::Mesh& mesh, const CellMetrics& metrics);
+
+/// JSON object with keys "hex", "prism", "tet", each holding count, sj_min, sj_mean, inverted,
+/// edge_ratio_min, edge_ratio_max, volume and histogram; plus "total_volume". NaN is written null.
+std::string to_json(const QualityReport& report);
+/// A small table for people.
+std::string to_text(const QualityReport& report);
+
+}  // namespace hexdom::quality

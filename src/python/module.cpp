@@ -1,0 +1,130 @@
+// _hexdom: numpy arrays in, numpy arrays out, over the HexDom core. Kept thin: every function
+// converts, calls one core function with the GIL released, and converts back.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "hexdom/common/error.h"
+#include "hexdom/io/k_file.h"
+#include "hexdom/io/mesh_io.h"
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/quality/report.h"
+
+namespace py = pybind11;
+using namespace hexdom;
+
+namespace {
+
+using CellArray = mesh::CellMatrix;
+
+mesh::Mesh make_mesh(const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
+                     const std::optional<Eigen::VectorXi>& region) {
+  mesh::Mesh m;
+  m.V = V;
+  m.cells = cells;
+  m.types = types;
+  m.region = region ? *region : Eigen::VectorXi::Zero(cells.rows());
+  mesh::validate(m);
+  return m;
+}
+
+py::tuple mesh_tuple(const mesh::Mesh& m) { return py::make_tuple(m.V, m.cells, m.types, m.region); }
+
+py::dict stats_dict(const quality::TypeStats& s) {
+  py::dict d;
+  d["count"] = s.count;
+  d["sj_min"] = s.sj_min;
+  d["sj_mean"] = s.sj_mean;
+  d["inverted"] = s.inverted;
+  d["edge_ratio_min"] = s.edge_ratio_min;
+  d["edge_ratio_max"] = s.edge_ratio_max;
+  d["volume"] = s.volume;
+  d["histogram"] = std::vector<int>(s.histogram.begin(), s.histogram.end());
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_hexdom, m) {
+  m.doc() = "HexDom core: hex-dominant meshing by polycubes (numpy in, numpy out)";
+  m.attr("__version__") = HEXDOM_VERSION;
+
+  // Errors: the base first, then each subclass with the base as its Python base class.
+  static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
+  static py::exception<InputError> input_error(m, "InputError", error.ptr());
+  static py::exception<GeometryError> geometry_error(m, "GeometryError", error.ptr());
+  static py::exception<MeshingError> meshing_error(m, "MeshingError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(input_error.ptr(), e.what());
+    } catch (const GeometryError& e) {
+      PyErr_SetString(geometry_error.ptr(), e.what());
+    } catch (const MeshingError& e) {
+      PyErr_SetString(meshing_error.ptr(), e.what());
+    } catch (const Error& e) {
+      PyErr_SetString(error.ptr(), e.what());
+    }
+  });
+
+  m.def("read_mesh", [](const std::string& path) {
+    mesh::Mesh r;
+    { py::gil_scoped_release nogil; r = io::read_mesh(path); }
+    return mesh_tuple(r);
+  }, py::arg("path"),
+  "Reads .k, .vtk, .stl or .obj. Returns (V #V x 3, cells #C x 8 with -1 padding, VTK types #C, region #C).");
+
+  m.def("read_k", [](const std::string& path) {
+    io::KFile k;
+    { py::gil_scoped_release nogil; k = io::read_k(path); }
+    return py::make_tuple(k.mesh.V, k.mesh.cells, k.mesh.types, k.mesh.region, k.node_ids, k.element_ids);
+  }, py::arg("path"), "Reads an LS-DYNA .k file: (V, cells, types, region, node_ids, element_ids).");
+
+  m.def("read_surface", [](const std::string& path) {
+    mesh::SurfaceMesh s;
+    { py::gil_scoped_release nogil; s = io::read_surface(path); }
+    return py::make_tuple(s.V, s.F, s.patch);
+  }, py::arg("path"), "Reads a triangle surface: (V #V x 3, F #F x 3, patch #F).");
+
+  m.def("write_mesh", [](const std::string& path, const Eigen::MatrixXd& V, const CellArray& cells,
+                         const Eigen::VectorXi& types, const std::optional<Eigen::VectorXi>& region,
+                         bool binary) {
+    mesh::Mesh msh = make_mesh(V, cells, types, region);
+    io::WriteOptions opt;
+    opt.binary = binary;
+    py::gil_scoped_release nogil;
+    io::write_mesh(path, msh, opt);
+  }, py::arg("path"), py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region") = py::none(),
+     py::arg("binary") = false, "Writes .k, .vtk, .vtu, .inp, .stl or .obj (format by extension).");
+
+  m.def("write_surface", [](const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                            const std::optional<Eigen::VectorXi>& patch) {
+    mesh::SurfaceMesh s{V, F, patch ? *patch : Eigen::VectorXi::Zero(F.rows())};
+    mesh::Mesh msh = mesh::from_surface(s);
+    mesh::validate(msh);
+    py::gil_scoped_release nogil;
+    io::write_mesh(path, msh);
+  }, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("patch") = py::none());
+
+  m.def("cell_metrics", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types) {
+    mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
+    quality::CellMetrics q;
+    { py::gil_scoped_release nogil; q = quality::compute_metrics(msh); }
+    return py::make_tuple(q.scaled_jacobian, q.edge_ratio, q.volume);
+  }, py::arg("V"), py::arg("cells"), py::arg("types"),
+  "Per-cell (scaled_jacobian, edge_ratio, volume), Verdict's definitions; NaN for 2D cells.");
+
+  m.def("quality_report", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types) {
+    mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
+    quality::QualityReport r;
+    { py::gil_scoped_release nogil; r = quality::quality_report(msh); }
+    py::dict d;
+    d["hex"] = stats_dict(r.hex);
+    d["prism"] = stats_dict(r.prism);
+    d["tet"] = stats_dict(r.tet);
+    d["total_volume"] = r.total_volume;
+    return d;
+  }, py::arg("V"), py::arg("cells"), py::arg("types"),
+  "Dict with keys hex, prism, tet (count, sj_min, sj_mean, inverted, edge_ratio_min, edge_ratio_max, volume, histogram) and total_volume.");
+}
