@@ -7,7 +7,7 @@ HEXDOM_DATA ?= $(abspath $(CURDIR)/../shared/data)
 FREECAD_MOD ?= $(HOME)/.local/share/FreeCAD/Mod/HexDom
 export HEXDOM_DATA
 
-.PHONY: all deps build test test-cpp test-python demo install bench clean
+.PHONY: all deps build test test-cpp test-python test-freecad demo install bench clean
 
 all: build
 
@@ -25,8 +25,12 @@ test-cpp: build
 test-python: build
 	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) -m pytest -q -rs tests/python tests/cli
 
-# C++ suites first, then every Python-driven suite; pytest's summary line closes the run.
-test: test-cpp test-python
+# FreeCAD App tests (freecadcmd) and GUI tests (xvfb); see tests/freecad/run.sh.
+test-freecad: build
+	@if [ -x tests/freecad/run.sh ]; then HEXDOM_BUILD_DIR=$(abspath $(BUILD)) tests/freecad/run.sh; fi
+
+# C++ suites, FreeCAD suites, then the Python suites; pytest's summary line closes the run.
+test: test-cpp test-freecad test-python
 
 demo: build
 	@bash examples/run_demo.sh $(BUILD)
