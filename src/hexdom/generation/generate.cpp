@@ -1,0 +1,682 @@
+#include "hexdom/generation/generate.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "hexdom/parametrization/harmonic_map.h"
+#include "hexdom/polycube/patch_layout.h"
+#include "hexdom/quality/metrics.h"
+
+namespace hexdom::generation {
+
+using mesh::CellType;
+using Vec3 = Eigen::Vector3d;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Block topology: local faces (outward) and the lattice coordinates of block vertices.
+
+struct LocalFace {
+  int n;
+  int v[4];
+};
+const LocalFace kHexFaces[6] = {{4, {0, 4, 7, 3}}, {4, {1, 2, 6, 5}}, {4, {0, 1, 5, 4}},
+                                {4, {3, 7, 6, 2}}, {4, {0, 3, 2, 1}}, {4, {4, 5, 6, 7}}};
+const LocalFace kWedgeFaces[5] = {{3, {0, 1, 2, -1}}, {3, {3, 5, 4, -1}}, {4, {0, 3, 4, 1}},
+                                  {4, {1, 4, 5, 2}}, {4, {2, 5, 3, 0}}};
+const LocalFace kTetFaces[4] = {{3, {0, 2, 1, -1}}, {3, {0, 1, 3, -1}}, {3, {1, 2, 3, -1}}, {3, {0, 3, 2, -1}}};
+
+const int kHexCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+const int kWedgeCorner[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+const int kTetCorner[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+std::pair<const LocalFace*, int> local_faces(CellType t) {
+  if (t == CellType::Hex) return {kHexFaces, 6};
+  if (t == CellType::Wedge) return {kWedgeFaces, 5};
+  return {kTetFaces, 4};
+}
+const int (*corner_table(CellType t))[3] {
+  if (t == CellType::Hex) return kHexCorner;
+  if (t == CellType::Wedge) return kWedgeCorner;
+  return kTetCorner;
+}
+
+// Is lattice point (i,j,k) inside the block's lattice?
+bool in_lattice(CellType t, int n, int i, int j, int k) {
+  if (i < 0 || j < 0 || k < 0 || i > n || j > n || k > n) return false;
+  if (t == CellType::Wedge) return i + j <= n;
+  if (t == CellType::Tet) return i + j + k <= n;
+  return true;
+}
+bool on_block_boundary(CellType t, int n, int i, int j, int k) {
+  if (t == CellType::Hex) return i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
+  if (t == CellType::Wedge) return i == 0 || j == 0 || k == 0 || k == n || i + j == n;
+  return i == 0 || j == 0 || k == 0 || i + j + k == n;
+}
+// Integer interpolation weights of lattice point (i,j,k) on the block's local vertices, scaled so
+// that they sum to n^3 for every block type: a point on a shared face or edge gets the same weights
+// from every block that holds it.
+int weights(CellType t, int n, int i, int j, int k, int* w) {
+  if (t == CellType::Hex) {
+    for (int v = 0; v < 8; ++v)
+      w[v] = (kHexCorner[v][0] ? i : n - i) * (kHexCorner[v][1] ? j : n - j) * (kHexCorner[v][2] ? k : n - k);
+    return 8;
+  }
+  if (t == CellType::Wedge) {
+    int bary[3] = {n - i - j, i, j};
+    for (int v = 0; v < 3; ++v) {
+      w[v] = bary[v] * (n - k) * n;
+      w[v + 3] = bary[v] * k * n;
+    }
+    return 6;
+  }
+  int bary[4] = {n - i - j - k, i, j, k};
+  for (int v = 0; v < 4; ++v) w[v] = bary[v] * n * n;
+  return 4;
+}
+
+// A lattice point on block boundaries, identified by its weights on structure vertices.
+using Key = std::array<long long, 4>;
+struct KeyHash {
+  size_t operator()(const Key& k) const {
+    size_t h = 1469598103934665603ull;
+    for (long long x : k) h = (h ^ static_cast<size_t>(x)) * 1099511628211ull;
+    return h;
+  }
+};
+
+// Neighbour offsets of the lattices, for harmonic filling.
+const int kTriNb[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {1, -1, 0}, {-1, 1, 0}};
+const int kWedgeNb[8][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {0, 0, 1}, {0, 0, -1}};
+const int kTetNb[12][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+                           {1, -1, 0}, {-1, 1, 0}, {1, 0, -1}, {-1, 0, 1}, {0, 1, -1}, {0, -1, 1}};
+
+// ---------------------------------------------------------------------------------------------
+// Patch parameterisation and evaluation.
+
+struct Curve {  // polyline from one corner to another, with cumulative arc length
+  std::vector<Vec3> p;
+  std::vector<double> s;
+  Vec3 at(double t) const {
+    const double target = t * s.back();
+    auto it = std::upper_bound(s.begin(), s.end(), target);
+    size_t i = it == s.begin() ? 0 : static_cast<size_t>(it - s.begin()) - 1;
+    if (i + 1 >= p.size()) return p.back();
+    const double len = s[i + 1] - s[i];
+    const double a = len > 0 ? (target - s[i]) / len : 0.0;
+    return (1 - a) * p[i] + a * p[i + 1];
+  }
+};
+
+struct PatchMap {
+  std::vector<int> tris;        // surface triangles
+  Eigen::MatrixXd uv;           // per surface vertex (rows of vertices in the patch are valid)
+  std::map<int, Eigen::Vector2d> domain;  // structure vertex -> its domain corner
+  // Uniform grid over [0,1]^2 for point location.
+  int g = 1;
+  std::vector<std::vector<int>> cells;
+};
+
+void build_grid(PatchMap& pm, const mesh::SurfaceMesh& S) {
+  pm.g = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(pm.tris.size()) / 2.0)));
+  pm.cells.assign(pm.g * pm.g, {});
+  for (int t : pm.tris) {
+    double lo[2] = {1e30, 1e30}, hi[2] = {-1e30, -1e30};
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 2; ++d) {
+        lo[d] = std::min(lo[d], pm.uv(S.F(t, k), d));
+        hi[d] = std::max(hi[d], pm.uv(S.F(t, k), d));
+      }
+    auto cell = [&](double x) { return std::max(0, std::min(pm.g - 1, static_cast<int>(std::floor(x * pm.g)))); };
+    for (int y = cell(lo[1] - 1e-9); y <= cell(hi[1] + 1e-9); ++y)
+      for (int x = cell(lo[0] - 1e-9); x <= cell(hi[0] + 1e-9); ++x) pm.cells[y * pm.g + x].push_back(t);
+  }
+}
+
+// 3D point on the surface at parametric (u, v) of the patch: the triangle containing it (the one
+// with the largest smallest barycentric coordinate), barycentric interpolation of its corners.
+Vec3 evaluate(const PatchMap& pm, const mesh::SurfaceMesh& S, double u, double v) {
+  auto cell = [&](double x) { return std::max(0, std::min(pm.g - 1, static_cast<int>(std::floor(x * pm.g)))); };
+  double best = -1e30;
+  Vec3 result = Vec3::Zero();
+  auto try_tris = [&](const std::vector<int>& list) {
+    for (int t : list) {
+      const int a = S.F(t, 0), b = S.F(t, 1), c = S.F(t, 2);
+      const double x0 = pm.uv(a, 0), y0 = pm.uv(a, 1);
+      const double d = (pm.uv(b, 0) - x0) * (pm.uv(c, 1) - y0) - (pm.uv(c, 0) - x0) * (pm.uv(b, 1) - y0);
+      if (d == 0) continue;
+      const double l1 = ((u - x0) * (pm.uv(c, 1) - y0) - (pm.uv(c, 0) - x0) * (v - y0)) / d;
+      const double l2 = ((pm.uv(b, 0) - x0) * (v - y0) - (u - x0) * (pm.uv(b, 1) - y0)) / d;
+      const double l0 = 1 - l1 - l2;
+      const double m = std::min({l0, l1, l2});
+      if (m > best) {
+        best = m;
+        double c0 = std::max(0.0, l0), c1 = std::max(0.0, l1), c2 = std::max(0.0, l2);
+        const double sum = c0 + c1 + c2;
+        result = (c0 * S.V.row(a) + c1 * S.V.row(b) + c2 * S.V.row(c)).transpose() / sum;
+      }
+    }
+  };
+  try_tris(pm.cells[cell(v) * pm.g + cell(u)]);
+  if (best < -1e-9) try_tris(pm.tris);  // outside every candidate: search the whole patch
+  return result;
+}
+
+Eigen::Vector2d domain_corner(int nface, int i) {
+  static const double q[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  static const double t[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  return nface == 4 ? Eigen::Vector2d(q[i][0], q[i][1]) : Eigen::Vector2d(t[i][0], t[i][1]);
+}
+
+std::string vertex_list(const std::vector<int>& v) {
+  std::string s;
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + std::to_string(v[i] + 1);
+  return s;
+}
+
+}  // namespace
+
+mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const GenerateOptions& opt,
+                    GenerateStats* stats_out) {
+  if (opt.level < 0 || opt.level > 6)
+    throw GeometryError("level " + std::to_string(opt.level) + " is outside 0..6");
+  const int n = 1 << opt.level;
+  const long long N3 = static_cast<long long>(n) * n * n;
+  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  GenerateStats stats;
+
+  // ---- the surface and its patches
+  polycube::check_closed_manifold(S);
+  const polycube::PatchLayout layout = polycube::patch_layout(S);
+  const double diag = (S.V.colwise().maxCoeff() - S.V.colwise().minCoeff()).norm();
+  stats.patches = static_cast<int>(layout.patches.size());
+  stats.corners = static_cast<int>(layout.corners.size());
+
+  // ---- the structure: blocks, snapped vertices, faces
+  const int nb = T.num_cells(), nsv = T.num_nodes();
+  if (nb == 0) throw GeometryError("the structure has no blocks");
+  for (int b = 0; b < nb; ++b)
+    if (!mesh::is_volume(T.type(b)))
+      throw GeometryError("structure element " + std::to_string(b + 1) + " is a " + mesh::type_name(T.type(b)) +
+                          ", not a hex, prism or tet block");
+  std::vector<Vec3> P(nsv);
+  std::vector<int> corner_vertex(layout.corners.size(), -1);  // surface corner -> structure vertex
+  std::vector<int> vertex_corner(nsv, -1);
+  {
+    std::vector<char> used(nsv, 0);
+    for (int b = 0; b < nb; ++b)
+      for (int i = 0; i < mesh::node_count(T.type(b)); ++i) used[T.cells(b, i)] = 1;
+    for (int v = 0; v < nsv; ++v) {
+      P[v] = T.V.row(v).transpose();
+      if (!used[v]) continue;
+      double best = opt.snap_tolerance * diag;
+      int bc = -1;
+      for (size_t c = 0; c < layout.corners.size(); ++c) {
+        double d = (S.V.row(layout.corners[c]).transpose() - P[v]).norm();
+        if (d <= best) { best = d; bc = static_cast<int>(c); }
+      }
+      if (bc < 0) { stats.interior_vertices++; continue; }
+      if (corner_vertex[bc] >= 0)
+        throw GeometryError("structure vertices " + std::to_string(corner_vertex[bc] + 1) + " and " + std::to_string(v + 1) +
+                            " both snap to surface corner " + std::to_string(layout.corners[bc] + 1));
+      corner_vertex[bc] = v;
+      vertex_corner[v] = bc;
+      P[v] = S.V.row(layout.corners[bc]).transpose();
+    }
+  }
+  for (size_t c = 0; c < layout.corners.size(); ++c)
+    if (corner_vertex[c] < 0)
+      throw GeometryError("surface corner at vertex " + std::to_string(layout.corners[c] + 1) + " (" +
+                          std::to_string(S.V(layout.corners[c], 0)) + ", " + std::to_string(S.V(layout.corners[c], 1)) + ", " +
+                          std::to_string(S.V(layout.corners[c], 2)) + ") has no structure vertex");
+
+  // Faces of all blocks, keyed by their sorted vertices.
+  std::map<std::vector<int>, std::vector<std::pair<int, int>>> faces;
+  for (int b = 0; b < nb; ++b) {
+    auto [lf, nlf] = local_faces(T.type(b));
+    for (int f = 0; f < nlf; ++f) {
+      std::vector<int> vs;
+      for (int i = 0; i < lf[f].n; ++i) vs.push_back(T.cells(b, lf[f].v[i]));
+      std::sort(vs.begin(), vs.end());
+      faces[vs].push_back({b, f});
+    }
+  }
+  // Patch corner sets -> patch index.
+  std::map<std::vector<int>, int> patch_of_corners;
+  for (size_t p = 0; p < layout.patches.size(); ++p) {
+    std::vector<int> vs;
+    for (int li : layout.patches[p].corners) vs.push_back(corner_vertex[layout.corner_of(layout.patches[p].loop[li])]);
+    std::sort(vs.begin(), vs.end());
+    patch_of_corners[vs] = static_cast<int>(p);
+  }
+  std::vector<PatchMap> maps(layout.patches.size());
+  std::vector<int> patch_face(layout.patches.size(), -1);
+  std::map<std::vector<int>, int> boundary_face_patch;  // sorted vertices -> patch
+  std::map<std::pair<int, int>, Curve> curves;          // (structure vertex a, b) -> curve a->b
+  int bf_count = 0;
+  for (const auto& [vs, users] : faces) {
+    if (users.size() > 2)
+      throw GeometryError("structure face (vertices " + vertex_list(vs) + ") is shared by " + std::to_string(users.size()) + " blocks");
+    if (users.size() == 2) continue;
+    const int b = users[0].first, f = users[0].second;
+    const LocalFace& lf = local_faces(T.type(b)).first[f];
+    auto it = patch_of_corners.find(vs);
+    if (it == patch_of_corners.end())
+      throw GeometryError("block " + std::to_string(b + 1) + " face " + std::to_string(f + 1) + " (vertices " + vertex_list(vs) +
+                          ") is on the boundary but matches no patch: no patch has exactly these corners");
+    const int p = it->second;
+    const polycube::Patch& patch = layout.patches[p];
+    if (patch_face[p] >= 0)
+      throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(patch.label) + ") matches two boundary faces");
+    patch_face[p] = bf_count++;
+    boundary_face_patch[vs] = p;
+    if (patch.num_loops != 1)
+      throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(patch.label) + ") has " +
+                          std::to_string(patch.num_loops) + " boundary loops: a patch must be a disk");
+    // Face vertices in outward order and the loop's corners in loop order.
+    std::vector<int> fv(lf.v, lf.v + lf.n);
+    for (int& x : fv) x = T.cells(b, x);
+    std::vector<int> lc;
+    for (int li : patch.corners) lc.push_back(corner_vertex[layout.corner_of(patch.loop[li])]);
+    const int m = lf.n;
+    int dir = 0, rot = -1;
+    for (int r = 0; r < m && rot < 0; ++r) {
+      bool fwd = true, bwd = true;
+      for (int i = 0; i < m; ++i) {
+        fwd = fwd && lc[(r + i) % m] == fv[i];
+        bwd = bwd && lc[((r - i) % m + m) % m] == fv[i];
+      }
+      if (fwd) { rot = r; dir = 1; } else if (bwd) { rot = r; dir = -1; }
+    }
+    if (rot < 0)
+      throw GeometryError("patch " + std::to_string(p + 1) + " visits its corners in an order that does not match block " +
+                          std::to_string(b + 1) + " face " + std::to_string(f + 1));
+    PatchMap& pm = maps[p];
+    pm.tris = patch.triangles;
+    for (int i = 0; i < m; ++i) pm.domain[fv[i]] = domain_corner(m, i);
+    // Boundary: each loop segment between corners, by arc length, onto the domain edge.
+    std::vector<int> bnd;
+    std::vector<Eigen::Vector2d> bpos;
+    const int L = static_cast<int>(patch.loop.size());
+    for (size_t ci = 0; ci < patch.corners.size(); ++ci) {
+      const int s0 = patch.corners[ci], s1 = patch.corners[(ci + 1) % patch.corners.size()];
+      const int len = ((s1 - s0) % L + L) % L == 0 ? L : ((s1 - s0) % L + L) % L;
+      Curve cv;
+      cv.p.push_back(S.V.row(patch.loop[s0]).transpose());
+      cv.s.push_back(0);
+      for (int k = 1; k <= len; ++k) {
+        Vec3 q = S.V.row(patch.loop[(s0 + k) % L]).transpose();
+        cv.s.push_back(cv.s.back() + (q - cv.p.back()).norm());
+        cv.p.push_back(q);
+      }
+      const int va = lc[ci], vb = lc[(ci + 1) % m];
+      const Eigen::Vector2d da = pm.domain[va], db = pm.domain[vb];
+      for (int k = 0; k < len; ++k) {
+        bnd.push_back(patch.loop[(s0 + k) % L]);
+        const double t = cv.s.back() > 0 ? cv.s[k] / cv.s.back() : 0.0;
+        bpos.push_back((1 - t) * da + t * db);
+      }
+      if (!curves.count({va, vb})) {
+        Curve rev;
+        rev.p.assign(cv.p.rbegin(), cv.p.rend());
+        for (double x : cv.s) rev.s.insert(rev.s.begin(), cv.s.back() - x);
+        curves[{va, vb}] = cv;
+        curves[{vb, va}] = rev;
+      }
+    }
+    (void)dir;
+    Eigen::MatrixXi F(static_cast<int>(pm.tris.size()), 3);
+    for (size_t i = 0; i < pm.tris.size(); ++i) F.row(i) = S.F.row(pm.tris[i]);
+    Eigen::MatrixXd bc(static_cast<int>(bnd.size()), 2);
+    for (size_t i = 0; i < bnd.size(); ++i) bc.row(i) = bpos[i].transpose();
+    auto hm = parametrization::harmonic_map(S.V, F, bnd, bc);
+    if (hm.flipped > 0)
+      throw MeshingError("patch " + std::to_string(p + 1) + " (label " + std::to_string(patch.label) + "): the harmonic map flips " +
+                         std::to_string(hm.flipped) + " triangles even with mean-value weights");
+    (hm.weights == parametrization::Weights::Cotangent ? stats.cotangent_patches : stats.mean_value_patches)++;
+    pm.uv = std::move(hm.uv);
+    build_grid(pm, S);
+  }
+  for (size_t p = 0; p < layout.patches.size(); ++p)
+    if (patch_face[p] < 0)
+      throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(layout.patches[p].label) +
+                          ", " + std::to_string(layout.patches[p].triangles.size()) + " triangles) matches no boundary face of the structure");
+  stats.boundary_faces = bf_count;
+  log("matched " + std::to_string(bf_count) + " boundary faces to patches (" + std::to_string(stats.cotangent_patches) +
+      " cotangent, " + std::to_string(stats.mean_value_patches) + " mean-value maps)");
+
+  // Boundary edges of the structure: edges of boundary faces.
+  std::set<std::pair<int, int>> boundary_edges;
+  for (const auto& [vs, p] : boundary_face_patch) {
+    (void)p;
+    for (size_t i = 0; i < vs.size(); ++i)
+      for (size_t j = i + 1; j < vs.size(); ++j) boundary_edges.insert({vs[i], vs[j]});
+  }
+
+  // ---- global nodes: lattice points shared through their weights on structure vertices
+  const int n1 = n + 1;
+  auto lidx = [&](int i, int j, int k) { return (k * n1 + j) * n1 + i; };
+  std::vector<std::vector<int>> lattice(nb, std::vector<int>(n1 * n1 * n1, -1));
+  std::unordered_map<Key, int, KeyHash> shared;
+  std::vector<Key> node_key;       // weights of shared nodes (empty key for block-interior nodes)
+  std::vector<int> node_block;     // block of a block-interior node, -1 for shared nodes
+  for (int b = 0; b < nb; ++b) {
+    const CellType t = T.type(b);
+    int w[8];
+    for (int k = 0; k <= n; ++k)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+          if (!in_lattice(t, n, i, j, k)) continue;
+          int id;
+          if (on_block_boundary(t, n, i, j, k)) {
+            const int nw = weights(t, n, i, j, k, w);
+            std::array<std::pair<int, int>, 8> pairs;
+            int np = 0;
+            for (int v = 0; v < nw; ++v)
+              if (w[v]) pairs[np++] = {T.cells(b, v), w[v]};
+            for (int q = 1; q < np; ++q)  // insertion sort: at most 8 entries
+              for (int r = q; r > 0 && pairs[r] < pairs[r - 1]; --r) std::swap(pairs[r], pairs[r - 1]);
+            Key key;
+            key.fill(-1);
+            for (int q = 0; q < np && q < 4; ++q) key[q] = (static_cast<long long>(pairs[q].first) << 32) | pairs[q].second;
+            auto [it, inserted] = shared.emplace(key, static_cast<int>(node_key.size()));
+            if (inserted) { node_key.push_back(key); node_block.push_back(-1); }
+            id = it->second;
+          } else {
+            id = static_cast<int>(node_key.size());
+            Key none;
+            none.fill(-1);
+            node_key.push_back(none);
+            node_block.push_back(b);
+          }
+          lattice[b][lidx(i, j, k)] = id;
+        }
+  }
+  const int nn = static_cast<int>(node_key.size());
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nn, 3);
+  std::vector<char> known(nn, 0), on_surface(nn, 0);
+
+  // Vertices, edges and boundary-face nodes straight from their keys.
+  for (int id = 0; id < nn; ++id) {
+    if (node_block[id] >= 0) continue;
+    const Key& k = node_key[id];
+    int vs[4], ws[4], m = 0;
+    for (int q = 0; q < 4 && k[q] >= 0; ++q, ++m) {
+      vs[m] = static_cast<int>(k[q] >> 32);
+      ws[m] = static_cast<int>(k[q] & 0xffffffff);
+    }
+    if (m == 1) {
+      X.row(id) = P[vs[0]].transpose();
+      known[id] = 1;
+      on_surface[id] = vertex_corner[vs[0]] >= 0;
+    } else if (m == 2) {
+      auto c = curves.find({vs[0], vs[1]});
+      if (boundary_edges.count({vs[0], vs[1]}) && c != curves.end()) {
+        X.row(id) = c->second.at(static_cast<double>(ws[1]) / N3).transpose();
+        on_surface[id] = 1;
+      } else {
+        X.row(id) = ((ws[0] * P[vs[0]] + ws[1] * P[vs[1]]) / static_cast<double>(N3)).transpose();
+      }
+      known[id] = 1;
+    } else {
+      std::vector<int> sv(vs, vs + m);
+      auto f = boundary_face_patch.find(sv);
+      if (f == boundary_face_patch.end()) continue;  // interior face: filled below
+      const PatchMap& pm = maps[f->second];
+      Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+      for (int q = 0; q < m; ++q) uv += ws[q] * pm.domain.at(vs[q]);
+      uv /= static_cast<double>(N3);
+      X.row(id) = evaluate(pm, S, uv(0), uv(1)).transpose();
+      known[id] = 1;
+      on_surface[id] = 1;
+    }
+  }
+
+  // Harmonic fill of unknown lattice nodes (Gauss-Seidel from a linear start).
+  auto harmonic_fill = [&](const std::vector<int>& ids, const std::vector<std::vector<int>>& nbrs) {
+    std::vector<int> todo;
+    for (size_t q = 0; q < ids.size(); ++q)
+      if (!known[ids[q]]) todo.push_back(static_cast<int>(q));
+    for (int sweep = 0; sweep < 40 + 4 * n * n && !todo.empty(); ++sweep) {
+      double change = 0;
+      for (int q : todo) {
+        Vec3 s = Vec3::Zero();
+        for (int r : nbrs[q]) s += X.row(ids[r]).transpose();
+        Vec3 nx = s / static_cast<double>(nbrs[q].size());
+        change = std::max(change, (nx - X.row(ids[q]).transpose()).norm());
+        X.row(ids[q]) = nx.transpose();
+      }
+      if (change < 1e-12 * diag) break;
+    }
+    for (int q : todo) known[ids[q]] = 1;
+  };
+  // Linear start for unknown nodes of a block from its corners.
+  auto linear_start = [&](int b) {
+    const CellType t = T.type(b);
+    int w[8];
+    for (int k = 0; k <= n; ++k)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+          if (!in_lattice(t, n, i, j, k)) continue;
+          const int id = lattice[b][lidx(i, j, k)];
+          if (known[id]) continue;
+          const int nw = weights(t, n, i, j, k, w);
+          Vec3 s = Vec3::Zero();
+          for (int v = 0; v < nw; ++v) s += w[v] * P[T.cells(b, v)];
+          X.row(id) = (s / static_cast<double>(N3)).transpose();
+        }
+  };
+
+  // Interior faces: Coons patches (quads) or harmonic fill (triangles).
+  std::set<std::vector<int>> done_faces;
+  for (int b = 0; b < nb; ++b) {
+    const CellType t = T.type(b);
+    auto [lf, nlf] = local_faces(t);
+    const int (*C)[3] = corner_table(t);
+    linear_start(b);
+    for (int f = 0; f < nlf; ++f) {
+      std::vector<int> vs;
+      for (int i = 0; i < lf[f].n; ++i) vs.push_back(T.cells(b, lf[f].v[i]));
+      std::sort(vs.begin(), vs.end());
+      if (boundary_face_patch.count(vs) || !done_faces.insert(vs).second) continue;
+      // Lattice coordinates of the face's corners in this block.
+      auto corner = [&](int i) { return Eigen::Vector3i(C[lf[f].v[i]][0] * n, C[lf[f].v[i]][1] * n, C[lf[f].v[i]][2] * n); };
+      const Eigen::Vector3i c0 = corner(0), e1 = (corner(1) - c0) / n, e2 = (corner(lf[f].n == 4 ? 3 : 2) - c0) / n;
+      auto at = [&](int s, int u) { Eigen::Vector3i p = c0 + s * e1 + u * e2; return lattice[b][lidx(p(0), p(1), p(2))]; };
+      if (lf[f].n == 4) {
+        for (int u = 1; u < n; ++u)
+          for (int s = 1; s < n; ++s) {
+            const double a = static_cast<double>(s) / n, c = static_cast<double>(u) / n;
+            Vec3 x = (1 - c) * X.row(at(s, 0)).transpose() + c * X.row(at(s, n)).transpose() +
+                     (1 - a) * X.row(at(0, u)).transpose() + a * X.row(at(n, u)).transpose() -
+                     ((1 - a) * (1 - c) * X.row(at(0, 0)).transpose() + a * (1 - c) * X.row(at(n, 0)).transpose() +
+                      (1 - a) * c * X.row(at(0, n)).transpose() + a * c * X.row(at(n, n)).transpose());
+            X.row(at(s, u)) = x.transpose();
+            known[at(s, u)] = 1;
+          }
+      } else {
+        std::vector<int> ids;
+        std::map<std::pair<int, int>, int> pos;
+        for (int u = 0; u <= n; ++u)
+          for (int s = 0; s + u <= n; ++s) { pos[{s, u}] = static_cast<int>(ids.size()); ids.push_back(at(s, u)); }
+        std::vector<std::vector<int>> nbrs(ids.size());
+        for (const auto& [su, q] : pos)
+          for (const auto& d : kTriNb) {
+            auto it = pos.find({su.first + d[0], su.second + d[1]});
+            if (it != pos.end()) nbrs[q].push_back(it->second);
+          }
+        harmonic_fill(ids, nbrs);
+      }
+    }
+  }
+
+  // Block interiors: transfinite interpolation (hex) or harmonic fill (prism, tet).
+  for (int b = 0; b < nb; ++b) {
+    const CellType t = T.type(b);
+    const auto& L = lattice[b];
+    if (t == CellType::Hex) {
+      auto x = [&](int i, int j, int k) -> Vec3 { return X.row(L[lidx(i, j, k)]).transpose(); };
+      for (int k = 1; k < n; ++k)
+        for (int j = 1; j < n; ++j)
+          for (int i = 1; i < n; ++i) {
+            const double s = static_cast<double>(i) / n, u = static_cast<double>(j) / n, v = static_cast<double>(k) / n;
+            Vec3 f = (1 - s) * x(0, j, k) + s * x(n, j, k) + (1 - u) * x(i, 0, k) + u * x(i, n, k) + (1 - v) * x(i, j, 0) + v * x(i, j, n);
+            Vec3 e = (1 - u) * (1 - v) * x(i, 0, 0) + u * (1 - v) * x(i, n, 0) + (1 - u) * v * x(i, 0, n) + u * v * x(i, n, n) +
+                     (1 - s) * (1 - v) * x(0, j, 0) + s * (1 - v) * x(n, j, 0) + (1 - s) * v * x(0, j, n) + s * v * x(n, j, n) +
+                     (1 - s) * (1 - u) * x(0, 0, k) + s * (1 - u) * x(n, 0, k) + (1 - s) * u * x(0, n, k) + s * u * x(n, n, k);
+            Vec3 c = Vec3::Zero();
+            for (int q = 0; q < 8; ++q) {
+              const int* cc = kHexCorner[q];
+              c += (cc[0] ? s : 1 - s) * (cc[1] ? u : 1 - u) * (cc[2] ? v : 1 - v) * x(cc[0] * n, cc[1] * n, cc[2] * n);
+            }
+            X.row(L[lidx(i, j, k)]) = (f - e + c).transpose();
+            known[L[lidx(i, j, k)]] = 1;
+          }
+    } else {
+      std::vector<int> ids;
+      std::vector<int> where(n1 * n1 * n1, -1);
+      for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+          for (int i = 0; i <= n; ++i)
+            if (in_lattice(t, n, i, j, k)) { where[lidx(i, j, k)] = static_cast<int>(ids.size()); ids.push_back(L[lidx(i, j, k)]); }
+      std::vector<std::vector<int>> nbrs(ids.size());
+      const int (*nb3)[3] = t == CellType::Wedge ? kWedgeNb : kTetNb;
+      const int nnb = t == CellType::Wedge ? 8 : 12;
+      for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+          for (int i = 0; i <= n; ++i) {
+            if (!in_lattice(t, n, i, j, k)) continue;
+            for (int d = 0; d < nnb; ++d) {
+              const int a = i + nb3[d][0], c = j + nb3[d][1], e = k + nb3[d][2];
+              if (in_lattice(t, n, a, c, e)) nbrs[where[lidx(i, j, k)]].push_back(where[lidx(a, c, e)]);
+            }
+          }
+      harmonic_fill(ids, nbrs);
+    }
+  }
+
+  // ---- cells
+  mesh::MeshBuilder out;
+  for (int b = 0; b < nb; ++b) {
+    const CellType t = T.type(b);
+    const auto& L = lattice[b];
+    auto id = [&](int i, int j, int k) { return L[lidx(i, j, k)]; };
+    if (t == CellType::Hex) {
+      for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i) {
+            int c[8];
+            for (int q = 0; q < 8; ++q) c[q] = id(i + kHexCorner[q][0], j + kHexCorner[q][1], k + kHexCorner[q][2]);
+            out.add(CellType::Hex, c, b + 1);
+          }
+    } else if (t == CellType::Wedge) {
+      for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i + j < n; ++i) {
+            int up[6] = {id(i, j, k), id(i + 1, j, k), id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1), id(i, j + 1, k + 1)};
+            out.add(CellType::Wedge, up, b + 1);
+            if (i + j + 2 <= n) {
+              int dn[6] = {id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+              out.add(CellType::Wedge, dn, b + 1);
+            }
+          }
+    } else {
+      // Regular refinement of the tet lattice: up tets, down tets, and octahedra split into four
+      // tets along their shortest diagonal. Orientation is fixed in lattice space.
+      auto add_tet = [&](std::array<Eigen::Vector3i, 4> q) {
+        Eigen::Vector3i a = q[1] - q[0], c = q[2] - q[0], d = q[3] - q[0];
+        const int det = a.dot(c.cross(d));
+        if (det < 0) std::swap(q[1], q[2]);
+        int ids[4];
+        for (int r = 0; r < 4; ++r) ids[r] = id(q[r](0), q[r](1), q[r](2));
+        out.add(CellType::Tet, ids, b + 1);
+      };
+      using V3 = Eigen::Vector3i;
+      for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i + j + k < n; ++i) {
+            const V3 o(i, j, k);
+            add_tet({o, o + V3(1, 0, 0), o + V3(0, 1, 0), o + V3(0, 0, 1)});
+            if (i + j + k + 2 <= n) {
+              const V3 a = o + V3(1, 0, 0), bq = o + V3(0, 1, 0), c = o + V3(0, 0, 1);
+              const V3 ab = o + V3(1, 1, 0), ac = o + V3(1, 0, 1), bc = o + V3(0, 1, 1);
+              // Octahedron a, b, c, ab, ac, bc: diagonals a-bc, b-ac, c-ab.
+              const std::array<std::pair<V3, V3>, 3> diags = {std::make_pair(a, bc), std::make_pair(bq, ac), std::make_pair(c, ab)};
+              int best = 0;
+              double bl = 1e300;
+              for (int d = 0; d < 3; ++d) {
+                double l = (X.row(id(diags[d].first(0), diags[d].first(1), diags[d].first(2))) -
+                            X.row(id(diags[d].second(0), diags[d].second(1), diags[d].second(2)))).norm();
+                if (l < bl) { bl = l; best = d; }
+              }
+              // The four other vertices in cyclic order around the chosen diagonal.
+              std::array<V3, 4> ring;
+              if (best == 0) ring = {bq, ab, ac, c};
+              else if (best == 1) ring = {a, ab, bc, c};
+              else ring = {a, ac, bc, bq};
+              for (int r = 0; r < 4; ++r) add_tet({diags[best].first, diags[best].second, ring[r], ring[(r + 1) % 4]});
+              if (i + j + k + 3 <= n) add_tet({ab, ac, bc, o + V3(1, 1, 1)});
+            }
+          }
+    }
+  }
+  mesh::Mesh result = out.finish(std::move(X));
+
+  // ---- relaxation of nodes inside the volume, accepted only where it raises the local worst SJ
+  if (opt.relax_sweeps > 0) {
+    const int nc = result.num_cells();
+    std::vector<std::vector<int>> node_cells(nn);
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < mesh::node_count(result.type(c)); ++i) node_cells[result.cells(c, i)].push_back(c);
+    std::vector<std::vector<int>> nbr(nn);
+    static const int he[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    static const int we[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+    static const int te[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+    for (int c = 0; c < nc; ++c) {
+      const int(*e)[2] = result.type(c) == CellType::Hex ? he : result.type(c) == CellType::Wedge ? we : te;
+      const int ne = result.type(c) == CellType::Hex ? 12 : result.type(c) == CellType::Wedge ? 9 : 6;
+      for (int q = 0; q < ne; ++q) {
+        int a = result.cells(c, e[q][0]), bq = result.cells(c, e[q][1]);
+        nbr[a].push_back(bq);
+        nbr[bq].push_back(a);
+      }
+    }
+    auto local_min = [&](int v) {
+      double m = 2;
+      for (int c : node_cells[v]) {
+        double sj = quality::scaled_jacobian(result.type(c), quality::cell_points(result, c));
+        m = std::min(m, quality::is_inverted(sj) ? -1.0 : sj);
+      }
+      return m;
+    };
+    for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
+      int moved = 0;
+      for (int v = 0; v < nn; ++v) {
+        if (on_surface[v] || nbr[v].empty()) continue;
+        const double before = local_min(v);
+        if (before > 0.5) continue;  // only poor neighbourhoods are worth the work
+        Vec3 avg = Vec3::Zero();
+        for (int u : nbr[v]) avg += result.V.row(u).transpose();
+        avg /= static_cast<double>(nbr[v].size());
+        const Vec3 old = result.V.row(v).transpose();
+        for (double step : {1.0, 0.5, 0.25}) {
+          result.V.row(v) = (old + step * (avg - old)).transpose();
+          if (local_min(v) > before + 1e-12) { ++moved; break; }
+          result.V.row(v) = old.transpose();
+        }
+      }
+      if (!moved) break;
+    }
+  }
+  if (stats_out) *stats_out = stats;
+  return result;
+}
+
+}  // namespace hexdom::generation
