@@ -1,0 +1,223 @@
+"""hexdom generate on the paper models, checked with VTK as the independent reader and oracle:
+cell counts, conformity, closedness, boundary nodes on the input surface, volume."""
+
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DATA = os.environ.get("HEXDOM_DATA", os.path.join(ROOT, "..", "shared", "data"))
+BUILD = os.environ.get("HEXDOM_BUILD_DIR", os.path.join(ROOT, "build"))
+HEXDOM = os.path.join(BUILD, "bin", "hexdom")
+
+MODELS = {  # model: (patch file, structure, (hex, prism, tet) blocks)
+    "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_polycube_withtet.k", (60, 11, 2)),
+    "mount1": ("mount1_patch_hexdom.k", "mount1_polycube_hexdom_withtet.k", (66, 10, 2)),
+    "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k", (59, 22, 4)),
+    "fertility": ("fertility_indexPatch_hexdom.k", "fertility_polycube_hexdom_withtet.k", (43, 5, 2)),
+    "ant": ("ant_indexPatch_hexdom.k", "ant_polycube_withtet.k", (70, 24, 2)),
+    "mountwithhole": ("mountwithhole_patch_hexdom.k", "mountwithhole_polycube_withtet.k", (58, 6, 2)),
+}
+
+
+def _model_paths(model):
+    patch, structure, _ = MODELS[model]
+    p = os.path.join(DATA, "hexdom", model, patch)
+    s = os.path.join(DATA, "hexdom", model, structure)
+    for f in (p, s):
+        if not os.path.exists(f):
+            pytest.skip(f"shared data missing: {f}")
+    return p, s
+
+
+def _generate(patches, structure, level, out):
+    r = subprocess.run([HEXDOM, "generate", "-i", patches, "-p", structure, "-s", str(level), "-o", out,
+                        "--report", out + ".json"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with open(out + ".json") as f:
+        return json.load(f)
+
+
+def _read_grid(path):
+    r = vtk.vtkUnstructuredGridReader()
+    r.SetFileName(path)
+    r.Update()
+    return r.GetOutput()
+
+
+def _read_surface(path):
+    """Triangles of a .k shell file, parsed here (not by our reader), as a vtkPolyData."""
+    nodes, tris, section = {}, [], None
+    with open(path) as f:
+        for line in f:
+            if line.startswith("$"):
+                continue
+            if line.startswith("*"):
+                section = line.strip().upper()
+                continue
+            fields = line.replace(",", " ").split()
+            if section == "*NODE" and len(fields) >= 4:
+                nodes[int(fields[0])] = [float(x) for x in fields[1:4]]
+            elif section == "*ELEMENT_SHELL" and len(fields) >= 5:
+                tris.append([int(x) for x in fields[2:5]])
+    ids = {nid: i for i, nid in enumerate(nodes)}
+    V = np.array(list(nodes.values()))
+    F = np.array([[ids[n] for n in t] for t in tris])
+    pts = vtk.vtkPoints()
+    pts.SetDataTypeToDouble()
+    for p in V:
+        pts.InsertNextPoint(*p)
+    polys = vtk.vtkCellArray()
+    for t in F:
+        polys.InsertNextCell(3, [int(x) for x in t])
+    pd = vtk.vtkPolyData()
+    pd.SetPoints(pts)
+    pd.SetPolys(polys)
+    return pd, V, F
+
+
+def _faces_of(grid):
+    faces = {}
+    for c in range(grid.GetNumberOfCells()):
+        cell = grid.GetCell(c)
+        for k in range(cell.GetNumberOfFaces()):
+            f = cell.GetFace(k)
+            ids = tuple(f.GetPointId(i) for i in range(f.GetNumberOfPoints()))
+            faces.setdefault(tuple(sorted(ids)), []).append(ids)
+    return faces
+
+
+_VOLUME_DEFECT = pytest.mark.xfail(
+    strict=True, reason="issue 3: inverted prisms at level 2 (fertility 23, ant 50) leave the "
+    "mesh volume 2.9% / 1.6% short of the enclosed volume; everything else holds")
+
+
+@pytest.mark.parametrize("model", [pytest.param(m, marks=_VOLUME_DEFECT) if m in ("fertility", "ant") else m
+                                   for m in MODELS])
+def test_level2_counts_conformity_and_surface(model, tmp_path):
+    patches, structure = _model_paths(model)
+    out = str(tmp_path / f"{model}.vtk")
+    report = _generate(patches, structure, 2, out)
+    grid = _read_grid(out)
+    types = vtk_to_numpy(grid.GetCellTypesArray())
+    nh, npr, nt = MODELS[model][2]
+    assert (np.sum(types == 12), np.sum(types == 13), np.sum(types == 10)) == (64 * nh, 64 * npr, 64 * nt)
+    assert report["hex"]["count"] == 64 * nh
+
+    # Conforming and closed: no face in more than two cells; boundary edges in exactly two
+    # boundary faces.
+    faces = _faces_of(grid)
+    assert max(len(v) for v in faces.values()) <= 2
+    boundary = [v[0] for v in faces.values() if len(v) == 1]
+    edges = {}
+    for f in boundary:
+        for i in range(len(f)):
+            e = tuple(sorted((f[i], f[(i + 1) % len(f)])))
+            edges[e] = edges.get(e, 0) + 1
+    assert set(edges.values()) == {2}
+
+    # No coincident nodes.
+    X = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+    diag = np.linalg.norm(X.max(0) - X.min(0))
+    assert len(np.unique(np.round(X / (1e-9 * diag)), axis=0)) == len(X)
+
+    # Boundary nodes lie on the input triangles (VTK's cell locator as the oracle).
+    pd, SV, SF = _read_surface(patches)
+    loc = vtk.vtkCellLocator()
+    loc.SetDataSet(pd)
+    loc.BuildLocator()
+    bnodes = sorted({i for f in boundary for i in f})
+    worst = 0.0
+    closest = [0.0, 0.0, 0.0]
+    cid, sub, d2 = vtk.reference(0), vtk.reference(0), vtk.reference(0.0)
+    for i in bnodes:
+        loc.FindClosestPoint(X[i], closest, cid, sub, d2)
+        worst = max(worst, float(d2) ** 0.5)
+    sdiag = np.linalg.norm(SV.max(0) - SV.min(0))
+    assert worst <= 1e-9 * sdiag, f"boundary node {worst / sdiag:.2e} x diagonal off the surface"
+
+    # Volume within 1% of the volume the surface encloses (divergence theorem).
+    a, b, c = SV[SF[:, 0]], SV[SF[:, 1]], SV[SF[:, 2]]
+    enclosed = abs(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+    sizes = vtk.vtkCellSizeFilter()
+    sizes.SetInputData(grid)
+    sizes.Update()
+    vol = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume")).sum()
+    assert abs(vol - enclosed) <= 0.01 * enclosed, (vol, enclosed)
+
+
+@pytest.mark.parametrize("level", [0, 1, 3])
+def test_rockerarm_levels(level, tmp_path):
+    patches, structure = _model_paths("rockerarm")
+    out = str(tmp_path / "r.vtk")
+    _generate(patches, structure, level, out)
+    types = vtk_to_numpy(_read_grid(out).GetCellTypesArray())
+    per = 8 ** level
+    assert (np.sum(types == 12), np.sum(types == 13), np.sum(types == 10)) == (60 * per, 11 * per, 2 * per)
+
+
+def test_bundled_example_has_no_inverted_cell(tmp_path):
+    ex = os.path.join(ROOT, "examples", "data")
+    out = str(tmp_path / "lb.vtk")
+    report = _generate(os.path.join(ex, "lbracket_patches.k"), os.path.join(ex, "lbracket_structure.k"), 2, out)
+    grid = _read_grid(out)
+    q = vtk.vtkMeshQuality()
+    q.SetInputData(grid)
+    q.SetHexQualityMeasureToScaledJacobian()
+    q.Update()
+    sj = vtk_to_numpy(q.GetOutput().GetCellData().GetArray("Quality"))
+    types = vtk_to_numpy(grid.GetCellTypesArray())
+    assert sj[types == 12].min() > 0.5
+    assert report["hex"]["inverted"] == report["prism"]["inverted"] == 0
+    assert report["hex"]["count"] == 3 * 64 and report["prism"]["count"] == 64
+
+
+def _fails_without_output(args, out, needle):
+    r = subprocess.run([HEXDOM] + args, capture_output=True, text=True)
+    assert r.returncode == 1, r.stderr
+    assert needle in r.stderr, r.stderr
+    assert not os.path.exists(out)
+
+
+def test_face_matching_no_patch_is_an_error(tmp_path):
+    ex = os.path.join(ROOT, "examples", "data")
+    # Merge patch 2 into its neighbour 1: block 1's face x=0 then matches no patch's corners.
+    out_lines, section = [], None
+    for line in open(os.path.join(ex, "lbracket_patches.k")).read().splitlines():
+        if line.startswith("*"):
+            section = line.strip()
+        elif section == "*ELEMENT_SHELL" and int(line[8:16]) == 2:
+            line = line[:8] + "%8d" % 1 + line[16:]
+        out_lines.append(line)
+    merged = tmp_path / "merged.k"
+    merged.write_text("\n".join(out_lines) + "\n")
+    out = str(tmp_path / "o.vtk")
+    _fails_without_output(["generate", "-i", str(merged), "-p", os.path.join(ex, "lbracket_structure.k"), "-s", "1", "-o", out],
+                          out, "matches no patch")
+
+
+def test_non_manifold_patch_file_is_an_error(tmp_path):
+    ex = os.path.join(ROOT, "examples", "data")
+    text = open(os.path.join(ex, "lbracket_patches.k")).read()
+    # Repeat the first triangle: its edges are then shared by three triangles.
+    lines = text.splitlines()
+    shell = [i for i, l in enumerate(lines) if l.strip() == "*ELEMENT_SHELL"][0]
+    first = lines[shell + 1].split()
+    lines.insert(shell + 1, "%8d%8d%8d%8d%8d%8d" % (999999, 1, int(first[2]), int(first[3]), int(first[4]), int(first[4])))
+    bad = tmp_path / "bad.k"
+    bad.write_text("\n".join(lines) + "\n")
+    out = str(tmp_path / "o.vtk")
+    _fails_without_output(["generate", "-i", str(bad), "-p", os.path.join(ex, "lbracket_structure.k"), "-s", "1", "-o", out],
+                          out, "non-manifold edge")
+
+
+def test_level_outside_range_is_an_error(tmp_path):
+    ex = os.path.join(ROOT, "examples", "data")
+    out = str(tmp_path / "o.vtk")
+    _fails_without_output(["generate", "-i", os.path.join(ex, "lbracket_patches.k"), "-p",
+                           os.path.join(ex, "lbracket_structure.k"), "-s", "7", "-o", out], out, "outside 0..6")
