@@ -18,6 +18,7 @@ from .core import (  # noqa: F401
     MeshingError,
     Surface,
     cell_metrics,
+    generate,
     quality_report,
     read_mesh,
     read_surface,

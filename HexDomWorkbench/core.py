@@ -103,3 +103,10 @@ def quality_report(mesh):
     """Dict with keys hex, prism, tet (count, sj_min, sj_mean, inverted, edge_ratio_min,
     edge_ratio_max, volume, histogram) and total_volume."""
     return _hexdom.quality_report(mesh.V, mesh.cells, mesh.types)
+
+
+def generate(surface, structure, level=2, relax_sweeps=20, snap_tolerance=1e-4):
+    """Hex-dominant mesh from a segmented Surface and a polycube structure Mesh (hex, prism and tet
+    blocks): 8^level cells per block, conforming across blocks; region = 1-based block number."""
+    return Mesh(*_hexdom.generate(surface.V, surface.F, surface.patch, structure.V, structure.cells,
+                                  structure.types, level, relax_sweeps, snap_tolerance))

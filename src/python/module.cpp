@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "hexdom/common/error.h"
+#include "hexdom/generation/generate.h"
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/mesh/mesh.h"
@@ -127,4 +128,22 @@ PYBIND11_MODULE(_hexdom, m) {
     return d;
   }, py::arg("V"), py::arg("cells"), py::arg("types"),
   "Dict with keys hex, prism, tet (count, sj_min, sj_mean, inverted, edge_ratio_min, edge_ratio_max, volume, histogram) and total_volume.");
+
+  m.def("generate", [](const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch,
+                       const Eigen::MatrixXd& TV, const CellArray& Tcells, const Eigen::VectorXi& Ttypes,
+                       int level, int relax_sweeps, double snap_tolerance) {
+    mesh::SurfaceMesh surface{SV, SF, patch};
+    mesh::Mesh structure = make_mesh(TV, Tcells, Ttypes, std::nullopt);
+    generation::GenerateOptions opt;
+    opt.level = level;
+    opt.relax_sweeps = relax_sweeps;
+    opt.snap_tolerance = snap_tolerance;
+    mesh::Mesh r;
+    { py::gil_scoped_release nogil; r = generation::generate(surface, structure, opt); }
+    return mesh_tuple(r);
+  }, py::arg("surface_V"), py::arg("surface_F"), py::arg("patch"), py::arg("structure_V"),
+     py::arg("structure_cells"), py::arg("structure_types"), py::arg("level") = 2,
+     py::arg("relax_sweeps") = 20, py::arg("snap_tolerance") = 1e-4,
+  "Hex-dominant mesh from a segmented surface (V, F, patch id per triangle) and a polycube structure\n"
+  "(V, cells, types of hex/prism/tet blocks): 8^level cells per block. Returns (V, cells, types, region).");
 }
