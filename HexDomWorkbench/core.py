@@ -105,7 +105,7 @@ def quality_report(mesh):
     return _hexdom.quality_report(mesh.V, mesh.cells, mesh.types)
 
 
-def generate(surface, structure, level=2, relax_sweeps=20, snap_tolerance=1e-4):
+def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4):
     """Hex-dominant mesh from a segmented Surface and a polycube structure Mesh (hex, prism and tet
     blocks): 8^level cells per block, conforming across blocks; region = 1-based block number."""
     return Mesh(*_hexdom.generate(surface.V, surface.F, surface.patch, structure.V, structure.cells,

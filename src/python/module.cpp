@@ -143,7 +143,7 @@ PYBIND11_MODULE(_hexdom, m) {
     return mesh_tuple(r);
   }, py::arg("surface_V"), py::arg("surface_F"), py::arg("patch"), py::arg("structure_V"),
      py::arg("structure_cells"), py::arg("structure_types"), py::arg("level") = 2,
-     py::arg("relax_sweeps") = 20, py::arg("snap_tolerance") = 1e-4,
+     py::arg("relax_sweeps") = 10, py::arg("snap_tolerance") = 1e-4,
   "Hex-dominant mesh from a segmented surface (V, F, patch id per triangle) and a polycube structure\n"
   "(V, cells, types of hex/prism/tet blocks): 8^level cells per block. Returns (V, cells, types, region).");
 }

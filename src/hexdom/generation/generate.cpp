@@ -648,27 +648,43 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
         nbr[bq].push_back(a);
       }
     }
-    auto local_min = [&](int v) {
-      double m = 2;
-      for (int c : node_cells[v]) {
-        double sj = quality::scaled_jacobian(result.type(c), quality::cell_points(result, c));
-        m = std::min(m, quality::is_inverted(sj) ? -1.0 : sj);
-      }
-      return m;
+    // Cached scaled Jacobian per cell; only nodes next to a poor cell (SJ <= 0.2) are candidates.
+    auto cell_sj = [&](int c) {
+      const double sj = quality::scaled_jacobian(result.type(c), quality::cell_points(result, c));
+      return quality::is_inverted(sj) ? -1.0 : sj;
     };
-    for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
+    std::vector<double> sj(nc);
+    for (int c = 0; c < nc; ++c) sj[c] = cell_sj(c);
+    std::vector<int> candidates;
+    for (int v = 0; v < nn; ++v) {
+      if (on_surface[v] || nbr[v].empty()) continue;
+      bool poor = false;
+      for (int c : node_cells[v]) poor = poor || sj[c] <= 0.2;
+      if (poor) candidates.push_back(v);
+    }
+    std::vector<double> trial;
+    for (int sweep = 0; sweep < opt.relax_sweeps && !candidates.empty(); ++sweep) {
       int moved = 0;
-      for (int v = 0; v < nn; ++v) {
-        if (on_surface[v] || nbr[v].empty()) continue;
-        const double before = local_min(v);
-        if (before > 0.5) continue;  // only poor neighbourhoods are worth the work
+      for (int v : candidates) {
+        double before = 2;
+        for (int c : node_cells[v]) before = std::min(before, sj[c]);
         Vec3 avg = Vec3::Zero();
         for (int u : nbr[v]) avg += result.V.row(u).transpose();
         avg /= static_cast<double>(nbr[v].size());
         const Vec3 old = result.V.row(v).transpose();
         for (double step : {1.0, 0.5, 0.25}) {
           result.V.row(v) = (old + step * (avg - old)).transpose();
-          if (local_min(v) > before + 1e-12) { ++moved; break; }
+          trial.clear();
+          double after = 2;
+          for (int c : node_cells[v]) {
+            trial.push_back(cell_sj(c));
+            after = std::min(after, trial.back());
+          }
+          if (after > before + 1e-12) {
+            for (size_t q = 0; q < trial.size(); ++q) sj[node_cells[v][q]] = trial[q];
+            ++moved;
+            break;
+          }
           result.V.row(v) = old.transpose();
         }
       }

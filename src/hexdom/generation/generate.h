@@ -12,8 +12,9 @@ struct GenerateOptions {
   /// Structure vertices within snap_tolerance x (bounding-box diagonal) of a surface corner are
   /// snapped to it; the others are interior vertices.
   double snap_tolerance = 1e-4;
-  /// Sweeps of the validity-preserving relaxation of nodes inside the volume (0: none).
-  int relax_sweeps = 20;
+  /// Sweeps of the validity-preserving relaxation of nodes inside the volume next to poor cells
+  /// (scaled Jacobian <= 0.2); 0: none. The improvement stage does the thorough work.
+  int relax_sweeps = 10;
   LogCallback log;
 };
 
