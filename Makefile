@@ -23,7 +23,7 @@ test-cpp: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 test-python: build
-	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) -m pytest -q -rs tests/python tests/cli
+	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) -m pytest -q -rs $(wildcard tests/python tests/cli)
 
 # FreeCAD App tests (freecadcmd) and GUI tests (xvfb); see tests/freecad/run.sh.
 test-freecad: build
