@@ -1,0 +1,117 @@
+"""Base class of HexDom commands and the helpers they share.
+
+A command's name is "HexDom_" + its class name without the leading underscore, its icon
+Resources/icons/<name>.svg. ``is_active`` picks IsActive from a small vocabulary. Actions that
+change a document run as console lines through FreeCADGui.doCommand inside a transaction, so a
+macro recording replays them; errors from core (and conversions) become a message box plus a
+FreeCAD.Console error, never an exception out of the GUI.
+"""
+
+import FreeCAD
+import FreeCADGui
+
+from .. import core, paths
+from ..objects import hex_mesh
+
+PARAMS = "User parameter:BaseApp/Preferences/Mod/HexDom"
+
+# Exceptions a command reports to the user instead of raising.
+USER_ERRORS = (core.Error, ValueError, OSError)
+
+
+class CommandManager:
+    """Base of HexDom commands.
+
+    Class attributes: ``menutext``, ``tooltip``, and ``is_active``, one of "always",
+    "with_document", "with_fem_mesh" (one FEM mesh selected), "with_hex_mesh" (one HexDom Mesh
+    selected), "with_analysis_and_hex_mesh" (an active FEM analysis and one HexDom Mesh selected).
+    """
+
+    menutext = ""
+    tooltip = ""
+    is_active = "with_document"
+
+    def __init__(self):
+        self.command_name = "HexDom_" + type(self).__name__.lstrip("_")
+
+    def GetResources(self):
+        return {
+            "Pixmap": paths.icon(self.command_name),
+            "MenuText": self.menutext,
+            "ToolTip": self.tooltip,
+        }
+
+    def IsActive(self):
+        check = self.is_active
+        if check == "always":
+            return True
+        if FreeCAD.ActiveDocument is None:
+            return False
+        if check == "with_document":
+            return True
+        if check == "with_fem_mesh":
+            return selected_mesh(hexdom_only=False) is not None
+        if check == "with_hex_mesh":
+            return selected_mesh(hexdom_only=True) is not None
+        if check == "with_analysis_and_hex_mesh":
+            return active_analysis() is not None and selected_mesh(hexdom_only=True) is not None
+        raise ValueError("unknown is_active value '{}'".format(check))
+
+    def Activated(self):
+        raise NotImplementedError
+
+
+def selected_mesh(hexdom_only=True):
+    """The one selected FEM mesh object (HexDom Mesh if ``hexdom_only``), else None."""
+    sel = FreeCADGui.Selection.getSelection()
+    if len(sel) != 1:
+        return None
+    obj = sel[0]
+    if hexdom_only:
+        return obj if hex_mesh.is_hex_mesh(obj) else None
+    return obj if obj.isDerivedFrom("Fem::FemMeshObject") else None
+
+
+def active_analysis():
+    import FemGui
+    return FemGui.getActiveAnalysis()
+
+
+def main_window():
+    return FreeCADGui.getMainWindow()
+
+
+def show_error(title, error):
+    """Reports ``error`` in the report view and in a message box."""
+    from PySide import QtGui
+    text = str(error) or type(error).__name__
+    FreeCAD.Console.PrintError("HexDom: {}: {}\n".format(title, text))
+    QtGui.QMessageBox.critical(main_window(), "HexDom: " + title, text)
+
+
+def run_in_transaction(doc, title, modules, lines):
+    """Runs console ``lines`` (after importing ``modules``) as one undoable transaction.
+
+    Returns True on success; on a USER_ERRORS exception aborts the transaction, reports the
+    error and returns False.
+    """
+    doc.openTransaction(title)
+    try:
+        for module in modules:
+            FreeCADGui.addModule(module)
+        for line in lines:
+            FreeCADGui.doCommand(line)
+    except USER_ERRORS as e:
+        doc.abortTransaction()
+        show_error(title, e)
+        return False
+    doc.commitTransaction()
+    return True
+
+
+def get_param(name, default=""):
+    return FreeCAD.ParamGet(PARAMS).GetString(name, default)
+
+
+def set_param(name, value):
+    FreeCAD.ParamGet(PARAMS).SetString(name, value)

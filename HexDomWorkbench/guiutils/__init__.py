@@ -1,0 +1,1 @@
+"""GUI helpers shared by commands and task panels."""

@@ -1,0 +1,116 @@
+"""HexDom Mesh: a hex-dominant volume mesh held in a Fem::FemMeshObjectPython.
+
+The cells live in the FemMesh property (SMDS order, cell id = row + 1) and their region (block)
+ids in the Region integer list; quality figures are read-only properties refreshed on every
+recompute. Meshing stages plug in through ``HexMesh.generate``: a subclass (or a later version
+of this class reading its input links) returns a new core.Mesh, and ``execute`` stores it.
+"""
+
+import math
+
+import numpy as np
+
+from .. import core
+from ..convert import femmesh
+from .base_object import BaseHexDomObject, is_of_type, set_read_only
+
+TYPE = "HexDom::Mesh"
+
+# (property, type, group, tooltip); quality figures are read-only.
+_QUALITY = [
+    ("HexCount", "App::PropertyInteger", "Number of hexahedra"),
+    ("PrismCount", "App::PropertyInteger", "Number of prisms (wedges)"),
+    ("TetCount", "App::PropertyInteger", "Number of tetrahedra"),
+    ("InvertedCount", "App::PropertyInteger",
+     "Number of cells with scaled Jacobian <= 0 or degenerate, all types"),
+    ("MinHexSJ", "App::PropertyFloat", "Minimum scaled Jacobian of the hexahedra (0 if none)"),
+    ("MeanHexSJ", "App::PropertyFloat", "Mean scaled Jacobian of the hexahedra (0 if none)"),
+    ("MinPrismSJ", "App::PropertyFloat", "Minimum scaled Jacobian of the prisms (0 if none)"),
+    ("MeanPrismSJ", "App::PropertyFloat", "Mean scaled Jacobian of the prisms (0 if none)"),
+    ("MinTetSJ", "App::PropertyFloat", "Minimum scaled Jacobian of the tetrahedra (0 if none)"),
+    ("MeanTetSJ", "App::PropertyFloat", "Mean scaled Jacobian of the tetrahedra (0 if none)"),
+    ("MaxEdgeRatio", "App::PropertyFloat", "Largest edge ratio (longest / shortest edge)"),
+    ("MeshVolume", "App::PropertyFloat", "Sum of the cell volumes"),
+]
+QUALITY_PROPERTIES = [name for name, _, _ in _QUALITY]
+
+
+class HexMesh(BaseHexDomObject):
+    """Proxy of a HexDom Mesh object."""
+
+    Type = TYPE
+
+    def add_properties(self, obj):
+        super().add_properties(obj)
+        if not hasattr(obj, "Level"):
+            obj.addProperty("App::PropertyInteger", "Level", "HexDom",
+                            "Subdivision level of the generation stage: 2^Level cells per "
+                            "block edge")
+            obj.Level = 2
+        if not hasattr(obj, "SourceFile"):
+            obj.addProperty("App::PropertyString", "SourceFile", "HexDom",
+                            "File the mesh was imported from, if any")
+        if not hasattr(obj, "Region"):
+            obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
+                            "Region (block) id of each cell, in cell-id order")
+        for name, prop_type, doc in _QUALITY:
+            if not hasattr(obj, name):
+                obj.addProperty(prop_type, name, "Quality", doc)
+        set_read_only(obj, ["SourceFile"] + QUALITY_PROPERTIES)
+        obj.setEditorMode("Region", 2)  # hidden: one entry per cell
+
+    def generate(self, obj):
+        """Hook for the meshing stages: returns a new core.Mesh, or None to keep the stored one."""
+        return None
+
+    def execute(self, obj):
+        mesh = self.generate(obj)
+        if mesh is not None:
+            store_mesh(obj, mesh)
+        else:
+            update_quality(obj)
+
+
+def is_hex_mesh(obj):
+    return is_of_type(obj, TYPE)
+
+
+def get_mesh(obj):
+    """core.Mesh of a FEM mesh object; region ids from obj.Region when it fits."""
+    mesh = femmesh.from_femmesh(obj.FemMesh)
+    region = list(getattr(obj, "Region", []))
+    if len(region) == len(mesh.types):
+        mesh.region = np.asarray(region, dtype=np.int32)
+    return mesh
+
+
+def store_mesh(obj, mesh):
+    """Puts ``mesh`` into obj (FemMesh, Region) and refreshes the quality properties."""
+    obj.FemMesh = femmesh.to_femmesh(mesh)
+    obj.Region = [int(r) for r in np.asarray(mesh.region).tolist()]
+    update_quality(obj, mesh)
+
+
+def _finite(value):
+    return float(value) if value is not None and math.isfinite(value) else 0.0
+
+
+def update_quality(obj, mesh=None):
+    """Sets the read-only quality properties from core.quality_report."""
+    if mesh is None:
+        mesh = get_mesh(obj)
+    report = core.quality_report(mesh)
+    values = {"InvertedCount": 0, "MaxEdgeRatio": 0.0,
+              "MeshVolume": _finite(report.get("total_volume"))}
+    for key, stem in (("hex", "Hex"), ("prism", "Prism"), ("tet", "Tet")):
+        stats = report[key]
+        values[stem + "Count"] = int(stats["count"])
+        values["Min{}SJ".format(stem)] = _finite(stats["sj_min"])
+        values["Mean{}SJ".format(stem)] = _finite(stats["sj_mean"])
+        values["InvertedCount"] += int(stats["inverted"])
+        if stats["count"]:
+            values["MaxEdgeRatio"] = max(values["MaxEdgeRatio"], _finite(stats["edge_ratio_max"]))
+    for name, value in values.items():
+        if getattr(obj, name) != value:
+            setattr(obj, name, value)
+    return report
