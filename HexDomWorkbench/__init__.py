@@ -19,6 +19,7 @@ from .core import (  # noqa: F401
     Surface,
     cell_metrics,
     generate,
+    improve,
     quality_report,
     read_mesh,
     read_surface,

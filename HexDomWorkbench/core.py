@@ -110,3 +110,13 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4):
     blocks): 8^level cells per block, conforming across blocks; region = 1-based block number."""
     return Mesh(*_hexdom.generate(surface.V, surface.F, surface.patch, structure.V, structure.cells,
                                   structure.types, level, relax_sweeps, snap_tolerance))
+
+
+def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angle=35.0,
+            sharp_nodes=()):
+    """Pillowing, smoothing and Jacobian optimisation of a Mesh. With no stage set, runs the
+    recommended sequence until the worst cell stops improving. Boundary nodes stay on `surface`
+    (a Surface) or on the mesh's own boundary."""
+    sv, sf = (surface.V, surface.F) if surface is not None else (None, None)
+    return Mesh(*_hexdom.improve(mesh.V, mesh.cells, mesh.types, mesh.region, pillow, smooth,
+                                 optimize, feature_angle, list(sharp_nodes), sv, sf))

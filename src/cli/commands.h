@@ -9,6 +9,7 @@ namespace hexdom::cli {
 void add_convert(CLI::App& app);
 void add_quality(CLI::App& app);
 void add_generate(CLI::App& app);
+void add_improve(CLI::App& app);
 
 /// Prints progress and warnings from the core's log callback on stderr.
 void print_log(int level, const std::string& message);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   hexdom::cli::add_convert(app);
   hexdom::cli::add_quality(app);
   hexdom::cli::add_generate(app);
+  hexdom::cli::add_improve(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -6,6 +6,7 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/generation/generate.h"
+#include "hexdom/quality/improve.h"
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/mesh/mesh.h"
@@ -146,4 +147,29 @@ PYBIND11_MODULE(_hexdom, m) {
      py::arg("relax_sweeps") = 10, py::arg("snap_tolerance") = 1e-4,
   "Hex-dominant mesh from a segmented surface (V, F, patch id per triangle) and a polycube structure\n"
   "(V, cells, types of hex/prism/tet blocks): 8^level cells per block. Returns (V, cells, types, region).");
+
+  m.def("improve", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
+                      const std::optional<Eigen::VectorXi>& region, bool pillow, int smooth, int optimize,
+                      double feature_angle, const std::vector<int>& sharp_nodes,
+                      const std::optional<Eigen::MatrixXd>& surface_V, const std::optional<Eigen::MatrixXi>& surface_F) {
+    mesh::Mesh msh = make_mesh(V, cells, types, region);
+    quality::ImproveOptions opt;
+    opt.pillow = pillow;
+    opt.smooth = smooth;
+    opt.optimize = optimize;
+    opt.feature_angle = feature_angle;
+    opt.sharp_nodes = sharp_nodes;
+    if (surface_V && surface_F) {
+      opt.surface.V = *surface_V;
+      opt.surface.F = *surface_F;
+      opt.surface.patch = Eigen::VectorXi::Zero(surface_F->rows());
+    }
+    quality::ImproveResult r;
+    { py::gil_scoped_release nogil; r = quality::improve(msh, opt); }
+    return py::make_tuple(r.mesh.V, r.mesh.cells, r.mesh.types, r.mesh.region);
+  }, py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region") = py::none(), py::arg("pillow") = false,
+     py::arg("smooth") = 0, py::arg("optimize") = 0, py::arg("feature_angle") = 35.0,
+     py::arg("sharp_nodes") = std::vector<int>{}, py::arg("surface_V") = py::none(), py::arg("surface_F") = py::none(),
+  "Pillowing, smoothing and Jacobian optimisation; with no stage set, the recommended sequence.\n"
+  "Boundary nodes stay on the given surface (or the mesh's own boundary). Returns (V, cells, types, region).");
 }

@@ -1,0 +1,63 @@
+#include "hexdom/mesh/cell_faces.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "hexdom/common/error.h"
+
+namespace hexdom::mesh {
+
+namespace {
+const LocalFace kHex[6] = {{4, {0, 4, 7, 3}}, {4, {1, 2, 6, 5}}, {4, {0, 1, 5, 4}},
+                           {4, {3, 7, 6, 2}}, {4, {0, 3, 2, 1}}, {4, {4, 5, 6, 7}}};
+const LocalFace kWedge[5] = {{3, {0, 1, 2, -1}}, {3, {3, 5, 4, -1}}, {4, {0, 3, 4, 1}},
+                             {4, {1, 4, 5, 2}}, {4, {2, 5, 3, 0}}};
+const LocalFace kTet[4] = {{3, {0, 2, 1, -1}}, {3, {0, 1, 3, -1}}, {3, {1, 2, 3, -1}}, {3, {0, 3, 2, -1}}};
+
+struct FaceHash {
+  size_t operator()(const std::array<int, 4>& k) const {
+    size_t h = 1469598103934665603ull;
+    for (int x : k) h = (h ^ static_cast<size_t>(x + 1)) * 1099511628211ull;
+    return h;
+  }
+};
+}  // namespace
+
+std::pair<const LocalFace*, int> cell_faces(CellType t) {
+  switch (t) {
+    case CellType::Hex: return {kHex, 6};
+    case CellType::Wedge: return {kWedge, 5};
+    case CellType::Tet: return {kTet, 4};
+    default: return {nullptr, 0};
+  }
+}
+
+std::vector<BoundaryFace> boundary_faces(const Mesh& m) {
+  std::unordered_map<std::array<int, 4>, std::pair<int, int>, FaceHash> seen;  // key -> (count, first)
+  std::vector<BoundaryFace> all;
+  seen.reserve(4 * static_cast<size_t>(m.num_cells()));
+  for (int c = 0; c < m.num_cells(); ++c) {
+    auto [lf, nf] = cell_faces(m.type(c));
+    for (int f = 0; f < nf; ++f) {
+      BoundaryFace b{c, f, lf[f].n, {-1, -1, -1, -1}};
+      for (int i = 0; i < lf[f].n; ++i) b.v[i] = m.cells(c, lf[f].v[i]);
+      std::array<int, 4> key = b.v;
+      for (int i = 1; i < b.n; ++i)  // insertion sort of at most 4 ids
+        for (int j = i; j > 0 && key[j] < key[j - 1]; --j) std::swap(key[j], key[j - 1]);
+      auto [it, ins] = seen.try_emplace(key, 0, static_cast<int>(all.size()));
+      if (++it->second.first > 2)
+        throw GeometryError("face with nodes " + std::to_string(key[0] + 1) + " " + std::to_string(key[1] + 1) + " " +
+                            std::to_string(key[2] + 1) + " is shared by more than two cells");
+      if (ins) all.push_back(b);
+    }
+  }
+  std::vector<BoundaryFace> out;
+  for (const auto& [key, cf] : seen)
+    if (cf.first == 1) out.push_back(all[cf.second]);
+  std::sort(out.begin(), out.end(), [](const BoundaryFace& a, const BoundaryFace& b) {
+    return a.cell != b.cell ? a.cell < b.cell : a.local < b.local;
+  });
+  return out;
+}
+
+}  // namespace hexdom::mesh

@@ -1,0 +1,31 @@
+// Faces of volume cells, outward-oriented (right-hand normal pointing out of the cell), and the
+// boundary of a volume mesh.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::mesh {
+
+struct LocalFace {
+  int n;        ///< 3 or 4
+  int v[4];     ///< local node indices, outward orientation
+};
+
+/// The faces of a cell type (6 for hex, 5 for wedge, 4 for tet), outward.
+std::pair<const LocalFace*, int> cell_faces(CellType type);
+
+/// A face of the mesh boundary: a cell face no other cell shares.
+struct BoundaryFace {
+  int cell, local;          ///< the cell and its local face number
+  int n;                    ///< 3 or 4
+  std::array<int, 4> v;     ///< global nodes, outward orientation
+};
+
+/// Boundary faces of the volume cells of `mesh` (faces used by exactly one cell). Throws
+/// GeometryError naming the nodes of a face shared by more than two cells (non-conforming mesh).
+std::vector<BoundaryFace> boundary_faces(const Mesh& mesh);
+
+}  // namespace hexdom::mesh

@@ -1,0 +1,107 @@
+#include "hexdom/mesh/closest_point.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace hexdom::mesh {
+
+using Vec = Eigen::Vector3d;
+
+Vec closest_point_on_segment(const Vec& p, const Vec& a, const Vec& b) {
+  const Vec ab = b - a;
+  const double l = ab.squaredNorm();
+  if (l <= 0) return a;
+  return a + std::clamp((p - a).dot(ab) / l, 0.0, 1.0) * ab;
+}
+
+// Ericson, Real-Time Collision Detection, 5.1.5.
+Vec closest_point_on_triangle(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
+  const Vec ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vec cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = va + vb + vc;
+  if (!(denom > 0)) return closest_point_on_segment(p, a, b);  // degenerate triangle
+  const double v = vb / denom, w = vc / denom;
+  return a + ab * v + ac * w;
+}
+
+TriangleProjector::TriangleProjector(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) : V_(V), F_(F) {
+  const int n = static_cast<int>(F.rows());
+  order_.resize(n);
+  centroid_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    order_[i] = i;
+    centroid_[i] = (V.row(F(i, 0)) + V.row(F(i, 1)) + V.row(F(i, 2))).transpose() / 3.0;
+  }
+  nodes_.reserve(2 * n / 4 + 2);
+  if (n > 0) build(0, n);
+}
+
+int TriangleProjector::build(int begin, int end) {
+  Node node;
+  node.lo = Vec::Constant(std::numeric_limits<double>::max());
+  node.hi = Vec::Constant(-std::numeric_limits<double>::max());
+  for (int i = begin; i < end; ++i)
+    for (int k = 0; k < 3; ++k) {
+      node.lo = node.lo.cwiseMin(V_.row(F_(order_[i], k)).transpose());
+      node.hi = node.hi.cwiseMax(V_.row(F_(order_[i], k)).transpose());
+    }
+  node.begin = begin;
+  node.end = end;
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back(node);
+  if (end - begin > 4) {
+    int axis;
+    (node.hi - node.lo).maxCoeff(&axis);
+    const int mid = (begin + end) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                     [&](int a, int b) { return centroid_[a](axis) < centroid_[b](axis); });
+    const int l = build(begin, mid);
+    const int r = build(mid, end);
+    nodes_[id].left = l;
+    nodes_[id].right = r;
+  }
+  return id;
+}
+
+Vec TriangleProjector::project(const Vec& p, int* triangle) const {
+  double best = std::numeric_limits<double>::max();
+  Vec result = p;
+  int best_tri = -1;
+  auto box_dist = [&](const Node& n) { return (p - p.cwiseMax(n.lo).cwiseMin(n.hi)).squaredNorm(); };
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[stack.back()];
+    stack.pop_back();
+    if (box_dist(n) >= best) continue;
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const int t = order_[i];
+        Vec q = closest_point_on_triangle(p, V_.row(F_(t, 0)).transpose(), V_.row(F_(t, 1)).transpose(),
+                                          V_.row(F_(t, 2)).transpose());
+        const double d = (q - p).squaredNorm();
+        if (d < best) { best = d; result = q; best_tri = t; }
+      }
+    } else {
+      const double dl = box_dist(nodes_[n.left]), dr = box_dist(nodes_[n.right]);
+      if (dl < dr) { stack.push_back(n.right); stack.push_back(n.left); }
+      else { stack.push_back(n.left); stack.push_back(n.right); }
+    }
+  }
+  if (triangle) *triangle = best_tri;
+  return result;
+}
+
+}  // namespace hexdom::mesh

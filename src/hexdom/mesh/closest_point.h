@@ -1,0 +1,40 @@
+// Closest points on a triangle surface (an AABB tree), for keeping nodes on the input surface.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace hexdom::mesh {
+
+/// Closest point to `p` on triangle (a, b, c).
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                          const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Closest point to `p` on segment (a, b).
+Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                         const Eigen::Vector3d& b);
+
+class TriangleProjector {
+ public:
+  TriangleProjector() = default;
+  /// V: #V by 3, F: #F by 3.
+  TriangleProjector(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+  bool empty() const { return F_.rows() == 0; }
+  /// Closest point on the surface; `triangle` receives its triangle when given.
+  Eigen::Vector3d project(const Eigen::Vector3d& p, int* triangle = nullptr) const;
+
+ private:
+  struct Node {
+    Eigen::Vector3d lo, hi;
+    int left = -1, right = -1;  // children, or -1
+    int begin = 0, end = 0;     // leaf range in order_
+  };
+  int build(int begin, int end);
+  Eigen::MatrixXd V_;
+  Eigen::MatrixXi F_;
+  std::vector<int> order_;
+  std::vector<Eigen::Vector3d> centroid_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace hexdom::mesh

@@ -1,0 +1,511 @@
+#include "hexdom/quality/improve.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "hexdom/mesh/cell_faces.h"
+#include "hexdom/mesh/closest_point.h"
+#include "hexdom/quality/metrics.h"
+
+namespace hexdom::quality {
+
+using mesh::CellType;
+using Vec = Eigen::Vector3d;
+
+namespace {
+
+Vec face_normal(const mesh::Mesh& m, const mesh::BoundaryFace& f) {  // area-weighted
+  Vec n = Vec::Zero();
+  const Vec c = [&] {
+    Vec s = Vec::Zero();
+    for (int i = 0; i < f.n; ++i) s += m.V.row(f.v[i]).transpose();
+    return Vec(s / f.n);
+  }();
+  for (int i = 0; i < f.n; ++i) {
+    const Vec a = m.V.row(f.v[i]).transpose(), b = m.V.row(f.v[(i + 1) % f.n]).transpose();
+    n += (a - c).cross(b - c);
+  }
+  return 0.5 * n;
+}
+
+double cell_sj(const mesh::Mesh& m, int c) {
+  const double sj = scaled_jacobian(m.type(c), cell_points(m, c));
+  return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj;
+}
+
+// Vertex kinds, from most to least constrained.
+enum Kind : char { Corner, Curve, Surface, Interior };
+
+struct Topology {
+  std::vector<std::vector<int>> node_cells;
+  std::vector<std::vector<int>> node_faces;  // boundary faces
+  std::vector<mesh::BoundaryFace> faces;
+  std::vector<Kind> kind;
+  std::vector<std::vector<int>> curve_nbrs;  // feature-edge neighbours of curve nodes
+  std::vector<std::vector<int>> edge_nbrs;   // mesh-edge neighbours of every node
+};
+
+Topology topology(const mesh::Mesh& m, double feature_angle, const std::vector<char>* sharp) {
+  Topology t;
+  const int nn = m.num_nodes();
+  t.node_cells.assign(nn, {});
+  t.node_faces.assign(nn, {});
+  for (int c = 0; c < m.num_cells(); ++c)
+    for (int i = 0; i < mesh::node_count(m.type(c)); ++i) t.node_cells[m.cells(c, i)].push_back(c);
+  t.edge_nbrs.assign(nn, {});
+  {
+    static const int he[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    static const int we[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+    static const int te[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+    for (int c = 0; c < m.num_cells(); ++c) {
+      const CellType ty = m.type(c);
+      const int(*e)[2] = ty == CellType::Hex ? he : ty == CellType::Wedge ? we : te;
+      const int ne = ty == CellType::Hex ? 12 : ty == CellType::Wedge ? 9 : 6;
+      for (int q = 0; q < ne; ++q) {
+        const int a = m.cells(c, e[q][0]), b = m.cells(c, e[q][1]);
+        t.edge_nbrs[a].push_back(b);
+        t.edge_nbrs[b].push_back(a);
+      }
+    }
+    for (auto& l : t.edge_nbrs) {
+      std::sort(l.begin(), l.end());
+      l.erase(std::unique(l.begin(), l.end()), l.end());
+    }
+  }
+  t.faces = mesh::boundary_faces(m);
+  for (int f = 0; f < static_cast<int>(t.faces.size()); ++f)
+    for (int i = 0; i < t.faces[f].n; ++i) t.node_faces[t.faces[f].v[i]].push_back(f);
+  // Boundary edges and their two faces.
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  for (int f = 0; f < static_cast<int>(t.faces.size()); ++f)
+    for (int i = 0; i < t.faces[f].n; ++i) {
+      int a = t.faces[f].v[i], b = t.faces[f].v[(i + 1) % t.faces[f].n];
+      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  t.curve_nbrs.assign(nn, {});
+  const double cos_limit = std::cos(feature_angle * M_PI / 180.0);
+  for (const auto& [e, fs] : edge_faces) {
+    bool sharp_edge;
+    if (sharp) {
+      sharp_edge = (*sharp)[e.first] && (*sharp)[e.second];
+    } else {
+      if (fs.size() != 2) { sharp_edge = true; }
+      else {
+        Vec n0 = face_normal(m, t.faces[fs[0]]).normalized(), n1 = face_normal(m, t.faces[fs[1]]).normalized();
+        sharp_edge = n0.dot(n1) < cos_limit;
+      }
+    }
+    if (sharp_edge) {
+      t.curve_nbrs[e.first].push_back(e.second);
+      t.curve_nbrs[e.second].push_back(e.first);
+    }
+  }
+  t.kind.assign(nn, Interior);
+  for (int v = 0; v < nn; ++v) {
+    if (t.node_faces[v].empty()) continue;
+    const size_t k = t.curve_nbrs[v].size();
+    t.kind[v] = k == 0 ? Surface : k == 2 ? Curve : Corner;
+  }
+  return t;
+}
+
+// Geometry the boundary must keep: the surface and the feature curves (as degenerate triangles).
+struct Constraints {
+  mesh::TriangleProjector surface, curves;
+};
+
+Constraints constraints(const mesh::Mesh& m, const Topology& t, const mesh::SurfaceMesh& given) {
+  Constraints c;
+  if (given.F.rows() > 0) {
+    c.surface = mesh::TriangleProjector(given.V, given.F);
+  } else {
+    int nt = 0;
+    for (const auto& f : t.faces) nt += f.n - 2;
+    Eigen::MatrixXi F(nt, 3);
+    int r = 0;
+    for (const auto& f : t.faces)
+      for (int i = 1; i + 1 < f.n; ++i) F.row(r++) << f.v[0], f.v[i], f.v[i + 1];
+    c.surface = mesh::TriangleProjector(m.V, F);
+  }
+  std::vector<std::array<int, 3>> segs;
+  for (int v = 0; v < static_cast<int>(t.curve_nbrs.size()); ++v)
+    for (int u : t.curve_nbrs[v])
+      if (u > v) segs.push_back({v, u, u});
+  Eigen::MatrixXi S(static_cast<int>(segs.size()), 3);
+  for (size_t i = 0; i < segs.size(); ++i) S.row(i) << segs[i][0], segs[i][1], segs[i][2];
+  if (S.rows()) c.curves = mesh::TriangleProjector(m.V, S);
+  return c;
+}
+
+class Improver {
+ public:
+  Improver(mesh::Mesh& m, const Topology& t, const Constraints& c) : m_(m), t_(t), c_(c) {
+    sj_.resize(m.num_cells());
+    for (int q = 0; q < m.num_cells(); ++q) sj_[q] = cell_sj(m, q);
+    edge_.assign(m.num_nodes(), 0.0);
+    for (int v = 0; v < m.num_nodes(); ++v) {
+      double s = 0;
+      int k = 0;
+      for (int q : t.node_cells[v]) {
+        auto P = cell_points(m, q);
+        const int n = mesh::node_count(m.type(q));
+        for (int i = 0; i < n; ++i) { s += (P.row(i) - m.V.row(v)).norm(); ++k; }
+      }
+      edge_[v] = k ? s / k : 0.0;  // mean distance to the corners of incident cells
+    }
+  }
+
+  double worst() const { return sj_.empty() ? 1.0 : *std::min_element(sj_.begin(), sj_.end()); }
+  double local_min(int v) const {
+    double w = 2;
+    for (int q : t_.node_cells[v]) w = std::min(w, sj_[q]);
+    return w;
+  }
+
+  // Projects a candidate position according to the node's kind.
+  Vec constrain(int v, const Vec& x) const {
+    switch (t_.kind[v]) {
+      case Surface: return c_.surface.project(x);
+      // On the feature curve (chords of the boundary), then back onto the surface it bounds.
+      case Curve: return c_.curves.empty() ? c_.surface.project(x) : c_.surface.project(c_.curves.project(x));
+      case Corner: return m_.V.row(v).transpose();
+      default: return x;
+    }
+  }
+
+  double shortest_edge(int v, const Vec& x) const {
+    double s = std::numeric_limits<double>::max();
+    for (int u : t_.edge_nbrs[v]) s = std::min(s, (m_.V.row(u).transpose() - x).norm());
+    return s;
+  }
+
+  // Moves v to x if that raises (or, with allow_equal, keeps) the worst SJ of its cells. A move
+  // may not shorten the node's shortest edge below a quarter of its typical edge: scaled Jacobians
+  // ignore size, and collapsing an edge would buy angles with a useless element.
+  bool try_move(int v, const Vec& x, bool allow_equal) {
+    const double before = local_min(v);
+    const Vec old = m_.V.row(v).transpose();
+    const double s_old = shortest_edge(v, old), s_new = shortest_edge(v, x);
+    if (s_new < s_old && s_new < 0.2 * edge_[v]) return false;
+    m_.V.row(v) = x.transpose();
+    double after = 2;
+    trial_.clear();
+    for (int q : t_.node_cells[v]) {
+      trial_.push_back(cell_sj(m_, q));
+      after = std::min(after, trial_.back());
+    }
+    if (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0)) {
+      for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
+      return true;
+    }
+    m_.V.row(v) = old.transpose();
+    return false;
+  }
+
+  // One smoothing pass: interior nodes toward the volume-weighted centre of their cells, surface
+  // nodes toward the area-weighted centre of their boundary faces, curve nodes toward the midpoint
+  // of their curve neighbours; projected, and accepted only if the local worst SJ does not drop.
+  int smooth_pass() {
+    int moved = 0;
+    for (int v = 0; v < m_.num_nodes(); ++v) {
+      if (t_.kind[v] == Corner || t_.node_cells[v].empty()) continue;
+      Vec target = Vec::Zero();
+      double wsum = 0;
+      if (t_.kind[v] == Interior) {
+        for (int q : t_.node_cells[v]) {
+          auto P = cell_points(m_, q);
+          const int n = mesh::node_count(m_.type(q));
+          const double w = std::max(std::fabs(volume(m_.type(q), P)), 1e-300);
+          target += w * P.topRows(n).colwise().mean().transpose();
+          wsum += w;
+        }
+      } else if (t_.kind[v] == Surface) {
+        for (int f : t_.node_faces[v]) {
+          const auto& bf = t_.faces[f];
+          Vec c = Vec::Zero();
+          for (int i = 0; i < bf.n; ++i) c += m_.V.row(bf.v[i]).transpose();
+          const double w = face_normal(m_, bf).norm();
+          target += w * c / bf.n;
+          wsum += w;
+        }
+      } else {
+        for (int u : t_.curve_nbrs[v]) target += m_.V.row(u).transpose();
+        wsum = static_cast<double>(t_.curve_nbrs[v].size());
+      }
+      if (!(wsum > 0)) continue;
+      target /= wsum;
+      const Vec old = m_.V.row(v).transpose();
+      for (double step : {1.0, 0.5, 0.25}) {
+        if (try_move(v, constrain(v, old + step * (target - old)), true)) { ++moved; break; }
+      }
+    }
+    return moved;
+  }
+
+  // One optimisation round: nodes of the worst cells climb the local worst scaled Jacobian along
+  // its numerical gradient (untangling inverted cells on the way).
+  int optimize_round(double threshold) {
+    std::vector<char> mark(m_.num_nodes(), 0);
+    std::vector<int> nodes;
+    for (int q = 0; q < m_.num_cells(); ++q) {
+      if (sj_[q] > threshold) continue;
+      for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) {
+        const int v = m_.cells(q, i);
+        if (!mark[v] && t_.kind[v] != Corner) { mark[v] = 1; nodes.push_back(v); }
+      }
+    }
+    int moved = 0;
+    for (int v : nodes) {
+      const Vec x0 = m_.V.row(v).transpose();
+      const double h = 1e-4 * edge_[v];
+      if (!(h > 0)) continue;
+      const double f0 = local_min(v);
+      Vec g;
+      for (int k = 0; k < 3; ++k) {
+        Vec x = x0;
+        x(k) += h;
+        m_.V.row(v) = x.transpose();
+        double f = 2;
+        for (int q : t_.node_cells[v]) f = std::min(f, cell_sj(m_, q));
+        g(k) = (f - f0) / h;
+      }
+      m_.V.row(v) = x0.transpose();
+      if (!(g.norm() > 0)) continue;
+      const Vec d = g.normalized();
+      for (double a : {0.3, 0.15, 0.07, 0.03, 0.01, 0.003}) {
+        if (try_move(v, constrain(v, x0 + a * edge_[v] * d), false)) { ++moved; break; }
+      }
+    }
+    return moved;
+  }
+
+ private:
+  mesh::Mesh& m_;
+  const Topology& t_;
+  const Constraints& c_;
+  std::vector<double> sj_, edge_, trial_;
+};
+
+}  // namespace
+
+mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_new) {
+  const auto faces = mesh::boundary_faces(m);
+  const int nn = m.num_nodes();
+  std::vector<int> copy(nn, -1);
+  std::vector<Vec> normal(nn, Vec::Zero());
+  std::vector<double> shortest(nn, std::numeric_limits<double>::max());
+  int next = nn;
+  for (const auto& f : faces) {
+    const Vec n = face_normal(m, f);
+    for (int i = 0; i < f.n; ++i) {
+      const int v = f.v[i];
+      if (copy[v] < 0) copy[v] = next++;
+      normal[v] += n;
+      const double l = (m.V.row(v) - m.V.row(f.v[(i + 1) % f.n])).norm();
+      shortest[v] = std::min(shortest[v], l);
+      shortest[f.v[(i + 1) % f.n]] = std::min(shortest[f.v[(i + 1) % f.n]], l);
+    }
+  }
+  Eigen::MatrixXd V(next, 3);
+  V.topRows(nn) = m.V;
+  for (int v = 0; v < nn; ++v)
+    if (copy[v] >= 0) V.row(copy[v]) = m.V.row(v);
+  mesh::MeshBuilder b;
+  b.cells.reserve(m.num_cells() + faces.size());
+  for (int c = 0; c < m.num_cells(); ++c) {
+    b.cells.push_back({});
+    for (int i = 0; i < 8; ++i) b.cells.back()[i] = m.cells(c, i);
+    b.types.push_back(m.types(c));
+    b.region.push_back(m.region(c));
+  }
+  for (const auto& f : faces) {
+    if (f.n == 4) {
+      int h[8] = {f.v[0], f.v[1], f.v[2], f.v[3], copy[f.v[0]], copy[f.v[1]], copy[f.v[2]], copy[f.v[3]]};
+      b.add(CellType::Hex, h, m.region(f.cell));
+    } else {
+      int w[6] = {copy[f.v[0]], copy[f.v[1]], copy[f.v[2]], f.v[0], f.v[1], f.v[2]};
+      b.add(CellType::Wedge, w, m.region(f.cell));
+    }
+  }
+  mesh::Mesh out = b.finish(V);
+  // Move every old boundary node inward at once; then, where a cell that was valid in the input (or
+  // is a new layer cell) comes out inverted, halve the depth of its moved nodes and try again.
+  std::vector<double> scale(nn, 1.0);
+  std::vector<Vec> dir(nn, Vec::Zero());
+  // Inward direction: one that makes a positive angle with every corner normal of the node's
+  // boundary faces (else a thin layer cell on a warped face inverts at that corner, however thin):
+  // start from the mean corner normal and lean toward the worst one until all agree.
+  {
+    std::vector<std::vector<Vec>> corner_normals(nn);
+    for (const auto& f : faces)
+      for (int i = 0; i < f.n; ++i) {
+        const Vec p = m.V.row(f.v[i]).transpose();
+        const Vec a = m.V.row(f.v[(i + 1) % f.n]).transpose() - p, b = m.V.row(f.v[(i + f.n - 1) % f.n]).transpose() - p;
+        const Vec cn = a.cross(b);
+        if (cn.norm() > 0) corner_normals[f.v[i]].push_back(-cn.normalized());  // inward
+      }
+    for (int v = 0; v < nn; ++v) {
+      if (copy[v] < 0 || corner_normals[v].empty()) continue;
+      Vec d = Vec::Zero();
+      for (const Vec& q : corner_normals[v]) d += q;
+      if (!(d.norm() > 0)) d = corner_normals[v][0];
+      d.normalize();
+      for (int it = 0; it < 30; ++it) {
+        const Vec* worst = nullptr;
+        double w = 2;
+        for (const Vec& q : corner_normals[v])
+          if (d.dot(q) < w) { w = d.dot(q); worst = &q; }
+        if (w > 0.3 || !worst) break;
+        d = (d + 0.5 * *worst).normalized();
+      }
+      dir[v] = d;
+    }
+  }
+  std::vector<char> was_valid(out.num_cells(), 1);
+  for (int c = 0; c < m.num_cells(); ++c) was_valid[c] = !is_inverted(scaled_jacobian(m.type(c), cell_points(m, c)));
+  // A layer cell on the face of an inverted cell inherits its orientation: no depth mends it.
+  for (size_t k = 0; k < faces.size(); ++k) was_valid[m.num_cells() + k] = was_valid[faces[k].cell];
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    for (int v = 0; v < nn; ++v)
+      if (copy[v] >= 0) out.V.row(v) = (m.V.row(v).transpose() + scale[v] * depth * shortest[v] * dir[v]).transpose();
+    bool all_ok = true;
+    std::vector<char> shrink(nn, 0);
+    for (int c = 0; c < out.num_cells(); ++c) {
+      if (!was_valid[c] || !is_inverted(scaled_jacobian(out.type(c), cell_points(out, c)))) continue;
+      for (int i = 0; i < mesh::node_count(out.type(c)); ++i) {
+        const int v = out.cells(c, i);
+        if (v < nn && copy[v] >= 0) { shrink[v] = 1; all_ok = false; }
+      }
+    }
+    if (all_ok) break;
+    for (int v = 0; v < nn; ++v)
+      if (shrink[v]) scale[v] *= 0.5;
+  }
+  if (old_to_new) *old_to_new = copy;
+  return out;
+}
+
+namespace {
+
+// One run of the stages on `input`; `with_pillow` adds the boundary layer first.
+ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow,
+                         const std::vector<char>* sharp_in, const Constraints& cons,
+                         const std::function<void(const std::string&)>& log) {
+  ImproveResult r;
+  const bool recommended = !opt.pillow && opt.smooth == 0 && opt.optimize == 0;
+  mesh::Mesh m = input;
+  std::vector<char> sharp;
+  if (sharp_in) sharp = *sharp_in;
+  if (with_pillow) {
+    std::vector<int> copy;
+    m = pillow(input, opt.pillow_depth, &copy);
+    r.pillow_cells = m.num_cells() - input.num_cells();
+    if (sharp_in) {
+      std::vector<char> s2(m.num_nodes(), 0);
+      for (int v = 0; v < input.num_nodes(); ++v)
+        if (sharp[v] && copy[v] >= 0) s2[copy[v]] = 1;
+      sharp = std::move(s2);
+    }
+  }
+  // The pillowed boundary has the original geometry, so the angle test finds the same features.
+  const Topology t = topology(m, opt.feature_angle, sharp_in ? &sharp : nullptr);
+  for (auto k : t.kind) {
+    r.feature_nodes += k == Curve;
+    r.corner_nodes += k == Corner;
+  }
+  Improver imp(m, t, cons);
+  double worst = imp.worst();
+  log(std::string(with_pillow ? "pillowed (" + std::to_string(r.pillow_cells) + " cells added)" : "without pillowing") +
+      ": worst scaled Jacobian " + std::to_string(worst) + "; " + std::to_string(r.feature_nodes) +
+      " feature-curve nodes, " + std::to_string(r.corner_nodes) + " corners");
+  if (recommended) {
+    int stale = 0;
+    for (int round = 0; round < opt.max_rounds && stale < 3; ++round) {
+      imp.smooth_pass();
+      const double thr = std::max(worst + 0.2, 0.3);
+      for (int k = 0; k < 4; ++k) imp.optimize_round(thr);
+      const double w = imp.worst();
+      stale = w > worst + 1e-4 ? 0 : stale + 1;
+      worst = std::max(worst, w);
+      r.rounds = round + 1;
+    }
+  } else {
+    for (int i = 0; i < opt.smooth; ++i) imp.smooth_pass();
+    for (int i = 0; i < opt.optimize; ++i) imp.optimize_round(std::max(imp.worst() + 0.2, 0.3));
+    r.rounds = std::max(opt.smooth, opt.optimize);
+  }
+  r.mesh = std::move(m);
+  r.after = quality_report(r.mesh);
+  log(std::string(with_pillow ? "pillowed" : "without pillowing") + ": worst scaled Jacobian " +
+      std::to_string(imp.worst()) + " after " + std::to_string(r.rounds) + " rounds");
+  return r;
+}
+
+int inverted_of(const QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+double worst_of(const QualityReport& q) {
+  double w = 2;
+  for (const TypeStats* s : {&q.hex, &q.prism, &q.tet})
+    if (s->count) w = std::min(w, s->sj_min);
+  return w;
+}
+
+}  // namespace
+
+ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
+  for (int c = 0; c < input.num_cells(); ++c)
+    if (!mesh::is_volume(input.type(c)))
+      throw GeometryError("cell " + std::to_string(c + 1) + " is a " + mesh::type_name(input.type(c)) +
+                          ": improvement takes hex, prism and tet cells only");
+  auto log = [&](const std::string& s) { if (opt.log) opt.log(0, s); };
+  const bool recommended = !opt.pillow && opt.smooth == 0 && opt.optimize == 0;
+  std::vector<char> sharp;
+  const bool have_sharp = !opt.sharp_nodes.empty();
+  if (have_sharp) {
+    sharp.assign(input.num_nodes(), 0);
+    for (int v : opt.sharp_nodes) {
+      if (v < 0 || v >= input.num_nodes())
+        throw GeometryError("sharp node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
+      sharp[v] = 1;
+    }
+  }
+  // The surface and feature curves come from the input, before pillowing renumbers nodes.
+  const Topology t0 = topology(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
+  const Constraints cons = constraints(input, t0, opt.surface);
+  const QualityReport before = quality_report(input);
+  const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
+
+  ImproveResult r;
+  if (!recommended) {
+    r = run_stages(input, opt, opt.pillow, sp, cons, log);
+  } else {
+    // Pillowing is preferred (no hex keeps two faces on the boundary), but where the boundary is
+    // pinched or the layer cannot be made valid it can end worse; the run without it then wins.
+    ImproveResult plain = run_stages(input, opt, false, sp, cons, log);
+    ImproveResult pillowed;
+    bool have_pillowed = false;
+    try {
+      pillowed = run_stages(input, opt, true, sp, cons, log);
+      have_pillowed = true;
+    } catch (const GeometryError& e) {
+      if (opt.log) opt.log(1, std::string("pillowing skipped: ") + e.what());
+    }
+    // Fewer inverted cells first, then the better worst cell; near ties go to the pillowed mesh.
+    const bool take_pillowed = have_pillowed &&
+        (inverted_of(pillowed.after) < inverted_of(plain.after) ||
+         (inverted_of(pillowed.after) == inverted_of(plain.after) &&
+          worst_of(pillowed.after) >= worst_of(plain.after) - 0.02 &&
+          worst_of(pillowed.after) >= worst_of(before)));
+    r = take_pillowed ? std::move(pillowed) : std::move(plain);
+    if (!take_pillowed && have_pillowed) log("kept the result without pillowing: its worst cell is better");
+  }
+  r.before = before;
+  return r;
+}
+
+}  // namespace hexdom::quality

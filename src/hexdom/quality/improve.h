@@ -1,0 +1,51 @@
+// Mesh quality improvement: pillowing, smoothing by vertex kind, and Jacobian optimisation.
+#pragma once
+
+#include <vector>
+
+#include "hexdom/common/error.h"
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/quality/report.h"
+
+namespace hexdom::quality {
+
+struct ImproveOptions {
+  /// Stages. With all three off (the default), the recommended sequence runs: pillow once, then
+  /// smoothing and optimisation rounds until the worst scaled Jacobian stops improving.
+  bool pillow = false;
+  int smooth = 0;    ///< smoothing passes
+  int optimize = 0;  ///< optimisation rounds
+  int max_rounds = 40;  ///< cap of the recommended sequence
+  /// Boundary edges whose faces meet at more than this angle (degrees between normals) are sharp.
+  double feature_angle = 35.0;
+  /// Sharp-feature nodes given by the user (0-based indices into the input mesh), used instead of
+  /// the angle test when not empty: boundary edges between two of them are sharp.
+  std::vector<int> sharp_nodes;
+  /// Surface the boundary nodes must stay on; empty: the mesh's own initial boundary.
+  mesh::SurfaceMesh surface;
+  /// Pillow layer thickness as a fraction of the shortest boundary edge at each node.
+  double pillow_depth = 0.2;
+  LogCallback log;
+};
+
+struct ImproveResult {
+  mesh::Mesh mesh;
+  QualityReport before, after;
+  int pillow_cells = 0;  ///< cells added by pillowing
+  int rounds = 0;        ///< smoothing/optimisation rounds run
+  int feature_nodes = 0, corner_nodes = 0;
+};
+
+/// Improves a hex / prism / tet mesh. Boundary nodes stay on `options.surface` (or the initial
+/// boundary), nodes on sharp edges stay on their feature curves, feature corners stay fixed. Every
+/// accepted move keeps or raises the worst scaled Jacobian of the cells it touches; inverted cells
+/// are untangled first. Throws GeometryError for a mesh that is not a conforming volume mesh.
+ImproveResult improve(const mesh::Mesh& mesh, const ImproveOptions& options = {});
+
+/// Adds one layer of cells along the boundary (quads -> hexes, triangles -> prisms) and moves the
+/// old boundary nodes inward; the new boundary nodes keep the old boundary positions. Returns the
+/// new mesh; `old_to_new` (#V of the input) receives each old boundary node's new boundary copy
+/// (-1 for interior nodes).
+mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, std::vector<int>* old_to_new = nullptr);
+
+}  // namespace hexdom::quality
