@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   hexdom::cli::add_quality(app);
   hexdom::cli::add_generate(app);
   hexdom::cli::add_improve(app);
+  hexdom::cli::add_segmentation_commands(app);
+  hexdom::cli::add_cad_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "bindings.h"
 #include "hexdom/common/error.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/quality/improve.h"
@@ -172,4 +173,7 @@ PYBIND11_MODULE(_hexdom, m) {
      py::arg("sharp_nodes") = std::vector<int>{}, py::arg("surface_V") = py::none(), py::arg("surface_F") = py::none(),
   "Pillowing, smoothing and Jacobian optimisation; with no stage set, the recommended sequence.\n"
   "Boundary nodes stay on the given surface (or the mesh's own boundary). Returns (V, cells, types, region).");
+
+  python::bind_segmentation(m);
+  python::bind_cad(m);
 }
