@@ -93,8 +93,10 @@ def _faces_of(grid):
 
 
 _VOLUME_DEFECT = pytest.mark.xfail(
-    strict=True, reason="issue 3: inverted prisms at level 2 (fertility 23, ant 50) leave the "
-    "mesh volume 2.9% / 1.6% short of the enclosed volume; everything else holds")
+    strict=True, reason="issue 3: at level 2 the boundary faces of fertility and ant are chords of a "
+    "strongly curved surface and the mesh volume is 2.9% / 1.7% short of the enclosed volume "
+    "(inverted cells do not explain it: it stays after improvement); level 3 is within 1%, see "
+    "test_level3_volume_of_curved_models; everything else holds at level 2")
 
 
 @pytest.mark.parametrize("model", [pytest.param(m, marks=_VOLUME_DEFECT) if m in ("fertility", "ant") else m
@@ -146,6 +148,21 @@ def test_level2_counts_conformity_and_surface(model, tmp_path):
     enclosed = abs(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
     sizes = vtk.vtkCellSizeFilter()
     sizes.SetInputData(grid)
+    sizes.Update()
+    vol = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume")).sum()
+    assert abs(vol - enclosed) <= 0.01 * enclosed, (vol, enclosed)
+
+
+@pytest.mark.parametrize("model", ["fertility", "ant"])
+def test_level3_volume_of_curved_models(model, tmp_path):
+    patches, structure = _model_paths(model)
+    out = str(tmp_path / f"{model}3.vtk")
+    _generate(patches, structure, 3, out)
+    _, SV, SF = _read_surface(patches)
+    a, b, c = SV[SF[:, 0]], SV[SF[:, 1]], SV[SF[:, 2]]
+    enclosed = abs(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+    sizes = vtk.vtkCellSizeFilter()
+    sizes.SetInputData(_read_grid(out))
     sizes.Update()
     vol = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume")).sum()
     assert abs(vol - enclosed) <= 0.01 * enclosed, (vol, enclosed)
