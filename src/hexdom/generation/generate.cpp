@@ -439,21 +439,31 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
     }
   }
 
-  // Harmonic fill of unknown lattice nodes (Gauss-Seidel from a linear start).
+  // Harmonic fill of unknown lattice nodes: successive over-relaxation from a linear start.
+  const double omega = 2.0 / (1.0 + std::sin(M_PI / std::max(2, n)));
   auto harmonic_fill = [&](const std::vector<int>& ids, const std::vector<std::vector<int>>& nbrs) {
     std::vector<int> todo;
     for (size_t q = 0; q < ids.size(); ++q)
       if (!known[ids[q]]) todo.push_back(static_cast<int>(q));
-    for (int sweep = 0; sweep < 40 + 4 * n * n && !todo.empty(); ++sweep) {
+    const double tol = 1e-10 * diag;
+    for (int sweep = 0; sweep < 50 + 20 * n && !todo.empty(); ++sweep) {
       double change = 0;
       for (int q : todo) {
-        Vec3 s = Vec3::Zero();
-        for (int r : nbrs[q]) s += X.row(ids[r]).transpose();
-        Vec3 nx = s / static_cast<double>(nbrs[q].size());
-        change = std::max(change, (nx - X.row(ids[q]).transpose()).norm());
-        X.row(ids[q]) = nx.transpose();
+        double s0 = 0, s1 = 0, s2 = 0;
+        for (int r : nbrs[q]) {
+          s0 += X(ids[r], 0);
+          s1 += X(ids[r], 1);
+          s2 += X(ids[r], 2);
+        }
+        const double inv = 1.0 / static_cast<double>(nbrs[q].size());
+        const int i = ids[q];
+        const double d0 = s0 * inv - X(i, 0), d1 = s1 * inv - X(i, 1), d2 = s2 * inv - X(i, 2);
+        X(i, 0) += omega * d0;
+        X(i, 1) += omega * d1;
+        X(i, 2) += omega * d2;
+        change = std::max(change, std::fabs(d0) + std::fabs(d1) + std::fabs(d2));
       }
-      if (change < 1e-12 * diag) break;
+      if (change < tol) break;
     }
     for (int q : todo) known[ids[q]] = 1;
   };
