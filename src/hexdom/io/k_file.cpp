@@ -1,5 +1,6 @@
 #include "hexdom/io/k_file.h"
 
+#include <climits>
 #include <cstdio>
 #include <ostream>
 #include <stdexcept>
@@ -41,6 +42,9 @@ std::vector<std::string_view> fields(std::string_view line, size_t min_fields,
   return fixed.size() > f.size() ? fixed : f;
 }
 
+// Ids are kept as int (KFile::node_ids, element_ids, region).
+bool fits_int(long v) { return v >= INT_MIN && v <= INT_MAX; }
+
 struct PendingElement {
   long line;
   long eid;
@@ -67,6 +71,8 @@ KFile read_k(const std::string& path) {
     if (raw.empty() || raw[0] == '$') continue;
     std::string_view line = trim(raw);
     if (line.empty()) continue;
+    // Fixed-width fields count columns from the start of the line: keep its leading blanks.
+    std::string_view data = raw.substr(0, raw.find_last_not_of(" \t\r") + 1);
     if (saw_end) continue;  // anything after *END is ignored, as LS-DYNA does
     if (line[0] == '*') {
       std::string kw = lower(trim(line.substr(1)));
@@ -91,13 +97,14 @@ KFile read_k(const std::string& path) {
                              : "not an LS-DYNA keyword file (no *KEYWORD before data)");
       case Section::Skip: break;
       case Section::Node: {
-        auto f = fields(line, 4, {8, 16, 16, 16, 8, 8});
+        auto f = fields(data, 4, {8, 16, 16, 16, 8, 8});
         if (f.size() < 4)
           cur.fail("*NODE expects an id and 3 coordinates, found " + std::to_string(f.size()) +
                    " fields");
         long id;
         double p[3];
         if (!parse_int(f[0], id)) cur.fail("*NODE id '" + std::string(f[0]) + "' is not an integer");
+        if (!fits_int(id)) cur.fail("*NODE id " + std::string(f[0]) + " is not a 32-bit integer");
         for (int k = 0; k < 3; ++k)
           if (!parse_double(f[1 + k], p[k]))
             cur.fail("*NODE " + std::to_string(id) + ": coordinate '" + std::string(f[1 + k]) +
@@ -114,7 +121,7 @@ KFile read_k(const std::string& path) {
       case Section::Solid: {
         const bool solid = section == Section::Solid;
         const size_t need = solid ? 10 : 5;
-        auto f = fields(line, need, std::vector<int>(solid ? 10 : 10, 8));
+        auto f = fields(data, need, std::vector<int>(solid ? 10 : 10, 8));
         if (f.size() < need)
           cur.fail(std::string(solid ? "*ELEMENT_SOLID expects 10 fields" :
                                        "*ELEMENT_SHELL expects at least 5 fields") +
@@ -122,6 +129,7 @@ KFile read_k(const std::string& path) {
         PendingElement e{cur.line(), 0, 0, solid, {0, 0, 0, 0, 0, 0, 0, 0}};
         if (!parse_int(f[0], e.eid) || !parse_int(f[1], e.pid))
           cur.fail("element id and part id must be integers");
+        if (!fits_int(e.eid) || !fits_int(e.pid)) cur.fail("element id and part id must be 32-bit integers");
         const int nn = solid ? 8 : 4;
         for (int k = 0; k < nn; ++k) {
           if (2 + k >= static_cast<int>(f.size())) { e.n[k] = 0; continue; }

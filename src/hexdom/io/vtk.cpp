@@ -1,7 +1,9 @@
 #include "hexdom/io/vtk.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <ostream>
 #include <stdexcept>
@@ -15,12 +17,28 @@ using mesh::CellType;
 
 namespace {
 
+// Line of each value of one data section, stored compactly: the index of the first value on each
+// new line. Binary sections have a single entry (the line where their bytes start).
+struct LineIndex {
+  std::vector<size_t> first;
+  std::vector<long> line;
+  void note(size_t i, long l) {
+    if (line.empty() || line.back() != l) { first.push_back(i); line.push_back(l); }
+  }
+  long at(size_t i) const {
+    if (first.empty()) return 0;
+    size_t k = std::upper_bound(first.begin(), first.end(), i) - first.begin();
+    return line[k ? k - 1 : 0];
+  }
+};
+
 // Token and raw-byte reader over a legacy VTK buffer, keeping line numbers for messages.
 class Scanner {
  public:
   Scanner(const std::string& path, const std::string& text) : path_(path), s_(text) {}
 
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, line_, what); }
+  [[noreturn]] void fail_at(long line, const std::string& what) const { throw InputError(path_, line, what); }
 
   // Next blank-separated token; "" at end of file.
   std::string token() {
@@ -40,6 +58,14 @@ class Scanner {
     if (!parse_int(t, v) || v < 0) fail(std::string(what) + " '" + t + "' is not a non-negative integer");
     return v;
   }
+  // A count from a section header. Every value takes at least one byte, so a count larger than the
+  // file is corrupt; refusing it here also keeps products of counts from overflowing.
+  long need_count(const char* what) {
+    long v = need_int(what);
+    if (static_cast<unsigned long>(v) > s_.size())
+      fail(std::string(what) + " " + std::to_string(v) + " is larger than the file can hold (corrupt header?)");
+    return v;
+  }
   // Rest of the current line (after the last token).
   std::string rest_of_line() {
     size_t b = pos_;
@@ -52,29 +78,54 @@ class Scanner {
   long line_no() const { return line_; }
   bool at_end() { skip_space(); return pos_ >= s_.size(); }
 
-  // Reads `n` numbers of VTK data type `type`, ASCII or big-endian binary.
-  std::vector<double> numbers(size_t n, const std::string& type, bool binary, const char* what) {
-    std::vector<double> out(n);
+  // Reads `n` numbers of VTK data type `type`, ASCII or big-endian binary; notes the line of each
+  // value in `lines` when given.
+  std::vector<double> numbers(size_t n, const std::string& type, bool binary, const char* what,
+                              LineIndex* lines = nullptr) {
+    const size_t w = binary ? type_size(type) : 0;  // ASCII numbers are read whatever their type
+    const size_t left = s_.size() - std::min(pos_, s_.size());
+    std::vector<double> out;
     if (!binary) {
+      out.reserve(std::min(n, left / 2 + 1));  // a corrupt count must not allocate
       for (size_t i = 0; i < n; ++i) {
         std::string t = token();
         if (t.empty())
           fail(std::string(what) + ": file ends after " + std::to_string(i) + " of " +
                std::to_string(n) + " values (truncated?)");
-        if (!parse_double(t, out[i])) fail(std::string(what) + ": '" + t + "' is not a finite number");
+        double d;
+        if (!parse_double(t, d)) fail(std::string(what) + ": '" + t + "' is not a finite number");
+        out.push_back(d);
+        if (lines) lines->note(i, line_);
       }
       return out;
     }
     // Binary data starts right after the newline that ends the header line.
-    const size_t w = type_size(type);
-    if (pos_ + n * w > s_.size())
-      fail(std::string(what) + ": binary data needs " + std::to_string(n * w) + " bytes, " +
-           std::to_string(s_.size() - pos_) + " left (truncated?)");
+    if (n > left / w)
+      fail(std::string(what) + ": binary data needs " + std::to_string(n) + " x " + std::to_string(w) +
+           " bytes, " + std::to_string(left) + " left (truncated?)");
+    out.resize(n);
     const unsigned char* p = reinterpret_cast<const unsigned char*>(s_.data() + pos_);
     for (size_t i = 0; i < n; ++i, p += w) out[i] = decode(p, w, type);
     pos_ += n * w;
     for (size_t i = 0; i < n; ++i)
       if (!std::isfinite(out[i])) fail(std::string(what) + ": value " + std::to_string(i) + " is not finite");
+    if (lines) lines->note(0, line_);
+    return out;
+  }
+
+  // Like numbers(), for values that must be integers (counts, indices, cell types).
+  std::vector<int64_t> integers(size_t n, const std::string& type, bool binary, const char* what,
+                                LineIndex& lines) {
+    auto v = numbers(n, type, binary, what, &lines);
+    std::vector<int64_t> out(v.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (v[i] != std::floor(v[i]) || std::fabs(v[i]) > 9007199254740992.0) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", v[i]);
+        fail_at(lines.at(i), std::string(what) + ": '" + buf + "' is not a valid integer");
+      }
+      out[i] = static_cast<int64_t>(v[i]);
+    }
     return out;
   }
 
@@ -88,7 +139,7 @@ class Scanner {
     if (t == "float" || t == "int" || t == "unsigned_int" || t == "vtktypeint32" || t == "vtktypeuint32") return 4;
     if (t == "double" || t == "long" || t == "unsigned_long" || t == "vtktypeint64" || t == "vtktypeuint64" || t == "vtkidtype") return 8;
     if (t == "short" || t == "unsigned_short") return 2;
-    if (t == "char" || t == "unsigned_char" || t == "bit") return 1;
+    if (t == "char" || t == "signed_char" || t == "unsigned_char" || t == "bit") return 1;
     fail("unsupported data type '" + type + "'");
   }
 
@@ -135,101 +186,132 @@ mesh::Mesh read_vtk(const std::string& path) {
   Scanner sc(path, text);
   std::string head = sc.line();
   if (!starts_with_ci(head, "# vtk DataFile"))
-    sc.fail("not a legacy VTK file (first line must be '# vtk DataFile Version ...')");
+    sc.fail_at(1, "not a legacy VTK file (first line must be '# vtk DataFile Version ...')");
   sc.line();  // title
   std::string mode = lower(sc.line());
-  if (mode != "ascii" && mode != "binary") sc.fail("third line must be ASCII or BINARY, found '" + mode + "'");
+  if (mode != "ascii" && mode != "binary") sc.fail_at(3, "third line must be ASCII or BINARY, found '" + mode + "'");
   const bool binary = mode == "binary";
   std::string ds = sc.need_token("DATASET");
   if (lower(ds) != "dataset") sc.fail("expected DATASET, found '" + ds + "'");
   std::string kind = lower(sc.need_token("dataset type"));
-  sc.rest_of_line();
   if (kind != "unstructured_grid" && kind != "polydata")
     sc.fail("only UNSTRUCTURED_GRID and POLYDATA datasets are supported, found " + kind);
+  sc.rest_of_line();
 
   std::vector<double> pts;
   long npts = -1;
   std::vector<int64_t> offsets, conn;  // cell i uses conn[offsets[i] .. offsets[i+1])
-  std::vector<int> types;
+  std::vector<int64_t> types;
   std::vector<double> region;
+  // Where the values came from, for messages: cell lists (classic layout: count, then nodes;
+  // 5.1 layout: the connectivity array), offsets (5.1), cell types, region ids.
+  LineIndex cell_lines, offset_lines, type_lines, region_lines;
+  bool classic_cells = true;
+  long types_line = 0;
   int region_score = 1000;
   long ncell_data = -1;
   enum { None, PointData, CellData } attr = None;
 
   auto read_offsets_layout = [&](long noff, long nconn) {
+    const long header_line = sc.line_no();
+    if (noff < 1) sc.fail("CELLS: the 5.1 layout needs at least one offset, found " + std::to_string(noff));
     for (int part = 0; part < 2; ++part) {
       std::string key = lower(sc.need_token("OFFSETS/CONNECTIVITY"));
       std::string type = sc.need_token("data type");
-      sc.rest_of_line();
       long n = key == "offsets" ? noff : key == "connectivity" ? nconn : -1;
       if (n < 0) sc.fail("expected OFFSETS or CONNECTIVITY, found '" + key + "'");
-      auto v = sc.numbers(static_cast<size_t>(n), type, binary, key.c_str());
+      if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
+      sc.rest_of_line();
+      auto& lines = key == "offsets" ? offset_lines : cell_lines;
+      auto v = sc.integers(static_cast<size_t>(n), type, binary, key.c_str(), lines);
       if (binary) sc.end_binary();
-      auto& dst = key == "offsets" ? offsets : conn;
-      dst.assign(v.begin(), v.end());
+      (key == "offsets" ? offsets : conn) = std::move(v);
     }
+    classic_cells = false;
+    // Offsets start at 0, never decrease and end at the connectivity size.
+    for (size_t i = 0; i < offsets.size(); ++i) {
+      const int64_t lo = i ? offsets[i - 1] : 0;
+      if (offsets[i] < lo || offsets[i] > static_cast<int64_t>(conn.size()) || (i == 0 && offsets[0] != 0))
+        sc.fail_at(offset_lines.at(i), "OFFSETS: offset " + std::to_string(i) + " is " + std::to_string(offsets[i]) +
+                                           ", outside " + std::to_string(lo) + ".." + std::to_string(conn.size()));
+    }
+    if (offsets.back() != static_cast<int64_t>(conn.size()))
+      sc.fail_at(header_line, "OFFSETS: the last offset is " + std::to_string(offsets.back()) + ", but CONNECTIVITY has " +
+                                  std::to_string(conn.size()) + " entries");
   };
 
   while (!sc.at_end()) {
     std::string key = lower(sc.need_token("section keyword"));
     if (key == "points") {
-      npts = sc.need_int("point count");
+      npts = sc.need_count("point count");
       std::string type = sc.need_token("point data type");
+      if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
       sc.rest_of_line();
       pts = sc.numbers(static_cast<size_t>(3 * npts), type, binary, "POINTS");
       if (binary) sc.end_binary();
     } else if (key == "cells" || key == "polygons") {
-      long n = sc.need_int("cell count"), size = sc.need_int("cell list size");
+      long n = sc.need_count("cell count"), size = sc.need_count("cell list size");
       sc.rest_of_line();
       if (sc.at_end()) sc.fail("file ends after the CELLS header (truncated?)");
       // VTK 5.1 layout: "CELLS noffsets nconn" followed by OFFSETS and CONNECTIVITY arrays.
       {
         Scanner probe = sc;
         std::string t = lower(probe.token());
-        if (t == "offsets") { read_offsets_layout(n, size); if (key == "polygons") types.assign(n - 1, -1); continue; }
+        if (t == "offsets") {
+          read_offsets_layout(n, size);
+          if (key == "polygons") types.assign(n - 1, -1);
+          continue;
+        }
       }
-      auto v = sc.numbers(static_cast<size_t>(size), "int", binary, "CELLS");
+      cell_lines = LineIndex();
+      auto v = sc.integers(static_cast<size_t>(size), "int", binary, "CELLS", cell_lines);
       if (binary) sc.end_binary();
       offsets.assign(1, 0);
       conn.clear();
+      classic_cells = true;
       size_t i = 0;
       for (long c = 0; c < n; ++c) {
         if (i >= v.size()) sc.fail("CELLS: list ends at cell " + std::to_string(c) + " of " + std::to_string(n));
-        long k = static_cast<long>(v[i++]);
-        if (k < 0 || i + k > v.size()) sc.fail("CELLS: cell " + std::to_string(c) + " claims " + std::to_string(k) + " nodes beyond the list");
-        for (long j = 0; j < k; ++j) conn.push_back(static_cast<int64_t>(v[i++]));
+        const int64_t k = v[i++];
+        if (k < 0 || k > static_cast<int64_t>(v.size() - i))
+          sc.fail_at(cell_lines.at(i - 1), "CELLS: cell " + std::to_string(c) + " claims " + std::to_string(k) +
+                                               " nodes beyond the list");
+        for (int64_t j = 0; j < k; ++j) conn.push_back(v[i++]);
         offsets.push_back(static_cast<int64_t>(conn.size()));
       }
       if (key == "polygons") types.assign(n, -1);
     } else if (key == "cell_types") {
-      long n = sc.need_int("cell type count");
+      types_line = sc.line_no();
+      long n = sc.need_count("cell type count");
       sc.rest_of_line();
-      auto v = sc.numbers(static_cast<size_t>(n), "int", binary, "CELL_TYPES");
+      type_lines = LineIndex();
+      types = sc.integers(static_cast<size_t>(n), "int", binary, "CELL_TYPES", type_lines);
       if (binary) sc.end_binary();
-      types.assign(v.begin(), v.end());
     } else if (key == "cell_data" || key == "point_data") {
-      long n = sc.need_int("attribute count");
-      sc.rest_of_line();
+      long n = sc.need_count("attribute count");
       attr = key == "cell_data" ? CellData : PointData;
       if (attr == CellData) ncell_data = n;
       else if (n != npts) sc.fail("POINT_DATA count " + std::to_string(n) + " differs from POINTS " + std::to_string(npts));
+      sc.rest_of_line();
     } else if (key == "scalars" || key == "vectors" || key == "normals" || key == "tensors" ||
                key == "texture_coordinates" || key == "color_scalars") {
       if (attr == None) sc.fail(key + " outside CELL_DATA/POINT_DATA");
       std::string name = sc.need_token("array name");
       long ncomp = 1;
       std::string type = "float";
-      if (key == "color_scalars") { ncomp = sc.need_int("component count"); type = binary ? "unsigned_char" : "float"; }
-      else if (key == "texture_coordinates") { ncomp = sc.need_int("dimension"); type = sc.need_token("data type"); }
+      if (key == "color_scalars") { ncomp = sc.need_count("component count"); type = binary ? "unsigned_char" : "float"; }
+      else if (key == "texture_coordinates") { ncomp = sc.need_count("dimension"); type = sc.need_token("data type"); }
       else {
         type = sc.need_token("data type");
         if (key == "vectors" || key == "normals") ncomp = 3;
         if (key == "tensors") ncomp = 9;
       }
+      if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
+      const long header_line = sc.line_no();
       std::string rest = sc.rest_of_line();
       if (key == "scalars" && !rest.empty()) {
         long c;
-        if (!parse_int(rest, c) || c < 1 || c > 4) sc.fail("SCALARS component count '" + rest + "' must be 1..4");
+        if (!parse_int(rest, c) || c < 1 || c > 4) sc.fail_at(header_line, "SCALARS component count '" + rest + "' must be 1..4");
         ncomp = c;
       }
       if (key == "scalars") {
@@ -238,33 +320,38 @@ mesh::Mesh read_vtk(const std::string& path) {
         if (lower(probe.token()) == "lookup_table") { sc.token(); sc.rest_of_line(); }
       }
       long count = attr == CellData ? ncell_data : npts;
-      auto v = sc.numbers(static_cast<size_t>(count * ncomp), type, binary, key.c_str());
+      LineIndex lines;
+      auto v = sc.numbers(static_cast<size_t>(count * ncomp), type, binary, key.c_str(), &lines);
       if (binary) sc.end_binary();
       if (attr == CellData && ncomp == 1 && region_rank(name) < region_score) {
-        region = v;
+        region = std::move(v);
+        region_lines = std::move(lines);
         region_score = region_rank(name);
       }
     } else if (key == "lookup_table") {
       sc.need_token("table name");
-      long n = sc.need_int("table size");
+      long n = sc.need_count("table size");
       sc.rest_of_line();
       sc.numbers(static_cast<size_t>(4 * n), binary ? "unsigned_char" : "float", binary, "LOOKUP_TABLE");
       if (binary) sc.end_binary();
     } else if (key == "field") {
       sc.need_token("field name");
-      long narr = sc.need_int("array count");
+      long narr = sc.need_count("array count");
       sc.rest_of_line();
       for (long a = 0; a < narr; ++a) {
         std::string name = sc.need_token("array name");
         if (lower(name) == "null_array") continue;
-        long ncomp = sc.need_int("component count"), ntup = sc.need_int("tuple count");
+        long ncomp = sc.need_count("component count"), ntup = sc.need_count("tuple count");
         std::string type = sc.need_token("data type");
-        sc.rest_of_line();
         if (lower(type) == "string") sc.fail("string field arrays are not supported");
-        auto v = sc.numbers(static_cast<size_t>(ncomp * ntup), type, binary, name.c_str());
+        if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
+        sc.rest_of_line();
+        LineIndex lines;
+        auto v = sc.numbers(static_cast<size_t>(ncomp * ntup), type, binary, name.c_str(), &lines);
         if (binary) sc.end_binary();
         if (attr == CellData && ncomp == 1 && ntup == ncell_data && region_rank(name) < region_score) {
-          region = v;
+          region = std::move(v);
+          region_lines = std::move(lines);
           region_score = region_rank(name);
         }
         // VTK 9 may follow an array by a METADATA block ending at an empty line.
@@ -289,31 +376,52 @@ mesh::Mesh read_vtk(const std::string& path) {
   if (offsets.empty()) sc.fail("no CELLS section");
   const long ncells = static_cast<long>(offsets.size()) - 1;
   if (types.size() != static_cast<size_t>(ncells))
-    sc.fail("CELL_TYPES count " + std::to_string(types.size()) + " differs from CELLS count " + std::to_string(ncells));
+    sc.fail_at(types_line ? types_line : sc.line_no(), "CELL_TYPES count " + std::to_string(types.size()) +
+                                                           " differs from CELLS count " + std::to_string(ncells));
   if (!region.empty() && static_cast<long>(region.size()) != ncells) region.clear();
 
+  // Line of node j of cell c (j = -1: the cell's start).
+  auto cell_line = [&](long c, long j) {
+    if (classic_cells) return cell_lines.at(static_cast<size_t>(offsets[c] + c + 1 + j));
+    if (j < 0 || offsets[c] + j >= static_cast<int64_t>(conn.size())) return offset_lines.at(static_cast<size_t>(c + 1));
+    return cell_lines.at(static_cast<size_t>(offsets[c] + j));
+  };
   mesh::MeshBuilder b;
   for (long c = 0; c < ncells; ++c) {
     const long k = static_cast<long>(offsets[c + 1] - offsets[c]);
     int n[8];
-    if (k < 3 || k > 8) sc.fail("cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
+    if (k < 3 || k > 8) sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
     for (long j = 0; j < k; ++j) {
       int64_t v = conn[offsets[c] + j];
       if (v < 0 || v >= npts)
-        sc.fail("cell " + std::to_string(c) + " refers to point " + std::to_string(v) + ", but there are " + std::to_string(npts) + " points");
+        sc.fail_at(cell_line(c, j), "cell " + std::to_string(c) + " refers to point " + std::to_string(v) +
+                                        ", but there are " + std::to_string(npts) + " points");
       n[j] = static_cast<int>(v);
     }
-    int t = types[c];
+    const int64_t t64 = types[c];
+    int t = t64 < -1 || t64 > 255 ? 0 : static_cast<int>(t64);
     if (t == -1) t = k == 3 ? 5 : k == 4 ? 9 : 0;  // POLYDATA polygons
-    const int rid = region.empty() ? 0 : static_cast<int>(std::lround(region[c]));
+    int rid = 0;
+    if (!region.empty()) {
+      const double r = region[c];
+      if (r != std::floor(r) || std::fabs(r) > 2147483647.0) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", r);
+        sc.fail_at(region_lines.at(c), "cell " + std::to_string(c) + ": region id " + buf + " is not a 32-bit integer");
+      }
+      rid = static_cast<int>(r);
+    }
+    const long tline = type_lines.at(c) ? type_lines.at(c) : cell_line(c, -1);
     CellType ct;
     try {
       ct = mesh::cell_type_from_vtk(t);
-    } catch (const std::invalid_argument& e) {
-      sc.fail("cell " + std::to_string(c) + ": " + e.what() + " (supported: 5 triangle, 9 quad, 10 tet, 12 hex, 13 wedge)");
+    } catch (const std::invalid_argument&) {
+      sc.fail_at(tline, "cell " + std::to_string(c) + ": unsupported VTK cell type " + std::to_string(t64) +
+                            " (supported: 5 triangle, 9 quad, 10 tet, 12 hex, 13 wedge)");
     }
     if (mesh::node_count(ct) != k)
-      sc.fail("cell " + std::to_string(c) + " of type " + std::to_string(t) + " has " + std::to_string(k) + " nodes, expected " + std::to_string(mesh::node_count(ct)));
+      sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " of type " + std::to_string(t) + " has " +
+                                       std::to_string(k) + " nodes, expected " + std::to_string(mesh::node_count(ct)));
     if (ct == CellType::Hex) {
       std::array<int, 8> h;
       std::copy(n, n + 8, h.begin());
@@ -321,7 +429,7 @@ mesh::Mesh read_vtk(const std::string& path) {
         auto d = mesh::classify_hex_nodes(h);
         b.add(d.type, d.nodes.data(), rid);
       } catch (const std::invalid_argument& e) {
-        sc.fail("cell " + std::to_string(c) + ": " + e.what());
+        sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + ": " + e.what());
       }
     } else {
       b.add(ct, n, rid);
