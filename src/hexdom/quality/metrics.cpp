@@ -65,10 +65,13 @@ double wedge_sj(const CellPoints& Q) {
   for (int i = 0; i < 6; ++i) {
     Vec v1 = c[k[i][1]] - c[k[i][0]], v2 = c[k[i][2]] - c[k[i][0]], v3 = c[k[i][3]] - c[k[i][0]];
     double len = std::sqrt(v1.squaredNorm() * v2.squaredNorm() * v3.squaredNorm());
+    // A zero-length edge makes this corner 0/0. Verdict lets that NaN through its min, so its
+    // answer then depends on which corner it was (-DBL_MAX, 0, or the minimum of the other
+    // corners, even a positive one); we call the cell invalid, as for hexes.
+    if (!(len > 0)) return kDblMax;
     double j = v2.dot(v1.cross(v3)) / len;
     min_sj = i == 0 ? j : std::min(j, min_sj);
   }
-  if (std::isnan(min_sj)) return kDblMax;  // zero-length edge
   min_sj *= 2.0 / std::sqrt(3.0);
   return min_sj > 0 ? std::min(min_sj, kDblMax) : std::max(min_sj, -kDblMax);
 }

@@ -17,11 +17,14 @@ using CellPoints = Eigen::Matrix<double, 8, 3>;
 ///   three principal axes; a zero-length edge gives DBL_MAX, as in Verdict (an invalid cell).
 /// Tet: sqrt(2) det / (largest product of the three edge lengths meeting at a corner).
 /// Wedge: 2/sqrt(3) x minimum over the 6 corners of the corner determinant over its edge-length
-///   product; evaluated in Verdict's node order (VTK's reordered 1 0 2 4 3 5).
+///   product; evaluated in Verdict's node order (VTK's reordered 1 0 2 4 3 5). A zero-length edge
+///   gives DBL_MAX (invalid), where Verdict's answer depends on which corner the edge touches.
 /// 2D cells: NaN.
 double scaled_jacobian(mesh::CellType type, const CellPoints& P);
 
 /// Longest over shortest edge (the paper's "aspect ratio"); DBL_MAX for a zero-length edge.
+/// Hexes use all 12 edges. Verdict's hex_edge_ratio (VTK 9.1 and later) takes the longest of
+/// its first six edges only (its code overwrites the 12-edge maximum), so it can be lower.
 double edge_ratio(mesh::CellType type, const CellPoints& P);
 
 /// Volume of the trilinear (hex), bilinear-by-linear (wedge) or linear (tet) cell, by exact

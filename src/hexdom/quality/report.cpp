@@ -28,7 +28,9 @@ QualityReport quality_report(const mesh::Mesh& m, const CellMetrics& q) {
       default: continue;
     }
     const double sj = q.scaled_jacobian(c), er = q.edge_ratio(c);
-    const bool bad = is_inverted(sj);
+    // A zero-length edge (edge ratio DBL_MAX) makes a cell degenerate even where its scaled
+    // Jacobian, as Verdict defines it for tets, comes out as a tiny positive rounding error.
+    const bool bad = is_inverted(sj) || !(er < 1.0e30);
     // A degenerate cell (DBL_MAX) counts as -1 in the statistics, never as a perfect cell.
     const double sj_eff = bad && !(sj <= 0) ? -1.0 : sj;
     s->count++;

@@ -13,7 +13,7 @@ namespace hexdom::quality {
 struct TypeStats {
   int count = 0;
   double sj_min = 0, sj_mean = 0;
-  int inverted = 0;  ///< scaled Jacobian <= 0 or degenerate
+  int inverted = 0;  ///< scaled Jacobian <= 0, or degenerate (invalid SJ, a zero-length edge)
   double edge_ratio_min = 0, edge_ratio_max = 0;
   double volume = 0;
   /// Scaled-Jacobian histogram: 20 bins of width 0.1 over [-1, 1]; invalid cells in bin 0.
