@@ -120,3 +120,144 @@ def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angl
     sv, sf = (surface.V, surface.F) if surface is not None else (None, None)
     return Mesh(*_hexdom.improve(mesh.V, mesh.cells, mesh.types, mesh.region, pillow, smooth,
                                  optimize, feature_angle, list(sharp_nodes), sv, sf))
+
+
+# ------------------------------------------------------------------------------------------------
+# Segmentation: CVT labelling, the polycube check, the polycube boundary, patch editing.
+# Labels are 1..6 (+X, -X, +Y, -Y, +Z, -Z), as `hexdom segment` writes them as part ids; patch
+# numbers are 1-based (order of each patch's first triangle); vertex and triangle indices 0-based.
+
+LABEL_NAMES = {1: "+X", 2: "-X", 3: "+Y", 4: "-Y", 5: "+Z", 6: "-Z"}
+
+
+@dataclass
+class Segmentation(Surface):
+    """A labelled Surface: ``patch`` holds the label 1..6 of each triangle (write it with
+    write_surface to get what `hexdom segment` writes). ``classical`` holds the labels after the
+    classical CVT pass, ``generators`` (6 x 3) its generator normals, ``info`` the sweep counts and
+    what was done with CAD faces."""
+
+    classical: np.ndarray = None
+    generators: np.ndarray = None
+    info: dict = None
+
+
+def segment(surface, edge_weight=0.1, respect_faces=None, manual=None, classical_sweeps=50,
+            edge_sweeps=200, min_moves=3, max_drift=10.0, ring=2, planar_angle=1.0,
+            face_majority=0.9):
+    """Polycube segmentation of a closed Surface: CVT of the triangle normals with the generators
+    +-X, +-Y, +-Z, classical energy first, then the edge-weighted energy (lambda = edge_weight)
+    that removes zig-zag boundaries. respect_faces: None = when surface.patch has more than one id
+    (CAD faces, e.g. from tessellation): planar faces keep one label and boundaries follow CAD edges
+    where they can. manual: a path to the original's override file ("triangle label", 0-based) or
+    (triangle, label 1..6) rows. Returns a Segmentation."""
+    if isinstance(manual, (str, os.PathLike)):
+        manual = read_manual_labels(manual)
+    if manual is not None:
+        manual = np.asarray(manual, np.int32).reshape(-1, 2)
+    r = _hexdom.segment(surface.V, surface.F, surface.patch, edge_weight, classical_sweeps,
+                        edge_sweeps, min_moves, max_drift, ring, respect_faces, planar_angle,
+                        face_majority, manual)
+    info = {k: v for k, v in r.items() if k not in ("label", "classical", "generators")}
+    return Segmentation(surface.V, surface.F, r["label"], r["classical"], r["generators"], info)
+
+
+def read_manual_labels(path):
+    """The original's manual override file as (triangle 0-based, label 1..6) rows."""
+    return _hexdom.read_manual_labels(os.fspath(path))
+
+
+def segmentation_stats(surface, max_angle=55.0):
+    """Figures of the labelling surface.patch (1..6): patches, small_patches, boundary_length,
+    teeth (zig-zag triangles), axis_fraction (area share within max_angle of its label's axis),
+    label_axis_fraction and label_area per label."""
+    return _hexdom.segmentation_stats(surface.V, surface.F, surface.patch, max_angle)
+
+
+@dataclass
+class Violation:
+    """One violated polycube condition: kind ("opposite_orientations", "two_patch_corner",
+    "curve_count", "not_disk"), the 1-based patches, a 0-based vertex and its location."""
+
+    kind: str
+    patches: list
+    vertex: int
+    location: np.ndarray
+    message: str
+
+    def __str__(self):
+        return self.message
+
+
+@dataclass
+class PatchCheck:
+    """Result of check_patches. Iterating over it yields its violations (str() = message)."""
+
+    valid: bool
+    patches: list  # dicts: patch, id, orientation, orientation_name, normal, area, triangles,
+    #                type, curves, loops, euler, corners, neighbours
+    corners: list
+    curves: int
+    violations: list
+
+    def __iter__(self):
+        return iter(self.violations)
+
+    def __len__(self):
+        return len(self.violations)
+
+
+def check_patches(surface, opposite_angle=135.0, corner_defect=70.0, corner_angle=0.0,
+                  turn_window=3.0, triangular_ids=()):
+    """The polycube conditions on a segmented Surface (patch = connected region of one id):
+    opposite orientations sharing a boundary, corners shared by fewer than three patches,
+    quadrilateral patches without 4 boundary curves and triangular ones without 3, patches that
+    are not disks. Returns a PatchCheck (falsy ``valid`` and a list of violations)."""
+    r = _hexdom.check_patches(surface.V, surface.F, surface.patch, opposite_angle, corner_defect,
+                              corner_angle, turn_window, list(triangular_ids))
+    violations = [Violation(v["kind"], list(v["patches"]), v["vertex"], v["location"], v["message"])
+                  for v in r["violations"]]
+    return PatchCheck(r["valid"], r["patches"], list(r["corners"]), r["curves"], violations)
+
+
+@dataclass
+class PolycubeBoundary:
+    """Corners, edges and faces of the polycube a segmentation asks for; ``shells`` is the Mesh of
+    the original's initial polycube file (one quad or triangle per patch over its corners)."""
+
+    corner_vertices: np.ndarray  # (#C,) 0-based surface vertices, ascending
+    corners: np.ndarray  # (#C, 3)
+    edges: list  # dicts: corners (2 corner indices), patches (2), path (surface vertices)
+    faces: list  # dicts: patch, id, corners (3 or 4 corner indices, counter-clockwise)
+    shells: Mesh
+
+
+def polycube_boundary(surface):
+    """Polycube boundary of a segmented Surface; raises GeometryError when a patch is not a disk
+    with 3 or 4 corners."""
+    r = _hexdom.polycube_boundary(surface.V, surface.F, surface.patch)
+    return PolycubeBoundary(np.asarray(r["corner_vertices"], np.int32), r["corners"], r["edges"],
+                            r["faces"], Mesh(*r["shells"]))
+
+
+def number_patches(surface):
+    """Patch map with one id per connected region, 1..R (order of first triangle)."""
+    return _hexdom.number_patches(surface.V, surface.F, surface.patch)
+
+
+def reassign_triangles(surface, triangles, patch_id=0):
+    """New patch map: ``triangles`` take ``patch_id`` (0: a new id, the largest + 1)."""
+    return _hexdom.reassign_triangles(surface.V, surface.F, surface.patch,
+                                      [int(t) for t in np.asarray(triangles).reshape(-1)], int(patch_id))
+
+
+def merge_patches(surface, a, b):
+    """New patch map: patch id ``b`` joins patch id ``a`` (they must share an edge)."""
+    return _hexdom.merge_patches(surface.V, surface.F, surface.patch, int(a), int(b))
+
+
+def split_patch(surface, patch_id, path):
+    """New patch map: patch ``patch_id`` cut along a path of vertices (consecutive ones joined by
+    the shortest chain of its interior edges); the part without its first triangle gets a new id."""
+    return _hexdom.split_patch(surface.V, surface.F, surface.patch, int(patch_id),
+                               [int(v) for v in np.asarray(path).reshape(-1)])
