@@ -1,0 +1,70 @@
+"""Where the tests find things: the repository, the build under test, the shared paper data.
+
+Environment:
+  HEXDOM_DATA       root of the shared data (default: ../shared/data beside the repository);
+                    tests needing a file of it skip, naming the missing path, when it is absent.
+  HEXDOM_BUILD_DIR  CMake build directory holding bin/hexdom and python/_hexdom (default: build).
+
+Imported by tests/python/conftest.py and tests/cli/conftest.py (a module of its own, so that test
+modules never have to import a conftest).
+"""
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+if str(REPO) not in sys.path:
+    sys.path.insert(0, str(REPO))  # HexDomWorkbench is imported from the working tree
+
+BUILD_DIR = Path(os.environ.get("HEXDOM_BUILD_DIR") or REPO / "build").resolve()
+# core.py looks for _hexdom through HEXDOM_BUILD_DIR: make the default explicit.
+os.environ["HEXDOM_BUILD_DIR"] = str(BUILD_DIR)
+HEXDOM_BIN = BUILD_DIR / "bin" / "hexdom"
+DATA_ROOT = Path(os.environ.get("HEXDOM_DATA") or REPO.parent / "shared" / "data").resolve()
+HEXDOM_DATA = DATA_ROOT / "hexdom"
+
+
+def missing(path):
+    return f"shared data missing: {path} (set HEXDOM_DATA)"
+
+
+def data_file(rel):
+    """Path of a shared data file (relative to <data>/hexdom); skips the test when it is absent."""
+    path = HEXDOM_DATA / rel
+    if not path.exists():
+        pytest.skip(missing(path))
+    return path
+
+
+def data_params(pattern, exclude=()):
+    """One pytest.param per shared data file matching a glob under <data>/hexdom, with its relative
+    path as the id; a single skipped placeholder naming the missing directory when the data is
+    absent, so that a missing data set shows up as a skip rather than as an empty test list."""
+    paths = sorted(p for p in HEXDOM_DATA.glob(pattern)
+                   if str(p.relative_to(HEXDOM_DATA)) not in exclude) if HEXDOM_DATA.is_dir() else []
+    if not paths:
+        where = HEXDOM_DATA if not HEXDOM_DATA.is_dir() else HEXDOM_DATA / pattern
+        return [pytest.param(None, marks=pytest.mark.skip(reason=missing(where)), id="no-data")]
+    return [pytest.param(p, id=str(p.relative_to(HEXDOM_DATA))) for p in paths]
+
+
+def hexdom_bin():
+    """The hexdom program of the build under test; a missing build fails (it is not a skip)."""
+    if not HEXDOM_BIN.is_file():
+        pytest.fail(f"{HEXDOM_BIN} not found: build first (make build) or set HEXDOM_BUILD_DIR")
+    return HEXDOM_BIN
+
+
+def load_core():
+    """HexDomWorkbench.core, checked to run the _hexdom module of BUILD_DIR: core.py falls back to
+    other locations (an installed copy, ./build) when that one is missing or fails to import, and
+    the tests would then silently test another build."""
+    from HexDomWorkbench import core
+    loaded = Path(core._hexdom.__file__).resolve()
+    if BUILD_DIR not in loaded.parents:
+        pytest.fail(f"_hexdom was loaded from {loaded}, not from {BUILD_DIR / 'python'} "
+                    f"(is the module built there, and does it import?)")
+    return core
