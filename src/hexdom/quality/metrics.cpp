@@ -17,26 +17,43 @@ constexpr double kDblMin = 1.0e-30;  // Verdict's VERDICT_DBL_MIN
 
 Vec row(const CellPoints& P, int i) { return P.row(i).transpose(); }
 
+// Plain arithmetic (no temporaries): this runs for every cell of every mesh, often many times.
+inline double triple(const double a[3], const double b[3], const double c[3]) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
 double hex_sj(const CellPoints& P) {
-  auto p = [&](int i) { return row(P, i); };
+  double p[8][3];
+  for (int i = 0; i < 8; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = P(i, k);
   double min_sj = kDblMax;
-  auto corner = [&](const Vec& a, const Vec& b, const Vec& c, bool& invalid) {
-    double la = a.squaredNorm(), lb = b.squaredNorm(), lc = c.squaredNorm();
-    if (la <= kDblMin || lb <= kDblMin || lc <= kDblMin) { invalid = true; return; }
-    double j = a.dot(b.cross(c)) / std::sqrt(la * lb * lc);
-    min_sj = std::min(min_sj, j);
-  };
-  bool invalid = false;
   // Centre: principal axes.
-  Vec x1 = (p(1) - p(0)) + (p(2) - p(3)) + (p(5) - p(4)) + (p(6) - p(7));
-  Vec x2 = (p(3) - p(0)) + (p(2) - p(1)) + (p(7) - p(4)) + (p(6) - p(5));
-  Vec x3 = (p(4) - p(0)) + (p(5) - p(1)) + (p(6) - p(2)) + (p(7) - p(3));
-  corner(x1, x2, x3, invalid);
-  static const int k[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
-                              {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
-  for (int i = 0; i < 8 && !invalid; ++i)
-    corner(p(k[i][1]) - p(k[i][0]), p(k[i][2]) - p(k[i][0]), p(k[i][3]) - p(k[i][0]), invalid);
-  if (invalid) return kDblMax;
+  double x[3][3];
+  for (int k = 0; k < 3; ++k) {
+    x[0][k] = (p[1][k] - p[0][k]) + (p[2][k] - p[3][k]) + (p[5][k] - p[4][k]) + (p[6][k] - p[7][k]);
+    x[1][k] = (p[3][k] - p[0][k]) + (p[2][k] - p[1][k]) + (p[7][k] - p[4][k]) + (p[6][k] - p[5][k]);
+    x[2][k] = (p[4][k] - p[0][k]) + (p[5][k] - p[1][k]) + (p[6][k] - p[2][k]) + (p[7][k] - p[3][k]);
+  }
+  auto sample = [&](const double a[3], const double b[3], const double c[3]) {
+    const double la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    const double lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
+    const double lc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    if (la <= kDblMin || lb <= kDblMin || lc <= kDblMin) return false;
+    min_sj = std::min(min_sj, triple(a, b, c) / std::sqrt(la * lb * lc));
+    return true;
+  };
+  if (!sample(x[0], x[1], x[2])) return kDblMax;
+  static const int k8[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
+                               {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
+  for (const auto& c : k8) {
+    double a[3], b[3], d[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = p[c[1]][k] - p[c[0]][k];
+      b[k] = p[c[2]][k] - p[c[0]][k];
+      d[k] = p[c[3]][k] - p[c[0]][k];
+    }
+    if (!sample(a, b, d)) return kDblMax;
+  }
   return min_sj > 0 ? std::min(min_sj, kDblMax) : std::max(min_sj, -kDblMax);
 }
 
