@@ -133,7 +133,7 @@ void bind_segmentation(py::module_& m) {
         },
         py::arg("V"), py::arg("F"), py::arg("label"), py::arg("max_angle") = 55.0,
         "Figures of a labelling (1..6 per triangle): patches, small_patches (< 10 triangles), boundary_length,\n"
-        "teeth (triangles with 2 or 3 neighbours of another label: zig-zags), axis_fraction (area share within\n"
+        "teeth (triangles with 2 or 3 neighbours of one other label: zig-zags), axis_fraction (area share within\n"
         "max_angle degrees of the label's axis), label_axis_fraction and label_area per label 1..6.");
 
   m.def("check_patches",

@@ -89,9 +89,23 @@ Segmentation segment_cvt(const mesh::SurfaceMesh& s, const CvtOptions& opt) {
         fixed[f] = 1;
       }
     }
-    log(0, "segment: " + std::to_string(out.faces) + " CAD faces, " + std::to_string(out.planar_faces) +
-               " planar (one label each)");
   }
+  // Curved CAD faces that are (almost) one label by their normals become one label.
+  if (out.respected_faces) {
+    for (const auto& tris : face_tris) {
+      if (tris.empty() || fixed[tris[0]]) continue;
+      double area[7] = {0, 0, 0, 0, 0, 0, 0}, total = 0;
+      for (int f : tris) { area[label(f)] += geo.area(f); total += geo.area(f); }
+      const int major = static_cast<int>(std::max_element(area + 1, area + 7) - area);
+      if (area[major] < opt.face_majority * total) continue;
+      ++out.uniform_faces;
+      for (int f : tris)
+        if (!fixed[f]) { label(f) = major; fixed[f] = 1; }
+    }
+    log(0, "segment: " + std::to_string(out.faces) + " CAD faces: " + std::to_string(out.planar_faces) +
+               " planar and " + std::to_string(out.uniform_faces) + " curved ones keep one label");
+  }
+
   for (const auto& [t, l] : opt.manual) {
     if (t < 0 || t >= nf)
       throw InputError("manual label for triangle " + std::to_string(t) + " (0-based), but the surface has " +
@@ -151,20 +165,6 @@ Segmentation segment_cvt(const mesh::SurfaceMesh& s, const CvtOptions& opt) {
     if (moves < opt.min_moves) break;
   }
   out.classical = label;
-
-  // Curved CAD faces that are (almost) one label already become one label.
-  if (out.respected_faces) {
-    for (const auto& tris : face_tris) {
-      if (tris.empty() || fixed[tris[0]]) continue;
-      double area[7] = {0, 0, 0, 0, 0, 0, 0}, total = 0;
-      for (int f : tris) { area[label(f)] += geo.area(f); total += geo.area(f); }
-      const int major = static_cast<int>(std::max_element(area + 1, area + 7) - area);
-      if (area[major] < opt.face_majority * total) continue;
-      ++out.uniform_faces;
-      for (int f : tris)
-        if (!fixed[f]) { label(f) = major; fixed[f] = 1; }
-    }
-  }
 
   // Edge-weighted pass with fixed generators.
   if (opt.edge_weight > 0 && opt.edge_sweeps > 0) {

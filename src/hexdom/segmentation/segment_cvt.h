@@ -28,9 +28,10 @@ struct CvtOptions {
   int min_moves = 3;          ///< the classical pass stops after a sweep with fewer moves
   int ring = 2;               ///< neighbourhood of the edge term: triangles within `ring` edge steps
   /// Auto: on when the surface carries more than one patch id (CAD faces, e.g. from `hexdom
-  /// tessellate`). On: a planar face keeps one label; a curved face whose largest label covers
-  /// `face_majority` of its area takes that label entirely; the edge term counts only neighbours of
-  /// the same face, so that boundaries follow CAD edges where the normals allow it.
+  /// tessellate`). On: a planar face keeps one label; a curved face whose triangles' nearest axes
+  /// give one label to `face_majority` of its area takes that label entirely; both are fixed during
+  /// the passes, and the edge term counts only neighbours of the same face, so that boundaries follow
+  /// CAD edges where the normals allow it.
   FaceMode respect_faces = FaceMode::Auto;
   double planar_angle = 1.0;    ///< degrees: a face whose normals all lie this close to its mean is planar
   double face_majority = 0.9;   ///< area share above which a curved face takes one label

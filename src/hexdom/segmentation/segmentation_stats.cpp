@@ -21,15 +21,15 @@ SegmentationStats segmentation_stats(const mesh::SurfaceMesh& s, const Eigen::Ve
   double total = 0, total_within = 0;
   for (int f = 0; f < nf; ++f) {
     const int l = label(f);
-    int other = 0;
+    int other[3], n = 0;
     for (int k = 0; k < 3; ++k) {
       const int g = TT(f, k);
       if (g >= 0 && label(g) != l) {
-        ++other;
+        other[n++] = label(g);
         if (g > f) st.boundary_length += (s.V.row(s.F(f, k)) - s.V.row(s.F(f, (k + 1) % 3))).norm();
       }
     }
-    if (other >= 2) ++st.teeth;
+    if ((n >= 2 && other[0] == other[1]) || (n == 3 && (other[0] == other[2] || other[1] == other[2]))) ++st.teeth;
     total += geo.area(f);
     if (l < 1 || l > 6) continue;
     st.label_area[l - 1] += geo.area(f);

@@ -13,8 +13,9 @@ struct SegmentationStats {
   int patches = 0;             ///< connected regions of one label
   int small_patches = 0;       ///< regions of fewer than 10 triangles (islands)
   double boundary_length = 0;  ///< total length of the edges between two labels
-  /// Zig-zag measure: triangles with two or three edge neighbours of another label (a boundary
-  /// that turns around a single triangle: a tooth or a notch).
+  /// Zig-zag measure: triangles with two or three edge neighbours of one other label (the boundary
+  /// turns around a single triangle: a tooth or a notch; a triangle at a patch corner, whose two
+  /// foreign neighbours carry different labels, does not count).
   int teeth = 0;
   double max_angle = 55;        ///< degrees, the threshold of axis_fraction
   /// Area share of the triangles whose normal is within max_angle of their label's axis, over all
