@@ -69,7 +69,7 @@ std::vector<double> turning(const mesh::SurfaceMesh& s, const std::vector<int>& 
     const double len = arc[j] - arc[j - 1], w = len > 0 ? (t - arc[j - 1]) / len : 0;
     return ((1 - w) * s.V.row(vs[j - 1]) + w * s.V.row(vs[j])).transpose();
   };
-  for (int i = closed ? 0 : 1; i < (closed ? n - 1 : n - 1); ++i) {
+  for (int i = closed ? 0 : 1; i < n - 1; ++i) {  // a closed curve repeats its first vertex last
     if (!closed && (arc[i] < h || total - arc[i] < h)) continue;
     const Eigen::Vector3d p = s.V.row(vs[i]).transpose();
     const Eigen::Vector3d a = p - point_at(arc[i] - h), b = point_at(arc[i] + h) - p;

@@ -251,7 +251,10 @@ TEST_P(SegmentPaperModel, LabelsFollowAxesAndZigZagsShrink) {
   auto final = segmentation::segmentation_stats(s, seg.label);
   EXPECT_GE(final.axis_fraction, 0.95);
   EXPECT_NEAR(final.axis_fraction, axis_area_fraction(s, seg.label, 55.0), 1e-12);
-  for (int l = 0; l < 6; ++l) EXPECT_GT(final.label_area[l], 0) << l;
+  for (int l = 0; l < 6; ++l) {
+    EXPECT_GT(final.label_area[l], 0) << l;
+    EXPECT_GE(final.label_axis_fraction[l], 0.95) << segmentation::label_name(l + 1);
+  }
   EXPECT_LE(final.teeth, classical.teeth);
   EXPECT_LE(final.boundary_length, classical.boundary_length * 1.001);
   EXPECT_LE(final.patches, classical.patches);
