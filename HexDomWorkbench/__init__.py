@@ -6,8 +6,14 @@ Macro API (no GUI needed)::
     mesh = hexdom.read_mesh("part.vtk")
     print(hexdom.quality_report(mesh)["hex"]["sj_min"])
 
+    surface = hexdom.tessellate(part.Shape, size=2.0)    # FreeCAD needed from here on
+    mesh = hexdom.generate(hexdom.segment(surface), hexdom.read_structure("s.k"), level=2)
+    fem = hexdom.to_fem_mesh(hexdom.improve(mesh))
+    objs = hexdom.make_document_objects(doc, patch_file="p.k", structure_file="s.k")
+
 The meshing itself lives in the compiled module ``_hexdom``; this package converts, displays and
-dispatches. Importing it does not import FreeCAD.
+dispatches. Importing it does not import FreeCAD: the names of ``api`` (which import FreeCAD only
+when they need it) load on first use.
 """
 
 from .core import (  # noqa: F401
@@ -28,3 +34,25 @@ from .core import (  # noqa: F401
 )
 
 __version__ = "0.1.0"
+
+# Names served lazily from .api (PEP 562), so that importing the package stays FreeCAD-free.
+_API_NAMES = (
+    "LABEL_NAMES", "Progress", "RecomputeError", "SegmentedSurface", "apply_label_edits",
+    "check_patches", "clear_edits", "export_structure", "from_fem_mesh", "has_cad",
+    "has_segmentation", "import_patches", "import_structure", "improve_object",
+    "labels_from_normals", "make_document_objects", "patches_from_labels", "read_structure",
+    "recompute_document", "segment", "set_labels", "tessellate", "to_fem_mesh",
+    "transfer_patches",
+)
+
+
+def __getattr__(name):
+    if name in _API_NAMES or name == "api":
+        import importlib
+        api = importlib.import_module(__name__ + ".api")
+        return api if name == "api" else getattr(api, name)
+    raise AttributeError("module {!r} has no attribute {!r}".format(__name__, name))
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_API_NAMES))

@@ -2,8 +2,13 @@
 
 The cells live in the FemMesh property (SMDS order, cell id = row + 1) and their region (block)
 ids in the Region integer list; quality figures are read-only properties refreshed on every
-recompute. Meshing stages plug in through ``HexMesh.generate``: a subclass (or a later version
-of this class reading its input links) returns a new core.Mesh, and ``execute`` stores it.
+recompute. Meshing stages plug in through ``HexMesh.generate``, which returns a new core.Mesh
+that ``execute`` stores:
+
+- with Segmentation and Polycube linked: core.generate at Level (2^Level cells per block edge),
+  then core.improve (boundary nodes kept on the segmented surface) when Improve is true;
+- with BaseMesh linked (another FEM mesh): a copy of it, improved when Improve is true;
+- with no input (an imported mesh): None, the stored mesh stays.
 """
 
 import math
@@ -50,6 +55,21 @@ class HexMesh(BaseHexDomObject):
         if not hasattr(obj, "SourceFile"):
             obj.addProperty("App::PropertyString", "SourceFile", "HexDom",
                             "File the mesh was imported from, if any")
+        if not hasattr(obj, "Segmentation"):
+            obj.addProperty("App::PropertyLink", "Segmentation", "Input",
+                            "HexDom Segmentation: the surface and its patches")
+        if not hasattr(obj, "Polycube"):
+            obj.addProperty("App::PropertyLink", "Polycube", "Input",
+                            "HexDom Polycube: the hex / prism / tet block structure")
+        if not hasattr(obj, "BaseMesh"):
+            obj.addProperty("App::PropertyLink", "BaseMesh", "Input",
+                            "FEM mesh to copy (and improve) when there is no Segmentation and "
+                            "Polycube")
+        if not hasattr(obj, "Improve"):
+            obj.addProperty("App::PropertyBool", "Improve", "HexDom",
+                            "Improve quality after generation: pillowing, smoothing and "
+                            "Jacobian optimisation, the core's recommended sequence")
+            obj.Improve = True
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
@@ -60,8 +80,37 @@ class HexMesh(BaseHexDomObject):
         obj.setEditorMode("Region", 2)  # hidden: one entry per cell
 
     def generate(self, obj):
-        """Hook for the meshing stages: returns a new core.Mesh, or None to keep the stored one."""
-        return None
+        """New core.Mesh from the inputs (see the module doc), or None to keep the stored one."""
+        from .. import api
+        seg = getattr(obj, "Segmentation", None)
+        poly = getattr(obj, "Polycube", None)
+        base = getattr(obj, "BaseMesh", None)
+        if seg is None and poly is None:
+            if base is None:
+                return None
+            if base == obj:
+                raise ValueError("{}: BaseMesh links the mesh itself".format(obj.Label))
+            mesh = get_mesh(base)
+            if obj.Improve:
+                with api.Progress("Improving " + obj.Label, 1) as bar:
+                    mesh = core.improve(mesh)
+                    bar.step("improved")
+            return mesh
+        if seg is None or poly is None:
+            raise ValueError("{}: link both a Segmentation and a Polycube (or neither)".format(
+                obj.Label))
+        from . import polycube, segmentation
+        surface = segmentation.get_surface(seg)
+        structure = polycube.get_structure(poly)
+        if obj.Level < 0:
+            raise ValueError("{}: Level must be 0 or more".format(obj.Label))
+        with api.Progress("Meshing " + obj.Label, 2 if obj.Improve else 1) as bar:
+            mesh = core.generate(surface, structure, level=obj.Level)
+            bar.step("generated {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
+            if obj.Improve:
+                mesh = core.improve(mesh, surface)
+                bar.step("improved")
+        return mesh
 
     def execute(self, obj):
         mesh = self.generate(obj)
@@ -73,6 +122,12 @@ class HexMesh(BaseHexDomObject):
 
 def is_hex_mesh(obj):
     return is_of_type(obj, TYPE)
+
+
+def has_inputs(obj):
+    """True if the HexDom Mesh is generated from a Segmentation and a Polycube."""
+    return (getattr(obj, "Segmentation", None) is not None
+            and getattr(obj, "Polycube", None) is not None)
 
 
 def get_mesh(obj):

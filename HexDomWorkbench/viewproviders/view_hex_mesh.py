@@ -68,15 +68,30 @@ class VPHexMesh(VPBaseHexDomObject):
             return
         self._recolor_pending = True
         from PySide import QtCore
+        # Keep names, not vobj: if the object is deleted before the timer fires (an aborted
+        # transaction, an undo), touching its dead view provider crashes FreeCAD.
+        doc_name, obj_name = vobj.Object.Document.Name, vobj.Object.Name
 
         def run():
             self._recolor_pending = False
+            if doc_name not in FreeCAD.listDocuments():
+                return
+            obj = FreeCAD.getDocument(doc_name).getObject(obj_name)
+            view = getattr(obj, "ViewObject", None) if obj is not None else None
+            if view is None or view.Proxy is not self:
+                return
             try:
-                self.recolor(vobj)
+                self.recolor(view)
             except (ReferenceError, RuntimeError):
                 pass  # the object was deleted (or its document closed) meanwhile
 
         QtCore.QTimer.singleShot(0, run)
+
+    def claimChildren(self):
+        """The inputs a generated mesh is made from sit under it in the tree."""
+        obj = getattr(self, "Object", None)
+        links = [getattr(obj, name, None) for name in ("Segmentation", "Polycube")]
+        return [link for link in links if link is not None]
 
     def recolor(self, vobj):
         """Sets ElementColor from ColorBy; errors go to the report view, never up."""

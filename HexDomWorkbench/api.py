@@ -1,0 +1,812 @@
+"""Python API for macros and scripts: the whole pipeline, from a CAD part to a FEM mesh.
+
+    import HexDomWorkbench as hexdom
+    surface = hexdom.tessellate(shape, size=2.0)          # core.Surface, patch = CAD face number
+    segmented = hexdom.segment(surface)                    # SegmentedSurface (labels, patches)
+    mesh = hexdom.generate(segmented, structure, level=2)  # core.Mesh
+    mesh = hexdom.improve(mesh, segmented)
+    fem = hexdom.to_fem_mesh(mesh)                         # Fem.FemMesh
+    objs = hexdom.make_document_objects(doc, patch_file=..., structure_file=...)
+
+The package re-exports these names lazily, so ``import HexDomWorkbench`` never loads FreeCAD.
+This module imports FreeCAD only inside the functions that need it: ``segment``, ``generate``,
+``improve`` and the patch helpers work in a plain Python with numpy.
+
+Optional stages of the core are used when the compiled module provides them (``core.segment``,
+``core.check_patches``, ``core.tessellate_brep``); without them ``segment`` raises core.Error
+("segmentation not available in this build") and ``tessellate`` uses FreeCAD's MeshPart.
+
+Labels (polycube directions) are numbered as in the core: 1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z;
+patch ids are positive integers, one per connected region a polycube face maps to.
+"""
+
+import heapq
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import core
+from .core import generate, improve  # noqa: F401  (the same functions, FreeCAD-free)
+
+LABEL_NAMES = {1: "+X", 2: "-X", 3: "+Y", 4: "-Y", 5: "+Z", 6: "-Z"}
+# Direction of label l is AXES[l - 1].
+AXES = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+
+# Refuse tessellations beyond this many triangles (a Size far too small for the part).
+MAX_TRIANGLES = 2_000_000
+
+
+class RecomputeError(core.Error):
+    """A HexDom document object failed to recompute; the message is the object's error."""
+
+
+@dataclass
+class SegmentedSurface(core.Surface):
+    """core.Surface whose ``patch`` holds patch ids, plus a polycube label (1..6) per triangle."""
+
+    labels: np.ndarray = None
+
+
+def _core_has(name):
+    """True if core offers ``name`` and the compiled module behind it does too (core.py may be
+    newer than the _hexdom it loads)."""
+    compiled = getattr(core, "_hexdom", None)
+    return hasattr(core, name) and (compiled is None or hasattr(compiled, name))
+
+
+def has_segmentation():
+    """True if the compiled core provides automatic segmentation (core.segment)."""
+    return _core_has("segment")
+
+
+def has_cad():
+    """True if the compiled core tessellates CAD shapes itself (core.tessellate_brep)."""
+    return _core_has("tessellate_brep")
+
+
+# ------------------------------------------------------------------------------------------------
+# Triangle-surface helpers (numpy only)
+
+def triangle_normals(V, F):
+    """Unit normals (#F x 3) and areas (#F) of the triangles F of V."""
+    V = np.asarray(V, float)
+    F = np.asarray(F, np.int64).reshape(-1, 3)
+    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    length = np.linalg.norm(n, axis=1)
+    safe = np.where(length > 0, length, 1.0)
+    return n / safe[:, None], 0.5 * length
+
+
+def nearest_label(normals):
+    """Label (1..6) of the axis nearest each row of ``normals``."""
+    return (np.argmax(np.asarray(normals, float).reshape(-1, 3) @ AXES.T, axis=1) + 1).astype(
+        np.int32)
+
+
+def labels_from_normals(V, F, patch=None):
+    """Polycube label per triangle: the axis nearest its normal, or with ``patch`` the axis
+    nearest the area-weighted mean normal of the triangle's patch (one label per patch)."""
+    normals, areas = triangle_normals(V, F)
+    if patch is None:
+        return nearest_label(normals)
+    patch = np.asarray(patch)
+    ids, inverse = np.unique(patch, return_inverse=True)
+    mean = np.zeros((len(ids), 3))
+    np.add.at(mean, inverse, normals * areas[:, None])
+    return nearest_label(mean)[inverse]
+
+
+def triangle_adjacency(F):
+    """Pairs (#P x 2) of triangles sharing an edge (on an edge with k > 2 triangles, consecutive
+    ones are paired)."""
+    F = np.asarray(F, np.int64).reshape(-1, 3)
+    if len(F) == 0:
+        return np.zeros((0, 2), np.int64)
+    edges = np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    tri = np.repeat(np.arange(len(F)), 3)
+    order = np.lexsort((edges[:, 1], edges[:, 0]))
+    edges, tri = edges[order], tri[order]
+    same = np.all(edges[1:] == edges[:-1], axis=1)
+    return np.stack([tri[:-1][same], tri[1:][same]], axis=1)
+
+
+def _union_find(n, pairs):
+    parent = list(range(n))
+
+    def find(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for a, b in pairs:
+        ra, rb = find(a), find(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    return np.array([find(a) for a in range(n)], np.int64)
+
+
+def connected_regions(F, key, adjacency=None):
+    """Region number (0..R-1, in order of first triangle) per triangle: triangles sharing an edge
+    and the same ``key`` value belong to one region."""
+    key = np.asarray(key)
+    pairs = triangle_adjacency(F) if adjacency is None else adjacency
+    pairs = pairs[key[pairs[:, 0]] == key[pairs[:, 1]]] if len(pairs) else pairs
+    roots = _union_find(len(key), pairs.tolist())
+    _, first, inverse = np.unique(roots, return_index=True, return_inverse=True)
+    rank = np.argsort(np.argsort(first))
+    return rank[inverse].astype(np.int32)
+
+
+def patches_from_labels(F, labels):
+    """Patch id (1-based) per triangle: the connected regions of equal label."""
+    return connected_regions(F, labels) + 1
+
+
+def apply_label_edits(F, labels, patches, triangles, new_labels, keep_patches):
+    """Applies user overrides (``triangles[i]`` gets ``new_labels[i]``; a later entry wins).
+
+    Returns (labels, patches). With ``keep_patches`` (patches given by a file or the CAD faces)
+    patch ids stay as they are, and each edited triangle joins the patch of a neighbour that has
+    its new label (regions without such a neighbour get new ids); otherwise patches are the
+    connected regions of equal label.
+    """
+    labels = np.array(labels, np.int32)
+    patches = np.array(patches, np.int32)
+    triangles = np.asarray(triangles, np.int64)
+    new_labels = np.asarray(new_labels, np.int32)
+    if len(triangles) == 0:
+        return labels, patches
+    labels[triangles] = new_labels
+    if not keep_patches:
+        return labels, patches_from_labels(F, labels)
+    edited = np.zeros(len(labels), bool)
+    edited[triangles] = True
+    pairs = triangle_adjacency(F)
+    pairs = pairs[labels[pairs[:, 0]] == labels[pairs[:, 1]]]
+    neighbours = {}
+    for a, b in pairs.tolist():
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+    resolved = ~edited
+    frontier = [t for t in np.flatnonzero(edited).tolist()
+                if any(resolved[n] for n in neighbours.get(t, ()))]
+    while frontier:  # grow unedited patches into edited triangles of the same label
+        nxt = []
+        for t in frontier:
+            if resolved[t]:
+                continue
+            for n in neighbours.get(t, ()):
+                if resolved[n]:
+                    patches[t] = patches[n]
+                    resolved[t] = True
+                    break
+            if resolved[t]:
+                nxt += [n for n in neighbours.get(t, ()) if not resolved[n]]
+        frontier = nxt
+    left = np.flatnonzero(~resolved)
+    if len(left):  # edited regions touching no patch of their label: new patches
+        region = connected_regions(F, np.where(resolved, -1, labels))
+        next_id = int(patches.max()) + 1
+        for r in np.unique(region[left]).tolist():
+            patches[(region == r) & ~resolved] = next_id
+            next_id += 1
+    return labels, patches
+
+
+def transfer_patches(source, target):
+    """Patch id of the nearest ``source`` triangle (by centroid) for each ``target`` triangle: the
+    paper's patch files are segmentations of slightly different triangulations."""
+    cs = np.asarray(source.V)[np.asarray(source.F)].mean(axis=1)
+    ct = np.asarray(target.V)[np.asarray(target.F)].mean(axis=1)
+    try:
+        from scipy.spatial import cKDTree
+        nearest = cKDTree(cs).query(ct)[1]
+    except ImportError:
+        nearest = np.empty(len(ct), np.int64)
+        cs2 = np.einsum("ij,ij->i", cs, cs)
+        for start in range(0, len(ct), 512):
+            block = ct[start:start + 512]
+            d = cs2[None, :] - 2.0 * block @ cs.T
+            nearest[start:start + 512] = np.argmin(d, axis=1)
+    return np.asarray(source.patch)[nearest].astype(np.int32)
+
+
+def check_patches(surface, **options):
+    """Problems the core finds in a segmented surface (core.check_patches: the polycube
+    conditions), as a list of messages; empty when the build has no such check."""
+    if not _core_has("check_patches"):
+        return []
+    try:
+        result = core.check_patches(surface, **options)
+    except core.Error as e:
+        return [str(e)]
+    return [str(v) for v in result]
+
+
+def segment(surface, edits=None, **options):
+    """Automatic polycube segmentation of a core.Surface (core.segment: CVT of the normals; when
+    ``surface.patch`` holds several ids, e.g. CAD faces, planar faces keep one label). ``edits``:
+    (triangle, label 1..6) rows the CVT must keep; ``options`` go to core.segment. Returns a
+    SegmentedSurface: patch ids (connected regions of one label) and labels 1..6.
+
+    Raises core.Error("segmentation not available in this build") without core.segment.
+    """
+    if not has_segmentation():
+        raise core.Error("segmentation not available in this build")
+    if edits is not None and len(edits):
+        options["manual"] = np.asarray(edits, np.int32).reshape(-1, 2)
+    result = core.segment(surface, **options)
+    labels = np.asarray(result.patch, np.int32).reshape(-1)
+    if len(labels) != len(np.asarray(surface.F)):
+        raise core.Error("core.segment returned {} labels for {} triangles".format(
+            len(labels), len(surface.F)))
+    V, F = np.asarray(surface.V), np.asarray(surface.F)
+    if _core_has("number_patches"):
+        patches = np.asarray(core.number_patches(core.Surface(V, F, labels)), np.int32)
+    else:
+        patches = patches_from_labels(F, labels)
+    return SegmentedSurface(V, F, patches.reshape(-1), labels)
+
+
+# ------------------------------------------------------------------------------------------------
+# Tessellation
+
+def default_size(shape):
+    """Size used when 0 is given: 1/25 of the bounding-box diagonal."""
+    return shape.BoundBox.DiagonalLength / 25.0
+
+
+def _dot(u, v):
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+def _norm(u):
+    return math.sqrt(_dot(u, u))
+
+
+class _Triangulation:
+    """Triangles with an id each and an edge -> triangles map, for refinement in place."""
+
+    def __init__(self, V, F, ids):
+        self.V = [list(map(float, p)) for p in np.asarray(V, float).reshape(-1, 3).tolist()]
+        self.F = [list(t) for t in np.asarray(F, np.int64).reshape(-1, 3).tolist()]
+        self.ids = list(np.asarray(ids).reshape(-1).tolist())
+        self.edge_tris = {}
+        for t, (a, b, c) in enumerate(self.F):
+            for u, v in ((a, b), (b, c), (c, a)):
+                self.edge_tris.setdefault((min(u, v), max(u, v)), []).append(t)
+
+    def arrays(self):
+        return (np.asarray(self.V, float).reshape(-1, 3),
+                np.asarray(self.F, np.int32).reshape(-1, 3), np.asarray(self.ids, np.int32))
+
+    def length(self, a, b):
+        pa, pb = self.V[a], self.V[b]
+        return math.sqrt((pa[0] - pb[0]) ** 2 + (pa[1] - pb[1]) ** 2 + (pa[2] - pb[2]) ** 2)
+
+    def _link(self, u, v, t):
+        key = (min(u, v), max(u, v))
+        self.edge_tris.setdefault(key, []).append(t)
+        return key
+
+    def _unlink(self, u, v, t):
+        key = (min(u, v), max(u, v))
+        lst = self.edge_tris[key]
+        lst.remove(t)
+        if not lst:
+            del self.edge_tris[key]
+
+    def bisect(self, size, max_triangles):
+        """Splits the longest edge (hence the longest of both its triangles) while any edge is
+        longer than ``size``."""
+        V, F, ids, edge_tris = self.V, self.F, self.ids, self.edge_tris
+        heap = [(-self.length(*e), e) for e in edge_tris if self.length(*e) > size]
+        heapq.heapify(heap)
+        while heap:
+            neg, key = heapq.heappop(heap)
+            tris = edge_tris.pop(key, None)
+            if tris is None:
+                continue
+            a, b = key
+            m = len(V)
+            V.append([(V[a][k] + V[b][k]) * 0.5 for k in range(3)])
+            for t in tris:
+                tri = F[t]
+                i = next(i for i in range(3) if {tri[i], tri[(i + 1) % 3]} == {a, b})
+                x, y, c = tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]
+                t2 = len(F)
+                F[t] = [x, m, c]
+                F.append([m, y, c])
+                ids.append(ids[t])
+                lst = edge_tris[(min(y, c), max(y, c))]
+                lst[lst.index(t)] = t2
+                self._link(x, m, t)
+                self._link(m, y, t2)
+                mc = self._link(m, c, t)
+                edge_tris[mc].append(t2)
+                if self.length(m, c) > size:
+                    heapq.heappush(heap, (-self.length(m, c), mc))
+            if -neg * 0.5 > size:
+                for e in ((min(a, m), max(a, m)), (min(m, b), max(m, b))):
+                    heapq.heappush(heap, (neg * 0.5, e))
+            if len(F) > max_triangles:
+                raise ValueError("tessellation exceeds {} triangles: Size {:g} is too small "
+                                 "for this part".format(max_triangles, size))
+
+    def _normal(self, a, b, c):
+        pa, pb, pc = self.V[a], self.V[b], self.V[c]
+        ux, uy, uz = pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]
+        vx, vy, vz = pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]
+        return (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx)
+
+    def _angle(self, at, u, v):
+        n = self._normal(at, u, v)
+        p, q, r = self.V[at], self.V[u], self.V[v]
+        dot = sum((q[k] - p[k]) * (r[k] - p[k]) for k in range(3))
+        return math.atan2(math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), dot)
+
+    def flip(self, coplanar=0.99999, max_sweeps=50):
+        """Delaunay edge flips between triangles of one id that lie in one plane (so the
+        surface does not change); returns the number of flips."""
+        F, ids, edge_tris = self.F, self.ids, self.edge_tris
+        flips = 0
+        todo = list(edge_tris)
+        for _ in range(max_sweeps):
+            changed = []
+            for key in todo:
+                tris = edge_tris.get(key)
+                if tris is None or len(tris) != 2 or ids[tris[0]] != ids[tris[1]]:
+                    continue
+                t1, t2 = tris
+                a, b = key
+                f1 = F[t1]
+                i = next(i for i in range(3) if {f1[i], f1[(i + 1) % 3]} == {a, b})
+                a, b, c = f1[i], f1[(i + 1) % 3], f1[(i + 2) % 3]  # t1 = (a, b, c)
+                d = next(v for v in F[t2] if v != a and v != b)  # t2 = (b, a, d)
+                cd = (min(c, d), max(c, d))
+                if c == d or cd in edge_tris:
+                    continue
+                n1, n2 = self._normal(a, b, c), self._normal(b, a, d)
+                l1, l2 = _norm(n1), _norm(n2)
+                if l1 == 0 or l2 == 0 or _dot(n1, n2) < coplanar * l1 * l2:
+                    continue
+                if self._angle(c, a, b) + self._angle(d, a, b) <= math.pi + 1e-9:
+                    continue
+                new1, new2 = [a, d, c], [d, b, c]
+                if _dot(self._normal(*new1), n1) <= 0 or _dot(self._normal(*new2), n1) <= 0:
+                    continue  # not convex
+                for u, v, t in ((a, b, t1), (b, c, t1), (c, a, t1), (b, a, t2), (a, d, t2),
+                                (d, b, t2)):
+                    self._unlink(u, v, t)
+                F[t1], F[t2] = new1, new2
+                for u, v, t in ((a, d, t1), (d, c, t1), (c, a, t1), (d, b, t2), (b, c, t2),
+                                (c, d, t2)):
+                    self._link(u, v, t)
+                flips += 1
+                changed += [(min(a, d), max(a, d)), (min(d, b), max(d, b)),
+                            (min(b, c), max(b, c)), (min(c, a), max(c, a))]
+            if not changed:
+                break
+            todo = changed
+        return flips
+
+
+def refine_to_size(V, F, ids, size, max_triangles=MAX_TRIANGLES, rounds=4):
+    """Longest-edge bisection until no edge is longer than ``size``, alternated with Delaunay
+    flips inside planar faces (which removes the slivers a plain tessellation leaves around holes);
+    conforming, keeps each triangle's orientation and id. New points lie on the old triangles (no
+    projection), so the distance to the original surface does not grow. Returns (V, F, ids)."""
+    mesh = _Triangulation(V, F, ids)
+    if size > 0 and mesh.F:
+        mesh.flip()
+        for _ in range(rounds):
+            mesh.bisect(size, max_triangles)
+            if mesh.flip() == 0:
+                break
+        mesh.bisect(size, max_triangles)
+    return mesh.arrays()
+
+
+def curvature_length(shape, size, deflection, angle, samples=5):
+    """Edge length for the MeshPart mesher: ``size``, shortened so that chords on the most curved
+    face stay within ``deflection`` and turn by at most ``angle`` degrees, but not below size / 4.
+    Curvature comes from face.curvatureAt on a grid of each face's parameter range (Part's
+    OCCError is a RuntimeError)."""
+    kmax = 0.0
+    for face in shape.Faces:
+        if face.Surface.TypeId == "Part::GeomPlane":
+            continue
+        u0, u1, v0, v1 = face.ParameterRange
+        for u in np.linspace(u0, u1, samples).tolist():
+            for v in np.linspace(v0, v1, samples).tolist():
+                try:
+                    k1, k2 = face.curvatureAt(u, v)
+                except (RuntimeError, ValueError):
+                    continue
+                kmax = max(kmax, abs(k1), abs(k2))
+    length = size
+    if kmax > 0:
+        r = 1.0 / kmax
+        d = min(deflection, r)
+        length = min(length, 2.0 * math.sqrt(max(2.0 * r * d - d * d, 0.0)),
+                     2.0 * r * math.sin(math.radians(angle) / 2.0))
+    return max(length, size / 4.0)
+
+
+def _merge_points(V, tol):
+    """Index of the representative point per row of V, merging points closer than ``tol``."""
+    try:
+        from scipy.spatial import cKDTree
+        pairs = np.array(sorted(cKDTree(V).query_pairs(tol)), np.int64).reshape(-1, 2)
+    except ImportError:
+        key = np.round(V / tol).astype(np.int64)
+        _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+        return first[inverse]
+    return _union_find(len(V), pairs.tolist())
+
+
+def _orient_like_faces(shape, V, F, face_id):
+    """Flips the triangles of each face whose normals point against the CAD face's normal."""
+    normals, areas = triangle_normals(V, F)
+    for k, face in enumerate(shape.Faces, 1):
+        rows = np.flatnonzero(face_id == k)
+        if not len(rows):
+            continue
+        t = rows[np.argmax(areas[rows])]
+        centre = V[F[t]].mean(axis=0)
+        try:
+            import FreeCAD
+            u, v = face.Surface.parameter(FreeCAD.Vector(*centre.tolist()))
+            n = face.normalAt(u, v)
+        except (RuntimeError, ValueError):
+            continue
+        if normals[t] @ np.array([n.x, n.y, n.z]) < 0:
+            F[rows] = F[rows][:, [0, 2, 1]]
+    return F
+
+
+def _tessellate_mefisto(shape, length):
+    """Each face meshed alone by MeshPart's Mefisto mesher (near-equilateral triangles of edge
+    ``length``); shared edges get the same points from both faces, merged afterwards."""
+    import MeshPart
+
+    Vs, Fs, ids, offset = [], [], [], 0
+    for k, face in enumerate(shape.Faces, 1):
+        mesh = MeshPart.meshFromShape(Shape=face, MaxLength=length)
+        points, facets = mesh.Topology
+        if not facets:
+            raise ValueError("MeshPart's Mefisto mesher gave no triangles for Face{}".format(k))
+        Vs.append(np.array([tuple(p) for p in points], float).reshape(-1, 3))
+        Fs.append(np.array(facets, np.int64).reshape(-1, 3) + offset)
+        ids.append(np.full(len(facets), k, np.int32))
+        offset += len(points)
+    V, F, face_id = np.vstack(Vs), np.vstack(Fs), np.concatenate(ids)
+    rep = _merge_points(V, 1e-7 * max(shape.BoundBox.DiagonalLength, 1e-12))
+    used, F = np.unique(rep[F], return_inverse=True)
+    F = F.reshape(-1, 3)
+    V = V[used]
+    keep = (F[:, 0] != F[:, 1]) & (F[:, 1] != F[:, 2]) & (F[:, 2] != F[:, 0])
+    F, face_id = F[keep], face_id[keep]
+    F = _orient_like_faces(shape, V, F, face_id)
+    return V, F.astype(np.int32), face_id
+
+
+def _tessellate_standard(shape, size, deflection, angle):
+    """MeshPart's standard (BRepMesh) mesher, one segment per face, then longest-edge bisection
+    and flips down to ``size``."""
+    import MeshPart
+
+    mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=deflection,
+                                  AngularDeflection=math.radians(angle), Relative=False,
+                                  Segments=True)
+    points, facets = mesh.Topology
+    V = np.array([tuple(p) for p in points], float).reshape(-1, 3)
+    F = np.array(facets, np.int32).reshape(-1, 3)
+    face_id = np.zeros(len(F), np.int32)
+    if mesh.countSegments() != len(shape.Faces):
+        raise ValueError("MeshPart gave {} segments for {} faces".format(
+            mesh.countSegments(), len(shape.Faces)))
+    for i in range(mesh.countSegments()):
+        face_id[np.asarray(mesh.getSegment(i), np.int64)] = i + 1
+    return refine_to_size(V, F, face_id, size)
+
+
+def _tessellate_meshpart(shape, size, deflection, angle):
+    """Mefisto per face (isotropic triangles); the standard mesher if Mefisto fails or does not
+    give a closed conforming surface."""
+    length = curvature_length(shape, size, deflection, angle)
+    try:
+        V, F, face_id = _tessellate_mefisto(shape, length)
+        edges = np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+        _, uses = np.unique(edges, axis=0, return_counts=True)
+        closed = shape.isClosed() if hasattr(shape, "isClosed") else True
+        if not closed or np.all(uses == 2):
+            return V, F, face_id, "MeshPart (Mefisto)"
+        reason = "edges not shared by two triangles"
+    except (ValueError, RuntimeError) as e:
+        reason = str(e)
+    try:
+        import FreeCAD
+        FreeCAD.Console.PrintLog("HexDom: Mefisto tessellation unusable ({}); using MeshPart's "
+                                 "standard mesher\n".format(reason))
+    except ImportError:
+        pass
+    V, F, face_id = _tessellate_standard(shape, size, deflection, angle)
+    return V, F, face_id, "MeshPart (standard)"
+
+
+def _tessellate_core(shape, size, deflection, angle):
+    brep = shape.exportBrepToString()
+    try:
+        result = core.tessellate_brep(brep, size=size, deflection=deflection, angle=angle)
+    except TypeError:  # a core wrapper that takes the size only
+        result = core.tessellate_brep(brep, size=size)
+    if hasattr(result, "F"):
+        V, F, face_id = result.V, result.F, result.patch
+    else:
+        V, F, face_id = result[:3]
+    face_id = np.asarray(face_id, np.int32).reshape(-1)
+    if len(face_id) and face_id.min() == 0:  # 0-based face index: make it FreeCAD's FaceN
+        face_id = face_id + 1
+    return np.asarray(V, float), np.asarray(F, np.int32).reshape(-1, 3), face_id
+
+
+def tessellate(shape, size=0.0, deflection=0.0, angle=20.0, method="auto"):
+    """Triangulates a Part shape (its faces) into a core.Surface whose ``patch`` is the CAD face
+    number per triangle (1-based: triangle t lies on shape.Faces[patch[t] - 1], FreeCAD's
+    Face<patch[t]>).
+
+    size: target triangle edge length (0: 1/25 of the bounding-box diagonal); deflection:
+    largest chord distance to the CAD surface (0: size / 10); angle: largest turn in degrees
+    between neighbouring chords on curved faces. method "auto" uses the core's OCCT tessellation
+    (core.tessellate_brep) when the build has it, else FreeCAD's MeshPart (each face meshed by
+    Mefisto at one edge length, shortened for the curvature, shared edges merged; the standard
+    mesher refined by bisection if that fails); "core" or "meshpart" force one. Returns a closed
+    core.Surface for a solid; ``tessellate.last_method`` tells which mesher ran.
+    """
+    if shape is None or shape.isNull() or not shape.Faces:
+        raise ValueError("the shape has no faces to tessellate")
+    size = float(size) if size and size > 0 else default_size(shape)
+    deflection = float(deflection) if deflection and deflection > 0 else size / 10.0
+    angle = float(angle) if angle and angle > 0 else 20.0
+    # Near-equilateral triangles of edge size / 4 (the shortest MeshPart uses) cover
+    # 0.108 size^2 each.
+    estimate = shape.Area / (0.108 * size * size)
+    if estimate > MAX_TRIANGLES:
+        raise ValueError("Size {:g} is too small for this part: about {:.3g} triangles (at most "
+                         "{})".format(size, estimate, MAX_TRIANGLES))
+    use_core = method == "core" or (method == "auto" and has_cad())
+    if method not in ("auto", "core", "meshpart"):
+        raise ValueError("unknown tessellation method '{}'".format(method))
+    if use_core:
+        if not has_cad():
+            raise core.Error("CAD tessellation not available in this build")
+        V, F, face_id = _tessellate_core(shape, size, deflection, angle)
+        tessellate.last_method = "core"
+    else:
+        V, F, face_id, tessellate.last_method = _tessellate_meshpart(shape, size, deflection,
+                                                                      angle)
+    return core.Surface(V, F, face_id)
+
+
+tessellate.last_method = None
+
+
+# ------------------------------------------------------------------------------------------------
+# FEM meshes
+
+def to_fem_mesh(mesh):
+    """Fem.FemMesh holding a core.Mesh (SMDS node order; node and cell ids are rows + 1)."""
+    from .convert import femmesh
+    return femmesh.to_femmesh(mesh)
+
+
+def from_fem_mesh(fem):
+    """core.Mesh of a Fem.FemMesh (VTK node order; region ids 0)."""
+    from .convert import femmesh
+    return femmesh.from_femmesh(fem)
+
+
+def read_structure(path):
+    """Polycube structure (hex, prism and tet blocks) from a .k file (or any volume mesh)."""
+    structure = core.read_mesh(os.fspath(path))
+    bad = np.setdiff1d(np.unique(structure.types), [core.HEX, core.WEDGE, core.TET])
+    if len(structure.types) == 0 or len(bad):
+        raise core.InputError("{}: a polycube structure holds hex, prism and tet blocks only"
+                              .format(os.fspath(path)))
+    return structure
+
+
+# ------------------------------------------------------------------------------------------------
+# Progress (FreeCAD's progress bar when the GUI is up)
+
+class Progress:
+    """Context manager: ``with Progress("Meshing", 3) as p: ...; p.step("improving")``.
+
+    Shows FreeCAD's progress bar (Base.ProgressIndicator) when the GUI is up and logs each step
+    to the report view; without FreeCAD it does nothing.
+    """
+
+    def __init__(self, title, steps):
+        self.title, self.steps, self.bar = title, steps, None
+
+    def __enter__(self):
+        try:
+            import FreeCAD
+        except ImportError:
+            return self
+        if FreeCAD.GuiUp:
+            self.bar = FreeCAD.Base.ProgressIndicator()
+            self.bar.start(self.title, self.steps)
+        return self
+
+    def step(self, text=None):
+        if text:
+            try:
+                import FreeCAD
+                FreeCAD.Console.PrintLog("HexDom: {}: {}\n".format(self.title, text))
+            except ImportError:
+                pass
+        if self.bar is not None:
+            self.bar.next()
+
+    def __exit__(self, *exc):
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
+        return False
+
+
+# ------------------------------------------------------------------------------------------------
+# Document objects
+
+def recompute_document(doc, objects=()):
+    """Recomputes ``doc``; raises RecomputeError naming the first HexDom object (of ``objects``,
+    or of the document) that failed, with its error message."""
+    doc.recompute()
+    watch = list(objects) or [o for o in doc.Objects if hasattr(getattr(o, "Proxy", None), "Type")]
+    for obj in watch:
+        state = obj.State
+        if "Invalid" in state or "Error" in state:
+            message = obj.getStatusString() if hasattr(obj, "getStatusString") else ""
+            raise RecomputeError("{}: {}".format(obj.Label, message or "recompute failed"))
+    return doc
+
+
+def import_structure(path, doc=None, name="HexDomPolycube"):
+    """Reads a .k polycube structure into a new HexDom Polycube of ``doc`` (the active or a new
+    document); recomputes and returns the object."""
+    import FreeCAD
+
+    from . import make
+    structure = read_structure(path)
+    doc = doc or FreeCAD.ActiveDocument or FreeCAD.newDocument()
+    obj = make.make_polycube(doc, structure=structure, path=os.path.abspath(path), name=name)
+    obj.Label = os.path.splitext(os.path.basename(path))[0]
+    recompute_document(doc, [obj])
+    return obj
+
+
+def export_structure(obj, path):
+    """Writes the structure of a HexDom Polycube (.k as the original program's files; also .vtk,
+    .vtu, .inp)."""
+    from .objects import polycube
+    if not polycube.is_polycube(obj):
+        raise ValueError("{} is not a HexDom Polycube".format(obj.Label))
+    core.write_mesh(os.fspath(path), polycube.get_structure(obj))
+
+
+def import_patches(path, doc=None):
+    """Reads a segmented surface (.k shells, part id = patch id, as the paper's patch files) into
+    a HexDom Surface plus a HexDom Segmentation (Method "Patch file"); returns the Segmentation."""
+    import FreeCAD
+
+    doc = doc or FreeCAD.ActiveDocument or FreeCAD.newDocument()
+    seg = _make_patch_objects(doc, path)
+    recompute_document(doc, [seg.Surface, seg])
+    return seg
+
+
+def _make_patch_objects(doc, path):
+    from . import make
+    path = os.path.abspath(path)
+    if not os.path.isfile(path):
+        raise core.InputError("{}: no such file".format(path))
+    base = os.path.splitext(os.path.basename(path))[0]
+    surface = make.make_surface(doc, path=path)
+    surface.Label = base + "_surface"
+    seg = make.make_segmentation(doc, surface, method="Patch file", patch_file=path)
+    seg.Label = base
+    return seg
+
+
+def set_labels(segmentation, triangles, label):
+    """Records user edits on a HexDom Segmentation: ``triangles`` (indices) get ``label`` (1..6
+    or "+X", "-X", "+Y", "-Y", "+Z", "-Z"). Edits are kept across recomputes; recompute to apply
+    them."""
+    if isinstance(label, str):
+        by_name = {name: number for number, name in LABEL_NAMES.items()}
+        if label.upper() not in by_name:
+            raise ValueError("label '{}' is not one of +X -X +Y -Y +Z -Z".format(label))
+        label = by_name[label.upper()]
+    if not 1 <= int(label) <= 6:
+        raise ValueError("label {} is not one of 1..6 (+X -X +Y -Y +Z -Z)".format(label))
+    triangles = [int(t) for t in np.atleast_1d(triangles).tolist()]
+    edits = dict(zip(segmentation.EditedTriangles, segmentation.EditedLabels))
+    for t in triangles:
+        edits.pop(t, None)
+        edits[t] = int(label)
+    segmentation.EditedTriangles = list(edits.keys())
+    segmentation.EditedLabels = list(edits.values())
+
+
+def clear_edits(segmentation):
+    """Drops all user edits of a HexDom Segmentation."""
+    segmentation.EditedTriangles = []
+    segmentation.EditedLabels = []
+
+
+def improve_object(obj):
+    """Quality improvement of a HexDom Mesh (HexDom_ImproveQuality): a generated mesh gets
+    Improve = True; any other FEM mesh gets a new HexDom Mesh improving a copy of it (BaseMesh).
+    Returns the object holding the improved mesh; recompute to run it."""
+    from . import make
+    from .objects import hex_mesh
+    if hex_mesh.is_hex_mesh(obj) and hex_mesh.has_inputs(obj):
+        obj.Improve = True
+        obj.touch()
+        return obj
+    if not obj.isDerivedFrom("Fem::FemMeshObject"):
+        raise ValueError("{} is not a FEM mesh object".format(obj.Label))
+    new = make.make_hex_mesh(obj.Document, name="HexDomMesh", base_mesh=obj, improve=True)
+    new.Label = obj.Label + "_improved"
+    return new
+
+
+def make_document_objects(doc, shape=None, surface=None, patch_file=None, structure=None,
+                          structure_file=None, segmentation="auto", level=2, improve=True,
+                          size=0.0, recompute=True):
+    """Builds the parametric pipeline in ``doc`` from whatever is given; returns a dict with the
+    created objects under "surface", "segmentation", "polycube", "mesh" (missing stages absent).
+
+    shape: a Part object (or a Part.Shape, added as a Part::Feature) -> HexDom Surface (size);
+    surface: a core.Surface -> HexDom Surface holding it; patch_file: a segmented .k surface ->
+    Surface + Segmentation from the file. segmentation: "auto" (from patch_file, else automatic
+    when the core can, else none), "Automatic", "Surface patches" or None. structure (core.Mesh)
+    or structure_file (.k) -> HexDom Polycube. With a Segmentation and a Polycube, a HexDom Mesh
+    at ``level`` (improved if ``improve``). Recomputes when ``recompute`` is true and raises
+    RecomputeError when an object fails.
+    """
+    from . import make
+    objs = {}
+    if patch_file is not None:
+        seg = _make_patch_objects(doc, patch_file)
+        objs["surface"], objs["segmentation"] = seg.Surface, seg
+    elif shape is not None or surface is not None:
+        if shape is not None and not hasattr(shape, "Document"):
+            part = doc.addObject("Part::Feature", "Part")
+            part.Shape = shape
+            shape = part
+        objs["surface"] = make.make_surface(doc, source=shape, surface=surface, size=size)
+        method = segmentation
+        if method == "auto":
+            method = "Automatic" if has_segmentation() else None
+        if method:
+            objs["segmentation"] = make.make_segmentation(doc, objs["surface"], method=method)
+    if structure is not None or structure_file is not None:
+        if structure is None:
+            structure = read_structure(structure_file)
+        path = os.path.abspath(structure_file) if structure_file else ""
+        objs["polycube"] = make.make_polycube(doc, structure=structure, path=path)
+        if structure_file:
+            objs["polycube"].Label = os.path.splitext(os.path.basename(structure_file))[0]
+    if "segmentation" in objs and "polycube" in objs:
+        objs["mesh"] = make.make_hex_mesh(doc, segmentation=objs["segmentation"],
+                                          polycube=objs["polycube"], level=level,
+                                          improve=improve)
+    if recompute:
+        recompute_document(doc, list(objs.values()))
+    return objs

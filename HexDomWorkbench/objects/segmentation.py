@@ -1,0 +1,172 @@
+"""HexDom Segmentation: a polycube label (+X -X +Y -Y +Z -Z) and a patch id per triangle of a
+HexDom Surface.
+
+Method picks where labels and patches come from:
+
+- "Automatic": core.segment (CVT on normals; on a CAD surface planar faces keep one label) when
+  the build has it, with the user edits as fixed labels; patches are the connected regions of
+  equal label.
+- "Surface patches": the Surface's own face ids (CAD faces, or part ids of a .k file) are the
+  patches; each patch gets the label of the axis nearest its mean normal.
+- "Patch file": patches read from PatchFile (.k shells, part id = patch id, as the paper's patch
+  files); a file with other triangles than the Surface transfers ids by nearest centroid.
+
+Labels are numbered as in the core: 1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z. User edits
+(EditedTriangles[i] gets EditedLabels[i]) are applied after every recompute: the triangles keep
+their new label, and join a neighbouring patch of that label. Labels, Patches and the edits live
+in integer-list properties, so they are saved with the document.
+"""
+
+import numpy as np
+
+from .. import core
+from .base_object import BaseHexDomObject, is_of_type, set_read_only
+from . import tessellation
+
+TYPE = "HexDom::Segmentation"
+METHODS = ["Automatic", "Surface patches", "Patch file"]
+
+_RESULTS = [
+    ("TriangleCount", "App::PropertyInteger", "Number of triangles"),
+    ("PatchCount", "App::PropertyInteger", "Number of patches (distinct patch ids)"),
+    ("EditCount", "App::PropertyInteger", "Number of edited triangles applied"),
+]
+
+
+class Segmentation(BaseHexDomObject):
+    """Proxy of a HexDom Segmentation object (App::FeaturePython)."""
+
+    Type = TYPE
+
+    def add_properties(self, obj):
+        super().add_properties(obj)
+        if not hasattr(obj, "Surface"):
+            obj.addProperty("App::PropertyLink", "Surface", "Input",
+                            "HexDom Surface whose triangles are labelled")
+        if not hasattr(obj, "Method"):
+            obj.addProperty("App::PropertyEnumeration", "Method", "Segmentation",
+                            "Automatic (core), Surface patches (its face ids) or Patch file")
+            obj.Method = METHODS
+            obj.Method = "Automatic"
+        if not hasattr(obj, "PatchFile"):
+            obj.addProperty("App::PropertyFile", "PatchFile", "Segmentation",
+                            "Segmented surface (.k shells, part id = patch id) for Method "
+                            "'Patch file'")
+        if not hasattr(obj, "EditedTriangles"):
+            obj.addProperty("App::PropertyIntegerList", "EditedTriangles", "Edits",
+                            "Triangles (0-based) whose label the user set; kept across "
+                            "recomputes")
+        if not hasattr(obj, "EditedLabels"):
+            obj.addProperty("App::PropertyIntegerList", "EditedLabels", "Edits",
+                            "Label (1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z) of each edited triangle")
+        for name, prop_type, doc in _RESULTS:
+            if not hasattr(obj, name):
+                obj.addProperty(prop_type, name, "Result", doc)
+        if not hasattr(obj, "Labels"):
+            obj.addProperty("App::PropertyIntegerList", "Labels", "Result",
+                            "Label per triangle: 1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z")
+        if not hasattr(obj, "Patches"):
+            obj.addProperty("App::PropertyIntegerList", "Patches", "Result",
+                            "Patch id per triangle")
+        if not hasattr(obj, "Issues"):
+            obj.addProperty("App::PropertyStringList", "Issues", "Result",
+                            "Problems found in the patches (core.check_patches, edits ignored)")
+        set_read_only(obj, [name for name, _, _ in _RESULTS] + ["Issues"])
+        for name in ("Labels", "Patches"):
+            obj.setEditorMode(name, 2)
+
+    def execute(self, obj):
+        from .. import api
+        if obj.Surface is None or not tessellation.is_surface(obj.Surface):
+            raise ValueError("{}: link a HexDom Surface (property Surface)".format(obj.Label))
+        surface = tessellation.get_surface(obj.Surface)
+        n = len(surface.F)
+        issues = []
+        with api.Progress("Segmenting " + obj.Surface.Label, 2) as bar:
+            triangles, new_labels = valid_edits(obj, n, issues)
+            labels, patches, keep = base_segmentation(obj, surface, triangles, new_labels)
+            bar.step("labels")
+            labels, patches = api.apply_label_edits(surface.F, labels, patches, triangles,
+                                                    new_labels, keep_patches=keep)
+            bar.step("edits")
+        issues += api.check_patches(core.Surface(surface.V, surface.F, patches))
+        store_segmentation(obj, labels, patches)
+        if obj.EditCount != len(triangles):
+            obj.EditCount = len(triangles)
+        if list(obj.Issues) != issues:
+            obj.Issues = issues
+
+
+def base_segmentation(obj, surface, triangles=(), new_labels=()):
+    """(labels, patches, keep_patches) of the method, before user edits (which the automatic
+    method already takes as fixed labels)."""
+    from .. import api
+    method = obj.Method
+    if method == "Automatic":
+        edits = np.c_[np.asarray(triangles, np.int32), np.asarray(new_labels, np.int32)]
+        result = api.segment(surface, edits=edits if len(edits) else None)
+        return result.labels, result.patch, False
+    if method == "Surface patches":
+        patches = np.asarray(surface.patch, np.int32)
+    elif method == "Patch file":
+        if not obj.PatchFile:
+            raise ValueError("{}: Method 'Patch file' needs PatchFile".format(obj.Label))
+        source = core.read_surface(obj.PatchFile)
+        same = (len(source.F) == len(surface.F) and source.V.shape == surface.V.shape
+                and np.array_equal(source.F, surface.F)
+                and np.allclose(source.V, surface.V, rtol=0,
+                                atol=1e-9 * max(1.0, float(np.abs(surface.V).max()))))
+        patches = np.asarray(source.patch if same else api.transfer_patches(source, surface),
+                             np.int32)
+    else:
+        raise ValueError("{}: unknown Method '{}'".format(obj.Label, method))
+    labels = api.labels_from_normals(surface.V, surface.F, patches)
+    return labels, patches, True
+
+
+def valid_edits(obj, triangle_count, issues):
+    """Edits that fit the current surface; the others are reported in ``issues`` (kept in the
+    properties, in case the surface comes back)."""
+    triangles = np.asarray(obj.EditedTriangles, np.int64)
+    labels = np.asarray(obj.EditedLabels, np.int32)
+    if len(triangles) != len(labels):
+        raise ValueError("{}: {} edited triangles but {} edited labels".format(
+            obj.Label, len(triangles), len(labels)))
+    ok = (triangles >= 0) & (triangles < triangle_count) & (labels >= 1) & (labels <= 6)
+    if not np.all(ok):
+        issues.append("{} edits ignored: triangle beyond {} or label outside 1..6".format(
+            int(np.count_nonzero(~ok)), triangle_count - 1))
+    return triangles[ok], labels[ok]
+
+
+def is_segmentation(obj):
+    return is_of_type(obj, TYPE)
+
+
+def store_segmentation(obj, labels, patches):
+    labels = np.asarray(labels, np.int64).tolist()
+    patches = np.asarray(patches, np.int64).tolist()
+    obj.Patches = patches
+    obj.Labels = labels
+    counts = {"TriangleCount": len(labels), "PatchCount": len(set(patches))}
+    for name, value in counts.items():
+        if getattr(obj, name) != value:
+            setattr(obj, name, value)
+
+
+def get_labels(obj):
+    return np.array(obj.Labels, np.int32)
+
+
+def get_surface(obj):
+    """core.Surface for generation: the Surface's triangles with this segmentation's patch ids."""
+    if not is_segmentation(obj):
+        raise ValueError("{} is not a HexDom Segmentation".format(getattr(obj, "Label", obj)))
+    if obj.Surface is None:
+        raise ValueError("{}: no Surface linked".format(obj.Label))
+    surface = tessellation.get_surface(obj.Surface)
+    patches = np.array(obj.Patches, np.int32)
+    if len(patches) != len(surface.F):
+        raise ValueError("{}: {} patch ids for {} triangles; recompute it".format(
+            obj.Label, len(patches), len(surface.F)))
+    return core.Surface(surface.V, surface.F, patches)
