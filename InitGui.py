@@ -19,6 +19,7 @@ class HexDomWorkbench(FreeCADGui.Workbench):
 
     def Initialize(self):
         from HexDomWorkbench.commands import commands
+        self.appendToolbar("HexDom pipeline", commands.PIPELINE_TOOLBAR)
         self.appendToolbar("HexDom", commands.TOOLBAR)
         self.appendMenu("&HexDom", commands.MENU)
 

@@ -121,9 +121,218 @@ class _AddToAnalysis(CommandManager):
                  analysis.Name, obj.Name)])
 
 
-COMMANDS = [_ImportMesh(), _QualityReport(), _ExportMesh(), _AddToAnalysis()]
-TOOLBAR = [c.command_name for c in COMMANDS]
-MENU = list(TOOLBAR)
+def _doc_expr(obj):
+    return "App.getDocument({!r}).getObject({!r})".format(obj.Document.Name, obj.Name)
 
-for _command in COMMANDS:
+
+def _ensure_document():
+    if FreeCAD.ActiveDocument is None:
+        FreeCADGui.doCommand("App.newDocument()")
+    return FreeCAD.ActiveDocument
+
+
+def _open_file(title, filters):
+    from PySide import QtGui
+    path, _ = QtGui.QFileDialog.getOpenFileName(manager.main_window(), title,
+                                                manager.get_param("LastDir"), filters)
+    if path:
+        manager.set_param("LastDir", os.path.dirname(path))
+    return path
+
+
+def _fit():
+    if FreeCADGui.ActiveDocument is not None:
+        FreeCADGui.SendMsgToActiveView("ViewFit")
+
+
+class _Tessellate(CommandManager):
+    menutext = "Tessellate part"
+    tooltip = ("Triangulates the selected Part solid into a HexDom Surface that keeps the CAD "
+               "face of each triangle (edit Size, Deflection, Angle, then recompute)")
+    is_active = "with_part"
+
+    def Activated(self):
+        parts = manager.selected_parts()
+        if parts:
+            self.tessellate(parts)
+
+    def tessellate(self, parts):
+        doc = parts[0].Document
+        steps = [("tessellating " + p.Label,
+                  "HexDomWorkbench.make.make_surface(App.ActiveDocument, {})".format(_doc_expr(p)))
+                 for p in parts]
+        new = manager.run_and_recompute(doc, "Tessellate", ["HexDomWorkbench.make"], steps)
+        _fit()
+        return new
+
+
+class _Segment(CommandManager):
+    menutext = "Segment surface"
+    tooltip = ("Labels the triangles of the selected HexDom Surface with polycube directions "
+               "(+X -X +Y -Y +Z -Z) and groups them into patches: a HexDom Segmentation")
+    is_active = "with_surface"
+
+    def Activated(self):
+        surface = manager.selected_of_type("HexDom::Surface")
+        if surface is not None:
+            self.segment(surface)
+
+    def segment(self, surface):
+        from .. import api
+        if not api.has_segmentation():
+            manager.show_error("Segment", "segmentation not available in this build")
+            return None
+        line = ("HexDomWorkbench.make.make_segmentation(App.ActiveDocument, {}, "
+                "method='Automatic')".format(_doc_expr(surface)))
+        return manager.run_and_recompute(surface.Document, "Segment", ["HexDomWorkbench.make"],
+                                         [("segmenting", line)])
+
+
+class _ImportPatches(CommandManager):
+    menutext = "Import patches..."
+    tooltip = ("Reads a segmented surface (.k shells, part id = patch id, as the paper's patch "
+               "files) into a HexDom Surface and a HexDom Segmentation")
+    is_active = "always"
+
+    def Activated(self):
+        path = _open_file("Import HexDom patches", "LS-DYNA keyword (*.k);;All files (*)")
+        if path:
+            self.import_file(path)
+
+    def import_file(self, path):
+        doc = _ensure_document()
+        new = manager.run_and_recompute(
+            doc, "Import patches", ["HexDomWorkbench.api"],
+            [("reading " + os.path.basename(path),
+              "HexDomWorkbench.api.import_patches({!r}, App.ActiveDocument)".format(path))])
+        _fit()
+        return new
+
+
+class _ImportStructure(CommandManager):
+    menutext = "Import polycube structure..."
+    tooltip = ("Reads a polycube structure (.k, hex / prism / tet blocks as *ELEMENT_SOLID) into "
+               "a HexDom Polycube")
+    is_active = "always"
+
+    def Activated(self):
+        path = _open_file("Import polycube structure", "LS-DYNA keyword (*.k);;All files (*)")
+        if path:
+            self.import_file(path)
+
+    def import_file(self, path):
+        doc = _ensure_document()
+        new = manager.run_and_recompute(
+            doc, "Import structure", ["HexDomWorkbench.api"],
+            [("reading " + os.path.basename(path),
+              "HexDomWorkbench.api.import_structure({!r}, App.ActiveDocument)".format(path))])
+        _fit()
+        return new
+
+
+class _ExportStructure(CommandManager):
+    menutext = "Export polycube structure..."
+    tooltip = "Writes the selected HexDom Polycube as a .k structure file (or .vtk, .vtu)"
+    is_active = "with_polycube"
+
+    def Activated(self):
+        from PySide import QtGui
+        obj = manager.selected_of_type("HexDom::Polycube")
+        if obj is None:
+            return
+        start = os.path.join(manager.get_param("LastDir"), obj.Label + ".k")
+        path, _ = QtGui.QFileDialog.getSaveFileName(
+            manager.main_window(), "Export polycube structure", start,
+            "LS-DYNA keyword (*.k);;VTK legacy (*.vtk);;VTK XML (*.vtu)")
+        if path:
+            if os.path.splitext(path)[1].lower() not in (".k", ".vtk", ".vtu"):
+                path += ".k"
+            self.export_file(obj, path)
+
+    def export_file(self, obj, path):
+        manager.set_param("LastDir", os.path.dirname(path))
+        try:
+            FreeCADGui.addModule("HexDomWorkbench.api")
+            FreeCADGui.doCommand("HexDomWorkbench.api.export_structure({}, {!r})".format(
+                _doc_expr(obj), path))
+        except manager.USER_ERRORS as e:
+            manager.show_error("Export structure", e)
+            return False
+        return True
+
+
+class _GenerateMesh(CommandManager):
+    menutext = "Generate hex-dominant mesh"
+    tooltip = ("Generates a HexDom Mesh from the selected Segmentation and Polycube (level 2, "
+               "improved); with nothing selected, asks for a patch file and a structure file")
+    is_active = "always"
+
+    def Activated(self):
+        sel = FreeCADGui.Selection.getSelection()
+        seg = [o for o in sel if getattr(getattr(o, "Proxy", None), "Type", "")
+               == "HexDom::Segmentation"]
+        poly = [o for o in sel if getattr(getattr(o, "Proxy", None), "Type", "")
+                == "HexDom::Polycube"]
+        if len(seg) == 1 and len(poly) == 1:
+            self.generate(seg[0], poly[0])
+            return
+        if sel:
+            manager.show_error("Generate mesh", "select one HexDom Segmentation and one HexDom "
+                               "Polycube, or nothing to mesh from files")
+            return
+        patches = _open_file("Patch file (segmented surface)",
+                             "LS-DYNA keyword (*.k);;All files (*)")
+        if not patches:
+            return
+        structure = _open_file("Polycube structure file", "LS-DYNA keyword (*.k);;All files (*)")
+        if structure:
+            self.generate_from_files(patches, structure)
+
+    def generate(self, segmentation, polycube, level=2, improve=True):
+        line = ("HexDomWorkbench.make.make_hex_mesh(App.ActiveDocument, segmentation={}, "
+                "polycube={}, level={}, improve={})".format(
+                    _doc_expr(segmentation), _doc_expr(polycube), int(level), bool(improve)))
+        new = manager.run_and_recompute(segmentation.Document, "Generate mesh",
+                                        ["HexDomWorkbench.make"], [("meshing", line)])
+        _fit()
+        return new
+
+    def generate_from_files(self, patch_file, structure_file, level=2, improve=True):
+        doc = _ensure_document()
+        line = ("HexDomWorkbench.api.make_document_objects(App.ActiveDocument, patch_file={!r}, "
+                "structure_file={!r}, level={}, improve={}, recompute=False)".format(
+                    patch_file, structure_file, int(level), bool(improve)))
+        new = manager.run_and_recompute(doc, "Generate mesh", ["HexDomWorkbench.api"],
+                                        [("reading and meshing", line)])
+        _fit()
+        return new
+
+
+class _ImproveQuality(CommandManager):
+    menutext = "Improve mesh quality"
+    tooltip = ("Pillowing, smoothing and Jacobian optimisation of the selected mesh: a generated "
+               "HexDom Mesh gets Improve = true, another FEM mesh an improved copy")
+    is_active = "with_fem_mesh"
+
+    def Activated(self):
+        obj = manager.selected_mesh(hexdom_only=False)
+        if obj is not None:
+            self.improve(obj)
+
+    def improve(self, obj):
+        new = manager.run_and_recompute(
+            obj.Document, "Improve quality", ["HexDomWorkbench.api"],
+            [("improving", "HexDomWorkbench.api.improve_object({})".format(_doc_expr(obj)))])
+        return new
+
+
+COMMANDS = [_ImportMesh(), _QualityReport(), _ExportMesh(), _AddToAnalysis()]
+PIPELINE_COMMANDS = [_Tessellate(), _Segment(), _ImportPatches(), _ImportStructure(),
+                     _GenerateMesh(), _ImproveQuality(), _ExportStructure()]
+TOOLBAR = [c.command_name for c in COMMANDS]
+PIPELINE_TOOLBAR = [c.command_name for c in PIPELINE_COMMANDS]
+MENU = PIPELINE_TOOLBAR + ["Separator"] + TOOLBAR
+
+for _command in COMMANDS + PIPELINE_COMMANDS:
     FreeCADGui.addCommand(_command.command_name, _command)
+

@@ -24,7 +24,9 @@ class CommandManager:
 
     Class attributes: ``menutext``, ``tooltip``, and ``is_active``, one of "always",
     "with_document", "with_fem_mesh" (one FEM mesh selected), "with_hex_mesh" (one HexDom Mesh
-    selected), "with_analysis_and_hex_mesh" (an active FEM analysis and one HexDom Mesh selected).
+    selected), "with_analysis_and_hex_mesh" (an active FEM analysis and one HexDom Mesh selected),
+    "with_part" (Part objects with faces selected), "with_surface" (one HexDom Surface),
+    "with_polycube" (one HexDom Polycube).
     """
 
     menutext = ""
@@ -55,6 +57,12 @@ class CommandManager:
             return selected_mesh(hexdom_only=True) is not None
         if check == "with_analysis_and_hex_mesh":
             return active_analysis() is not None and selected_mesh(hexdom_only=True) is not None
+        if check == "with_part":
+            return bool(selected_parts())
+        if check == "with_surface":
+            return selected_of_type("HexDom::Surface") is not None
+        if check == "with_polycube":
+            return selected_of_type("HexDom::Polycube") is not None
         raise ValueError("unknown is_active value '{}'".format(check))
 
     def Activated(self):
@@ -70,6 +78,27 @@ def selected_mesh(hexdom_only=True):
     if hexdom_only:
         return obj if hex_mesh.is_hex_mesh(obj) else None
     return obj if obj.isDerivedFrom("Fem::FemMeshObject") else None
+
+
+def selected_of_type(type_name):
+    """The one selected HexDom object of Proxy Type ``type_name``, else None."""
+    sel = FreeCADGui.Selection.getSelection()
+    if len(sel) != 1:
+        return None
+    return sel[0] if getattr(getattr(sel[0], "Proxy", None), "Type", None) == type_name else None
+
+
+def selected_parts():
+    """Selected objects with a shape that has faces (Part solids and the like), not HexDom's."""
+    parts = []
+    for obj in FreeCADGui.Selection.getSelection():
+        shape = getattr(obj, "Shape", None)
+        if hasattr(getattr(obj, "Proxy", None), "Type") and \
+                str(getattr(obj.Proxy, "Type", "")).startswith("HexDom::"):
+            continue
+        if shape is not None and hasattr(shape, "Faces") and not shape.isNull() and shape.Faces:
+            parts.append(obj)
+    return parts
 
 
 def active_analysis():
@@ -107,6 +136,41 @@ def run_in_transaction(doc, title, modules, lines):
         return False
     doc.commitTransaction()
     return True
+
+
+def run_and_recompute(doc, title, modules, steps):
+    """Runs console lines as one transaction, each step a ``(text, line)`` advancing the progress
+    bar, then recomputes the document (also echoed as a console line).
+
+    Returns the objects the transaction added. If a line raises one of USER_ERRORS, or an object
+    fails to recompute, the transaction is aborted (nothing is added) and the error shown in a
+    message box; returns None then.
+    """
+    from .. import api
+    before = set(o.Name for o in doc.Objects)
+    invalid_before = set(o.Name for o in doc.Objects if "Invalid" in o.State)
+    doc.openTransaction(title)
+    try:
+        with api.Progress(title, len(steps) + 1) as bar:
+            for module in modules:
+                FreeCADGui.addModule(module)
+            for text, line in steps:
+                FreeCADGui.doCommand(line)
+                bar.step(text)
+            FreeCADGui.doCommand("App.ActiveDocument.recompute()")
+            bar.step("recomputed")
+        failed = [o for o in doc.Objects
+                  if ("Invalid" in o.State or "Error" in o.State) and o.Name not in invalid_before]
+        if failed:
+            message = failed[0].getStatusString() or "recompute failed"
+            raise api.RecomputeError("{}: {}".format(failed[0].Label, message))
+    except USER_ERRORS as e:
+        doc.abortTransaction()
+        doc.recompute()
+        show_error(title, e)
+        return None
+    doc.commitTransaction()
+    return [o for o in doc.Objects if o.Name not in before]
 
 
 def get_param(name, default=""):
