@@ -95,3 +95,34 @@ def mixed_sample():
         region.append(3)
     return (V, np.array(cells, dtype=np.int32), np.array(types, dtype=np.int32),
             np.array(region, dtype=np.int32))
+
+
+def example_path(name):
+    """Path of a bundled example file (examples/data/<name>) of the repository under test."""
+    here = os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(os.path.abspath(__file__))
+    return os.path.join(here, "..", "..", "examples", "data", name)
+
+
+def box_structure(L, W, H, origin=(0.0, 0.0, 0.0)):
+    """One hex block spanning the box [0,L]x[0,W]x[0,H] (+ origin): (V, cells, types)."""
+    V, cells, types = box_mesh(L, W, H, 1, 1, 1)
+    return V + np.asarray(origin, float), cells, types
+
+
+def closed_surface_checks(V, F):
+    """(edge use counts as a set, signed volume, area) of a triangle surface."""
+    V = np.asarray(V, float)
+    F = np.asarray(F, np.int64).reshape(-1, 3)
+    edges = np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+    return set(counts.tolist()), volume, area
+
+
+def edge_lengths(V, F):
+    V = np.asarray(V, float)
+    F = np.asarray(F, np.int64).reshape(-1, 3)
+    edges = np.unique(np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0)
+    return np.linalg.norm(V[edges[:, 0]] - V[edges[:, 1]], axis=1)
