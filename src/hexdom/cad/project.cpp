@@ -1,0 +1,199 @@
+#include "hexdom/cad/project.h"
+
+#include <BRepBndLib.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_Surface.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+
+#include <limits>
+#include <memory>
+
+#include "hexdom/cad/shape_impl.h"
+#include "hexdom/common/error.h"
+
+namespace hexdom::cad {
+
+namespace {
+
+struct EdgeCurve {
+  Handle(Geom_Curve) curve;
+  double first = 0, last = 0;
+};
+
+/// Nearest point of one edge's 3D curve within its range (ends included).
+bool nearest_on_edge(const EdgeCurve& e, const gp_Pnt& p, gp_Pnt& q, double& t, double& d) {
+  return nearest_on_curve(e.curve, e.first, e.last, p, q, t, d);
+}
+
+EdgeCurve edge_curve(const TopoDS_Edge& edge) {
+  EdgeCurve e;
+  if (!BRep_Tool::Degenerated(edge)) e.curve = BRep_Tool::Curve(edge, e.first, e.last);
+  return e;
+}
+
+/// Nearest point of one trimmed face: the nearest of the surface's extrema that lie inside the
+/// face and of the nearest points of its boundary edges.
+class FaceProjector {
+ public:
+  explicit FaceProjector(const TopoDS_Face& face) : face_(face) {
+    surface_ = BRep_Tool::Surface(face);
+    analysis_ = new ShapeAnalysis_Surface(surface_);
+    BRepTools::UVBounds(face, u0_, u1_, v0_, v1_);
+    tol_ = std::max(BRep_Tool::Tolerance(face), 1e-9);
+    classifier_ = std::make_unique<BRepTopAdaptor_FClass2d>(face, tol_);
+    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) edges_.push_back(edge_curve(TopoDS::Edge(ex.Current())));
+    BRepBndLib::Add(face, box_);
+  }
+
+  /// Lower bound of the distance from p to the face.
+  double lower_bound(const gp_Pnt& p) const { return box_.IsVoid() ? 0.0 : box_.Distance(Bnd_Box(p.XYZ(), p.XYZ())); }
+
+  void nearest(const gp_Pnt& p, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
+    best_d = std::numeric_limits<double>::infinity();
+    GeomAPI_ProjectPointOnSurf proj;
+    proj.Init(p, surface_, u0_, u1_, v0_, v1_);
+    for (int i = 1; i <= proj.NbPoints(); ++i) {
+      double u, v;
+      proj.Parameters(i, u, v);
+      if (classifier_->Perform(gp_Pnt2d(u, v)) == TopAbs_OUT) continue;
+      const double d = proj.Distance(i);
+      if (d < best_d) best_d = d, best = proj.Point(i), best_uv = gp_Pnt2d(u, v);
+    }
+    bool on_edge = false;
+    for (const EdgeCurve& e : edges_) {
+      gp_Pnt q;
+      double t, d;
+      if (nearest_on_edge(e, p, q, t, d) && d < best_d) best_d = d, best = q, on_edge = true;
+    }
+    if (on_edge) best_uv = analysis_->ValueOfUV(best, tol_);
+  }
+
+ private:
+  TopoDS_Face face_;
+  Handle(Geom_Surface) surface_;
+  Handle(ShapeAnalysis_Surface) analysis_;
+  std::unique_ptr<BRepTopAdaptor_FClass2d> classifier_;
+  std::vector<EdgeCurve> edges_;
+  Bnd_Box box_;
+  double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, tol_ = 1e-7;
+};
+
+Projection make_result(Eigen::Index n) {
+  Projection r;
+  r.points.resize(n, 3);
+  r.distance.resize(n);
+  r.param.resize(n, 2);
+  r.id.resize(n);
+  return r;
+}
+
+void check_points(const Eigen::MatrixXd& P, const std::string& source) {
+  if (P.cols() != 3) throw InputError(source, 0, "points to project must be an N x 3 array, got " + std::to_string(P.cols()) + " columns");
+}
+
+}  // namespace
+
+bool nearest_on_curve(const Handle(Geom_Curve)& curve, double first, double last, const gp_Pnt& p, gp_Pnt& q,
+                      double& t, double& d) {
+  if (curve.IsNull()) return false;
+  d = std::numeric_limits<double>::infinity();
+  for (double end : {first, last}) {
+    const gp_Pnt e = curve->Value(end);
+    if (p.Distance(e) < d) d = p.Distance(e), q = e, t = end;
+  }
+  GeomAPI_ProjectPointOnCurve proj(p, curve, first, last);
+  for (int i = 1; i <= proj.NbPoints(); ++i)
+    if (proj.Distance(i) < d) d = proj.Distance(i), q = proj.Point(i), t = proj.Parameter(i);
+  return true;
+}
+
+Projection project_to_face(const Shape& shape, int face_id, const Eigen::MatrixXd& P) {
+  const Shape::Impl& s = shape.impl();
+  check_points(P, s.source);
+  if (face_id < 1 || face_id > s.faces.Extent())
+    throw InputError(s.source, 0, "Face" + std::to_string(face_id) + " does not exist (the solid has " +
+                                      std::to_string(s.faces.Extent()) + " faces)");
+  Projection r = make_result(P.rows());
+  try {
+    FaceProjector fp(TopoDS::Face(s.faces(face_id)));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      gp_Pnt q;
+      gp_Pnt2d uv;
+      double d;
+      fp.nearest(gp_Pnt(P(i, 0), P(i, 1), P(i, 2)), q, d, uv);
+      r.points.row(i) << q.X(), q.Y(), q.Z();
+      r.distance(i) = d;
+      r.param.row(i) << uv.X(), uv.Y();
+      r.id(i) = face_id;
+    }
+  } catch (const Standard_Failure& e) {
+    throw GeometryError(s.source + ": projecting onto Face" + std::to_string(face_id) + " failed: " + occt_message(e));
+  }
+  return r;
+}
+
+Projection project_to_edge(const Shape& shape, int edge_id, const Eigen::MatrixXd& P) {
+  const Shape::Impl& s = shape.impl();
+  check_points(P, s.source);
+  if (edge_id < 1 || edge_id > s.edges.Extent())
+    throw InputError(s.source, 0, "Edge" + std::to_string(edge_id) + " does not exist (the solid has " +
+                                      std::to_string(s.edges.Extent()) + " edges)");
+  const EdgeCurve e = edge_curve(TopoDS::Edge(s.edges(edge_id)));
+  if (e.curve.IsNull()) throw GeometryError(s.source + ": Edge" + std::to_string(edge_id) + " has no 3D curve (degenerated)");
+  Projection r = make_result(P.rows());
+  try {
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      gp_Pnt q;
+      double t = 0, d = 0;
+      nearest_on_edge(e, gp_Pnt(P(i, 0), P(i, 1), P(i, 2)), q, t, d);
+      r.points.row(i) << q.X(), q.Y(), q.Z();
+      r.distance(i) = d;
+      r.param.row(i) << t, 0;
+      r.id(i) = edge_id;
+    }
+  } catch (const Standard_Failure& e) {
+    throw GeometryError(s.source + ": projecting onto Edge" + std::to_string(edge_id) + " failed: " + occt_message(e));
+  }
+  return r;
+}
+
+Projection project_to_shape(const Shape& shape, const Eigen::MatrixXd& P) {
+  const Shape::Impl& s = shape.impl();
+  check_points(P, s.source);
+  Projection r = make_result(P.rows());
+  try {
+    std::vector<std::unique_ptr<FaceProjector>> faces;
+    for (int f = 1; f <= s.faces.Extent(); ++f) faces.push_back(std::make_unique<FaceProjector>(TopoDS::Face(s.faces(f))));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      const gp_Pnt p(P(i, 0), P(i, 1), P(i, 2));
+      double best = std::numeric_limits<double>::infinity();
+      for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+        if (faces[f]->lower_bound(p) >= best) continue;
+        gp_Pnt q;
+        gp_Pnt2d uv;
+        double d;
+        faces[f]->nearest(p, q, d, uv);
+        if (d < best) {
+          best = d;
+          r.points.row(i) << q.X(), q.Y(), q.Z();
+          r.distance(i) = d;
+          r.param.row(i) << uv.X(), uv.Y();
+          r.id(i) = f + 1;
+        }
+      }
+    }
+  } catch (const Standard_Failure& e) {
+    throw GeometryError(s.source + ": projecting onto the solid failed: " + occt_message(e));
+  }
+  return r;
+}
+
+}  // namespace hexdom::cad
