@@ -43,6 +43,9 @@ void add_cad_commands(CLI::App& app) {
     ro.solid = a->solid;
     ro.log = print_log;
     cad::Shape shape = cad::read_shape(a->input, ro);
+    a->opt.log = [](int level, const std::string& m) {
+      if (level > 0) print_log(level, m);  // warnings only: the sweeps' progress is noise here
+    };
     cad::TessellateStats st;
     mesh::SurfaceMesh s = cad::tessellate(shape, a->opt, &st);
     io::write_mesh(a->out, mesh::from_surface(s));

@@ -326,6 +326,23 @@ def test_garbage_brep_is_an_input_error(hx):
         hx.tessellate_brep("CASCADE Topology V1, (c) Matra-Datavision\nnonsense\n")
 
 
+def test_without_opencascade_every_entry_point_says_so(core, hexdom_bin, tmp_path):
+    """A build with HEXDOM_WITH_CAD=OFF keeps the functions and the command, which fail clearly."""
+    hx = core._hexdom
+    if hx.has_opencascade():
+        pytest.skip("this build has OpenCASCADE")
+    for call in (lambda: hx.tessellate_file("part.step"), lambda: hx.tessellate_brep("x"),
+                 lambda: hx.cad_volume("part.step"), lambda: hx.cad_info("part.step"),
+                 lambda: hx.project_to_face("part.step", 1, np.zeros((1, 3)))):
+        with pytest.raises(hx.Error, match="built without OpenCASCADE: cannot"):
+            call()
+    out = tmp_path / "out.k"
+    r = subprocess.run([hexdom_bin, "tessellate", "part.step", "-o", out], capture_output=True, text=True)
+    assert r.returncode == 1
+    assert "built without OpenCASCADE: cannot" in r.stderr
+    assert not out.exists()
+
+
 # ---- the hexdom program -----------------------------------------------------------------------------
 
 def read_vtk_triangles(path):
@@ -379,7 +396,7 @@ def test_cli_tessellate_writes_every_format(hx, hexdom_bin, tmp_path, ext):
         assert sorted(set(pids.tolist())) == list(range(1, hx.cad_info(os.fspath(path))["faces"] + 1))
 
 
-def test_cli_options_reach_the_mesher(hexdom_bin, tmp_path):
+def test_cli_options_reach_the_mesher(hx, hexdom_bin, tmp_path):
     path = step_part("s15o_cylinder.stp")
     counts = []
     for size in ("3", "1.5"):
@@ -393,7 +410,7 @@ def test_cli_options_reach_the_mesher(hexdom_bin, tmp_path):
 
 @pytest.mark.parametrize("case", ["missing", "corrupt", "not_a_solid", "bad_solid_index", "bad_output_type",
                                   "bad_size"])
-def test_cli_bad_input_exits_1_and_writes_nothing(hexdom_bin, tmp_path, case):
+def test_cli_bad_input_exits_1_and_writes_nothing(hx, hexdom_bin, tmp_path, case):
     out = tmp_path / "out.k"
     args = [hexdom_bin, "tessellate"]
     expect = None

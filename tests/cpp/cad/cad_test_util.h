@@ -4,6 +4,7 @@
 #pragma once
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -13,6 +14,8 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <gp_Ax2.hxx>
 
 #include <Eigen/Geometry>
@@ -48,6 +51,21 @@ inline TopoDS_Shape make_l_bracket() {
   poly.Close();
   TopoDS_Face face = BRepBuilderAPI_MakeFace(poly.Wire());
   return BRepPrimAPI_MakePrism(face, gp_Vec(0, 0, 15)).Shape();
+}
+
+/// 12 x 12 x 12 box with a closed 4 x 4 x 4 cavity inside: a solid with two shells.
+inline TopoDS_Shape make_box_with_cavity() {
+  TopoDS_Shape outer = BRepPrimAPI_MakeBox(12.0, 12.0, 12.0).Shape();
+  TopoDS_Shape inner = BRepPrimAPI_MakeBox(gp_Pnt(4, 4, 4), 4.0, 4.0, 4.0).Shape();
+  return BRepAlgoAPI_Cut(outer, inner).Shape();
+}
+
+/// 16 x 12 x 8 box with every edge rounded (radius 2): cylinders, spheres and tangent edges.
+inline TopoDS_Shape make_filleted_box() {
+  TopoDS_Shape box = BRepPrimAPI_MakeBox(16.0, 12.0, 8.0).Shape();
+  BRepFilletAPI_MakeFillet fillet(box);
+  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) fillet.Add(2.0, TopoDS::Edge(ex.Current()));
+  return fillet.Shape();
 }
 
 inline TopoDS_Shape make_cylinder() { return BRepPrimAPI_MakeCylinder(5.0, 12.0).Shape(); }

@@ -30,11 +30,14 @@ struct Part {
   double volume_tolerance = 0.005;
 };
 
+void PrintTo(const Part& part, std::ostream* os) { *os << part.name; }
+
 std::vector<Part> test_parts() {
   return {{"box", test::make_box},           {"box_with_hole", test::make_box_with_hole},
           {"l_bracket", test::make_l_bracket}, {"cylinder", test::make_cylinder},
           {"sphere", test::make_sphere},     {"cone", test::make_cone},
-          {"torus", test::make_torus, 0.008}};
+          {"torus", test::make_torus, 0.008}, {"box_with_cavity", test::make_box_with_cavity},
+          {"filleted_box", test::make_filleted_box}};
 }
 
 double diagonal(const cad::Shape& s) { return cad::shape_info(s).box.diagonal().norm(); }
