@@ -12,14 +12,20 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-/// Smallest interior angle of a triangle, radians (0 for a degenerate one).
+/// Smallest interior angle of a triangle, radians (0 for a degenerate one): the angle opposite
+/// the shortest side.
 double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  auto angle = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  const Eigen::Vector3d ab = b - a, bc = c - b, ca = a - c;
-  if (ab.squaredNorm() == 0 || bc.squaredNorm() == 0 || ca.squaredNorm() == 0) return 0;
-  return std::min({angle(ab, -ca), angle(bc, -ab), angle(ca, -bc)});
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  if (ab == 0 || bc == 0 || ca == 0) return 0;
+  Eigen::Vector3d u, v;  // the two sides meeting opposite the shortest one
+  if (ab <= bc && ab <= ca) {
+    u = a - c, v = b - c;
+  } else if (bc <= ca) {
+    u = b - a, v = c - a;
+  } else {
+    u = a - b, v = c - b;
+  }
+  return std::atan2(u.cross(v).norm(), u.dot(v));
 }
 
 int rank(Kind k) { return k == Kind::Face ? 0 : k == Kind::Curve ? 1 : 2; }
@@ -240,23 +246,43 @@ bool SurfaceRemesher::can_collapse(int a, int b, bool strict_length) const {
   if (va.kind == Kind::Curve) {
     if (!feature || vb.kind == Kind::Face) return false;
     if (vb.kind == Kind::Curve && vb.owner != va.owner) return false;
-    if (vb.kind == Kind::Corner) {
-      // Keep at least two segments on every CAD edge that has two: find a's other curve neighbour.
-      std::vector<int> nb;
-      neighbours(a, nb);
-      for (int x : nb) {
-        if (x == b) continue;
-        int s1, s2;
-        if (edge_tris(a, x, s1, s2) && face_[s1] != face_[s2] && V_[x].kind == Kind::Corner) return false;
-      }
-    }
   } else if (feature) {
     return false;
   }
   const int c = third(t1, a, b), d = third(t2, a, b);
   if (c == d || degree(c) <= 3 || degree(d) <= 3) return false;
-  // Link condition: a and b share exactly the neighbours c and d.
-  std::vector<int> na, nb;
+  // Geometry first (cheapest to fail): no triangle of a's fan turns over, degenerates or gets an
+  // edge longer than 4/3 of its target.
+  double new_min = kPi;
+  for (int t : vt_[a]) {
+    if (t == t1 || t == t2) continue;
+    Eigen::Vector3d p[3], q[3];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = V_[F_[t][k]].p;
+      q[k] = F_[t][k] == a ? vb.p : p[k];
+    }
+    if (strict_length)
+      for (int k = 0; k < 3; ++k)
+        if (F_[t][k] != a && (q[k] - vb.p).squaredNorm() > 16.0 / 9.0 * std::pow(target(F_[t][k], b), 2)) return false;
+    const Eigen::Vector3d n_new = normal(q[0], q[1], q[2]);
+    if (n_new.norm() <= 1e-14 * (q[1] - q[0]).squaredNorm()) return false;
+    if (!plane_normal_[face_[t]].isZero()) {
+      if (!is_valid(q[0], q[1], q[2], face_[t])) return false;
+    } else if (n_new.normalized().dot(normal(p[0], p[1], p[2]).normalized()) < 0.5) {
+      return false;
+    }
+    new_min = std::min(new_min, min_angle(q[0], q[1], q[2]));
+  }
+  // Not much worse than the worst triangle it replaces (unless everything stays above 20 degrees).
+  if (new_min < 20 * kDeg) {
+    double old_min = kPi;
+    for (int v : {a, b})
+      for (int t : vt_[v]) old_min = std::min(old_min, min_angle(V_[F_[t][0]].p, V_[F_[t][1]].p, V_[F_[t][2]].p));
+    if (new_min < old_min) return false;
+  }
+  // Topology: a and b share exactly the neighbours c and d (link condition) ...
+  std::vector<int>& na = scratch_a_;
+  std::vector<int>& nb = scratch_b_;
   neighbours(a, na);
   neighbours(b, nb);
   int common = 0;
@@ -266,28 +292,14 @@ bool SurfaceRemesher::can_collapse(int a, int b, bool strict_length) const {
       ++common;
     }
   if (common != 2) return false;
-  // Geometry: no triangle turns over or becomes much worse than the worst one it replaces.
-  double old_min = kPi;
-  for (int t : vt_[a]) old_min = std::min(old_min, min_angle(V_[F_[t][0]].p, V_[F_[t][1]].p, V_[F_[t][2]].p));
-  for (int t : vt_[b]) old_min = std::min(old_min, min_angle(V_[F_[t][0]].p, V_[F_[t][1]].p, V_[F_[t][2]].p));
-  const double floor_angle = std::min(old_min, 20 * kDeg);
-  for (int t : vt_[a]) {
-    if (t == t1 || t == t2) continue;
-    Eigen::Vector3d p[3], q[3];
-    for (int k = 0; k < 3; ++k) {
-      p[k] = V_[F_[t][k]].p;
-      q[k] = F_[t][k] == a ? vb.p : p[k];
+  // ... and every CAD edge keeps at least two segments: a's other neighbour along its curve must
+  // not be a corner when b is one.
+  if (va.kind == Kind::Curve && vb.kind == Kind::Corner)
+    for (int x : na) {
+      if (x == b || V_[x].kind != Kind::Corner) continue;
+      int s1, s2;
+      if (edge_tris(a, x, s1, s2) && face_[s1] != face_[s2]) return false;
     }
-    const Eigen::Vector3d n_old = normal(p[0], p[1], p[2]), n_new = normal(q[0], q[1], q[2]);
-    if (n_new.norm() <= 1e-14 * (q[1] - q[0]).squaredNorm()) return false;
-    if (!plane_normal_[face_[t]].isZero() ? !is_valid(q[0], q[1], q[2], face_[t])
-                                          : n_new.normalized().dot(n_old.normalized()) < 0.5)
-      return false;
-    if (min_angle(q[0], q[1], q[2]) < floor_angle) return false;
-    if (strict_length)
-      for (int k = 0; k < 3; ++k)
-        if (F_[t][k] != a && (V_[F_[t][k]].p - vb.p).norm() > 4.0 / 3.0 * target(F_[t][k], b)) return false;
-  }
   return true;
 }
 
@@ -321,6 +333,11 @@ bool SurfaceRemesher::flip_improves(int a, int b, double min_gain) const {
     if (invalid_after < invalid_before) return true;
     if (invalid_after > 0) return false;
   }
+  // A Delaunay edge (opposite angles summing to at most 180 degrees) already gives the larger
+  // smallest angle of the two diagonals of a flat convex quad: skip the exact test.
+  const Eigen::Vector3d ca = pa - pc, cb = pb - pc, da = pa - pd, db = pb - pd;
+  const double cot_c = ca.dot(cb) / ca.cross(cb).norm(), cot_d = da.dot(db) / da.cross(db).norm();
+  if (std::isfinite(cot_c) && std::isfinite(cot_d) && cot_c + cot_d >= 0) return false;
   const double before = std::min(min_angle(pa, pb, pc), min_angle(pb, pa, pd));
   const double after = std::min(min_angle(pc, pa, pd), min_angle(pd, pb, pc));
   if (after <= before + min_gain) return false;
@@ -433,7 +450,7 @@ int SurfaceRemesher::split_long_edges() {
 
 int SurfaceRemesher::collapse_short_edges(bool strict_length) {
   int total = 0;
-  for (int pass = 0; pass < 12; ++pass) {
+  for (int pass = 0; pass < 4; ++pass) {
     std::vector<std::pair<double, std::pair<int, int>>> todo;
     for (auto [a, b] : edges()) {
       const double r = (V_[a].p - V_[b].p).norm() / target(a, b);
@@ -488,19 +505,19 @@ void SurfaceRemesher::grade_sizes() {
     V_[v].h = std::min(V_[v].size, params_.max_size);
     queue.push({V_[v].h, v});
   }
-  std::vector<int> nb;
   while (!queue.empty()) {
     auto [h, v] = queue.top();
     queue.pop();
     if (h > V_[v].h) continue;
-    neighbours(v, nb);
-    for (int w : nb) {
-      const double cand = h + params_.gradation * (V_[v].p - V_[w].p).norm();
-      if (cand < V_[w].h) {
-        V_[w].h = cand;
-        queue.push({cand, w});
+    for (int t : vt_[v])
+      for (int w : F_[t]) {
+        if (w == v) continue;
+        const double cand = h + params_.gradation * (V_[v].p - V_[w].p).norm();
+        if (cand < V_[w].h) {
+          V_[w].h = cand;
+          queue.push({cand, w});
+        }
       }
-    }
   }
 }
 

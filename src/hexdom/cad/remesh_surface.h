@@ -103,7 +103,8 @@ class SurfaceRemesher {
   std::vector<char> alive_;
   std::vector<std::vector<int>> vt_;  ///< alive triangles around each vertex
   std::map<std::pair<int, int>, int> corner_edge_;
-  std::vector<Eigen::Vector3d> plane_normal_;  ///< per CAD face: unit normal (outward) if planar, else 0
+  std::vector<Eigen::Vector3d> plane_normal_;
+  mutable std::vector<int> scratch_a_, scratch_b_;  ///< neighbour lists of can_collapse  ///< per CAD face: unit normal (outward) if planar, else 0
   const RemeshGeometry& geom_;
   RemeshParams params_;
 };
