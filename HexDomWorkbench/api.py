@@ -744,9 +744,12 @@ def set_labels(segmentation, triangles, label):
 
 
 def clear_edits(segmentation):
-    """Drops all user edits of a HexDom Segmentation."""
+    """Drops all user edits (labels and patch ids) of a HexDom Segmentation."""
     segmentation.EditedTriangles = []
     segmentation.EditedLabels = []
+    if hasattr(segmentation, "EditedPatchTriangles"):
+        segmentation.EditedPatchTriangles = []
+        segmentation.EditedPatchIds = []
 
 
 def improve_object(obj):

@@ -13,8 +13,10 @@ Method picks where labels and patches come from:
 
 Labels are numbered as in the core: 1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z. User edits
 (EditedTriangles[i] gets EditedLabels[i]) are applied after every recompute: the triangles keep
-their new label, and join a neighbouring patch of that label. Labels, Patches and the edits live
-in integer-list properties, so they are saved with the document.
+their new label, and join a neighbouring patch of that label. Patch edits (EditedPatchTriangles[i]
+gets patch id EditedPatchIds[i], written by the Edit Patches panel for what labels cannot say: a
+new patch beside one of the same label, a split, a merge) are applied after them. Labels, Patches
+and the edits live in integer-list properties, so they are saved with the document.
 """
 
 import numpy as np
@@ -59,6 +61,13 @@ class Segmentation(BaseHexDomObject):
         if not hasattr(obj, "EditedLabels"):
             obj.addProperty("App::PropertyIntegerList", "EditedLabels", "Edits",
                             "Label (1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z) of each edited triangle")
+        if not hasattr(obj, "EditedPatchTriangles"):
+            obj.addProperty("App::PropertyIntegerList", "EditedPatchTriangles", "Edits",
+                            "Triangles (0-based) the user put into a given patch (Edit Patches); "
+                            "applied after the label edits")
+        if not hasattr(obj, "EditedPatchIds"):
+            obj.addProperty("App::PropertyIntegerList", "EditedPatchIds", "Edits",
+                            "Patch id of each triangle in EditedPatchTriangles")
         for name, prop_type, doc in _RESULTS:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Result", doc)
@@ -88,6 +97,7 @@ class Segmentation(BaseHexDomObject):
             bar.step("labels")
             labels, patches = api.apply_label_edits(surface.F, labels, patches, triangles,
                                                     new_labels, keep_patches=keep)
+            patches = apply_patch_edits(obj, patches, issues)
             bar.step("edits")
         issues += api.check_patches(core.Surface(surface.V, surface.F, patches))
         store_segmentation(obj, labels, patches)
@@ -137,6 +147,25 @@ def valid_edits(obj, triangle_count, issues):
         issues.append("{} edits ignored: triangle beyond {} or label outside 1..6".format(
             int(np.count_nonzero(~ok)), triangle_count - 1))
     return triangles[ok], labels[ok]
+
+
+def apply_patch_edits(obj, patches, issues):
+    """``patches`` with the patch edits applied (EditedPatchTriangles[i] gets EditedPatchIds[i]);
+    edits that do not fit the surface are reported in ``issues``."""
+    triangles = np.asarray(getattr(obj, "EditedPatchTriangles", []), np.int64)
+    ids = np.asarray(getattr(obj, "EditedPatchIds", []), np.int32)
+    if len(triangles) == 0:
+        return patches
+    if len(triangles) != len(ids):
+        raise ValueError("{}: {} triangles with patch edits but {} patch ids".format(
+            obj.Label, len(triangles), len(ids)))
+    ok = (triangles >= 0) & (triangles < len(patches)) & (ids > 0)
+    if not np.all(ok):
+        issues.append("{} patch edits ignored: triangle beyond {} or patch id below 1".format(
+            int(np.count_nonzero(~ok)), len(patches) - 1))
+    patches = np.array(patches, np.int32)
+    patches[triangles[ok]] = ids[ok]
+    return patches
 
 
 def is_segmentation(obj):
