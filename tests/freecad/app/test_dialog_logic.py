@@ -1,0 +1,361 @@
+"""What the Edit Patches and Build Polycube panels do, driven without a GUI: the PatchEditor and
+PolycubeBuilder classes the panels' widgets call, and the Segmentation's patch edits that the
+Edit Patches panel writes on OK."""
+
+import os
+
+import numpy as np
+import pytest
+
+import FreeCAD
+
+from HexDomWorkbench import api, core, make
+from HexDomWorkbench.objects import segmentation
+from HexDomWorkbench.taskpanels import patch_editing, polycube_building
+from HexDomWorkbench.taskpanels.patch_editing import PatchEditor
+from HexDomWorkbench.taskpanels.polycube_building import PolycubeBuilder, order_block
+
+import fc_testdata
+from conftest import reopen
+
+PATCHES = fc_testdata.example_path("lbracket_patches.k")
+STRUCTURE = fc_testdata.example_path("lbracket_structure.k")
+ROCKERARM = os.path.join(fc_testdata.data_root(), "hexdom", "rockerarm")
+ROCKERARM_PATCHES = os.path.join(ROCKERARM, "rockerarm_indexPatch_hexdom.k")
+ROCKERARM_STRUCTURE = os.path.join(ROCKERARM, "rockerarm_polycube_withtet.k")
+
+
+def bracket_editor():
+    s = core.read_surface(PATCHES)
+    return s, PatchEditor(s.V, s.F, s.patch)
+
+
+def island(editor, patch_id=5):
+    """Triangles around a triangle in the middle of ``patch_id`` touching no other patch."""
+    tris = np.flatnonzero(editor.patches == patch_id)
+    inner = [t for t in tris.tolist()
+             if all(set(editor.patches[editor.vertex_triangles(v)].tolist()) == {patch_id}
+                    for v in editor.F[t])]
+    centre = editor.V[editor.F[tris]].mean(axis=(0, 1))
+    t0 = min(inner, key=lambda t: np.linalg.norm(editor.V[editor.F[t]].mean(axis=0) - centre))
+    ring = np.unique(np.concatenate([editor.vertex_triangles(v) for v in editor.F[t0]]))
+    return np.array([t for t in ring.tolist() if t in set(inner)])
+
+
+def boundary_vertices(editor, patch_id, other):
+    """Vertices on the curve between ``patch_id`` and ``other`` (not at its ends)."""
+    out = []
+    for v in np.unique(editor.F[editor.patches == patch_id]).tolist():
+        ids = set(editor.patches[editor.vertex_triangles(v)].tolist())
+        if ids == {patch_id, other}:
+            out.append(v)
+    return out
+
+
+def test_panel_logic_needs_neither_freecad_nor_qt():
+    import subprocess
+    import sys
+    import HexDomWorkbench
+    root = os.path.dirname(os.path.dirname(HexDomWorkbench.__file__))
+    code = ("import sys; sys.path.insert(0, {!r}); "
+            "import HexDomWorkbench.taskpanels.patch_editing, "
+            "HexDomWorkbench.taskpanels.polycube_building; "
+            "print(sorted(m for m in ('FreeCAD', 'FreeCADGui', 'PySide', 'PySide2', 'pivy') "
+            "if m in sys.modules))".format(root))
+    env = dict(os.environ)
+    out = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True,
+                         env=env, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"
+
+
+# ------------------------------------------------------------------------------------------------
+# Edit Patches
+
+
+def test_planted_island_is_listed_and_fixed_by_reassigning_it():
+    s, e = bracket_editor()
+    assert e.problems() == [] and not e.is_modified()
+    planted = island(e)
+    assert 4 <= len(planted) <= 16
+    assert e.select_facets(planted, "replace") == len(planted)
+    new_id = e.new_patch()
+    assert new_id == 18 and e.patch_label(new_id) == e.patch_label(5)
+    kinds = sorted(p.kind for p in e.problems())
+    assert kinds == ["curve_count", "not_disk", "two_patch_corner"]
+    curve = next(p for p in e.problems() if p.kind == "curve_count")
+    np.testing.assert_array_equal(e.problem_triangles(curve), np.sort(planted))
+    assert e.patch_of_number(curve.patches[0]) == new_id
+    e.select_facets(e.problem_triangles(curve), "replace")
+    assert e.suggested_patch() == 5
+    e.assign_to_patch(5)
+    assert e.problems() == [] and not e.is_modified()
+    assert e.undo() and len(e.problems()) == 3
+    assert e.redo() and e.problems() == []
+    assert not e.redo()
+
+
+def test_orientation_sends_an_island_back_to_its_neighbour():
+    _, e = bracket_editor()
+    planted = island(e)
+    e.select_facets(planted, "replace")
+    e.new_patch(label="-Z")
+    assert e.patch_label(18) == 6 and len(e.problems()) == 3
+    e.select_facets(planted, "replace")
+    assert e.assign_orientation(patch_editing.LABEL_NAMES[e.patch_label(5)]) == [5]
+    assert e.problems() == [] and not e.is_modified()
+
+
+def test_split_puts_corners_on_the_neighbours_and_merge_takes_them_back():
+    _, e = bracket_editor()
+    # Patch 5 is a quad; cut it from the middle of one side to the middle of the opposite side.
+    neighbours = {int(p) for t in np.flatnonzero(e.patches == 5).tolist()
+                  for v in e.F[t] for p in e.patches[e.vertex_triangles(v)].tolist()} - {5}
+    sides = [(n, boundary_vertices(e, 5, n)) for n in sorted(neighbours)]
+    sides = [(n, vs) for n, vs in sides if len(vs) >= 3]
+    best = None
+    for i in range(len(sides)):
+        for j in range(i + 1, len(sides)):
+            a = sides[i][1][len(sides[i][1]) // 2]
+            b = sides[j][1][len(sides[j][1]) // 2]
+            d = np.linalg.norm(e.V[a] - e.V[b])
+            if best is None or d > best[0]:
+                best = (d, a, b)
+    _, a, b = best
+    e.add_path_vertex(a)
+    e.add_path_vertex(b)
+    assert e.path_patch() == 5
+    new_ids = e.split()
+    assert new_ids == [18] and len(e.patch_ids()) == 18 and e.path == []
+    # Both halves are quads, but each neighbour across the cut now has a fifth curve.
+    problems = e.problems()
+    assert [p.kind for p in problems] == ["curve_count", "curve_count"]
+    assert {e.patch_of_number(p.patches[0]) for p in problems}.isdisjoint({5, 18})
+    e.select_facets(np.flatnonzero(e.patches == 5)[:1], "replace")
+    e.select_facets(np.flatnonzero(e.patches == 18)[:1], "add")
+    assert e.merge() == 5 and len(e.patch_ids()) == 17
+    assert e.problems() == [] and not e.is_modified()
+
+
+def test_merging_two_patches_breaks_the_corner_condition_until_undone():
+    _, e = bracket_editor()
+    e.merge(1, 2)
+    assert any(p.kind == "two_patch_corner" for p in e.problems())
+    e.undo()
+    assert e.problems() == []
+
+
+def test_selection_modes_faces_and_errors():
+    s, e = bracket_editor()
+    assert e.select_facets([0, 1, 2], "replace") == 3
+    assert e.select_facets([1], "toggle") == 2 and e.select_facets([1], "toggle") == 3
+    assert e.select_facets([0], "remove") == 2
+    assert e.select_patch(3, "replace") == int(np.count_nonzero(s.patch == 3))
+    assert e.selected_patches() == [3]
+    with pytest.raises(ValueError, match="no CAD face ids"):
+        e.select_face(1)
+    e2 = PatchEditor(s.V, s.F, s.patch, face_ids=s.patch)
+    assert e2.select_face(4) == int(np.count_nonzero(s.patch == 4))
+    with pytest.raises(ValueError, match="no patch 99"):
+        e.assign_to_patch(99)
+    e.clear_selection()
+    with pytest.raises(ValueError, match="no facets selected"):
+        e.new_patch()
+    with pytest.raises(ValueError, match="two or more patches"):
+        e.merge()
+    with pytest.raises(ValueError, match="not one of"):
+        e.assign_orientation("+W")
+    with pytest.raises(core.GeometryError):
+        e.merge(1, 17)  # the ramp and the far end share no edge
+
+
+def test_changes_name_exactly_the_edited_triangles():
+    _, e = bracket_editor()
+    planted = island(e)
+    e.select_facets(planted, "replace")
+    e.new_patch(label=3)
+    lt, ll, pt, pid = e.changes()
+    np.testing.assert_array_equal(lt, np.sort(planted))
+    assert set(ll.tolist()) == {3}
+    np.testing.assert_array_equal(pt, np.sort(planted))
+    assert set(pid.tolist()) == {18}
+
+
+def test_patch_edits_of_a_segmentation_survive_recompute_and_reopening(doc, tmp_path):
+    seg = api.import_patches(PATCHES, doc)
+    s = segmentation.get_surface(seg)
+    e = PatchEditor(s.V, s.F, s.patch, seg.Labels)
+    planted = island(e)
+    seg.EditedPatchTriangles = planted.tolist()
+    seg.EditedPatchIds = [40] * len(planted)
+    seg.EditedTriangles = planted.tolist()
+    seg.EditedLabels = [e.patch_label(5)] * len(planted)
+    api.recompute_document(doc, [seg])
+    patches = np.array(seg.Patches)
+    assert set(patches[planted].tolist()) == {40} and seg.PatchCount == 18
+    assert len(seg.Issues) == 3
+    name = seg.Name
+    seg = reopen(doc, str(tmp_path / "edits.FCStd")).getObject(name)
+    assert list(seg.EditedPatchIds) == [40] * len(planted)
+    seg.touch()
+    seg.Document.recompute()
+    assert set(np.array(seg.Patches)[planted].tolist()) == {40}
+    api.clear_edits(seg)
+    seg.Document.recompute()
+    assert seg.PatchCount == 17 and list(seg.Issues) == [] and list(seg.EditedPatchIds) == []
+    FreeCAD.closeDocument(seg.Document.Name)
+
+
+def test_bad_patch_edits_are_reported_not_applied(doc):
+    seg = api.import_patches(PATCHES, doc)
+    seg.EditedPatchTriangles = [0, 10 ** 7]
+    seg.EditedPatchIds = [3, 3]
+    api.recompute_document(doc, [seg])
+    assert any("1 patch edits ignored" in i for i in seg.Issues)
+    assert seg.Patches[0] == 3
+
+
+# ------------------------------------------------------------------------------------------------
+# Build Polycube
+
+
+def unit_cube():
+    V, cells, _ = fc_testdata.box_structure(1.0, 1.0, 1.0)
+    return V, cells[0].tolist()
+
+
+def test_block_order_is_fixed_up_to_a_positive_block():
+    V, hexa = unit_cube()
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        shuffled = list(rng.permutation(hexa))
+        t, ordered = order_block(V, shuffled)
+        sj = polycube_building.scaled_jacobians(V, [ordered], t)
+        assert t == core.HEX and sj[0] == pytest.approx(1.0)
+    t, tet = order_block(V, [hexa[0], hexa[1], hexa[3], hexa[4]])
+    assert t == core.TET and polycube_building.scaled_jacobians(V, [tet], t)[0] > 0.7
+    t, wedge = order_block(V, [hexa[i] for i in (0, 1, 3, 4, 5, 7)])
+    # Right isosceles triangles: Verdict gives sin(45 deg) * 2 / sqrt(3) = 0.816 at best.
+    assert t == core.WEDGE and polycube_building.scaled_jacobians(V, [wedge], t)[0] > 0.8
+    with pytest.raises(ValueError, match="8 \\(hex\\), 6 \\(prism\\) or 4 \\(tet\\)"):
+        order_block(V, hexa[:5])
+    flat = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], float)
+    with pytest.raises(ValueError, match="no tet that is not inverted"):
+        order_block(flat, [0, 1, 2, 3])
+
+
+def test_bracket_structure_fills_its_patches_and_losing_a_block_shows():
+    b = PolycubeBuilder(core.read_surface(PATCHES))
+    assert b.corner_count == 18 and b.problems()[0].kind == "uncovered_patch"
+    assert len(b.problems()) == 17
+    assert b.import_structure(STRUCTURE) == 0
+    assert b.counts() == {"hex": 3, "prism": 1, "tet": 0} and b.problems() == []
+    b.delete_block(3)
+    kinds = sorted({p.kind for p in b.problems()})
+    assert kinds == ["open_face", "uncovered_patch"]
+    assert b.undo() and b.problems() == []
+
+
+def test_rebuilding_the_bracket_block_by_block_from_shuffled_picks():
+    s = core.read_surface(PATCHES)
+    reference = PolycubeBuilder(s)
+    reference.import_structure(STRUCTURE)
+    b = PolycubeBuilder(s)
+    rng = np.random.default_rng(7)
+    for t, verts in reference.blocks:
+        b.select_vertices(list(rng.permutation(verts)), "replace")
+        b.add_block()
+    assert b.counts() == reference.counts() and b.problems() == []
+    mesh = core.improve(core.generate(s, b.structure(), level=2), s)
+    assert core.quality_report(mesh)["hex"]["inverted"] == 0
+
+
+def test_inverted_overlapping_and_shared_faces_are_listed():
+    V, hexa = unit_cube()
+    b = PolycubeBuilder(structure=core.Mesh(V, np.array([hexa], np.int32),
+                                            np.array([core.HEX], np.int32),
+                                            np.ones(1, np.int32)))
+    assert [p.kind for p in b.problems()] == ["no_boundary"]
+    b.blocks = [(core.HEX, tuple(hexa[4:] + hexa[:4]))]  # top and bottom swapped
+    b._problems = None
+    assert "inverted" in [p.kind for p in b.problems()]
+    b.blocks = [(core.HEX, tuple(hexa))]
+    shifted = [b.add_vertex(b.points[v] + (0.5, 0.0, 0.0)) for v in hexa]
+    b.add_block(shifted)
+    overlap = [p for p in b.problems() if p.kind == "overlap"]
+    assert len(overlap) == 1 and overlap[0].blocks == [0, 1]
+    b.undo()
+    assert [p.kind for p in b.problems()] == ["no_boundary"] + ["unused_vertex"] * 8
+
+
+def test_interior_vertices_added_moved_deleted():
+    b = PolycubeBuilder(core.read_surface(PATCHES))
+    c = b.add_vertex_at_centroid([0, 1, 2])
+    assert c == 18 and not b.is_corner(c)
+    np.testing.assert_allclose(b.points[c], b.points[[0, 1, 2]].mean(axis=0))
+    assert b.problems()[-1].kind == "unused_vertex"
+    b.move_vertex(c, (1.0, 2.0, 3.0))
+    np.testing.assert_allclose(b.points[c], (1.0, 2.0, 3.0))
+    with pytest.raises(ValueError, match="corner"):
+        b.move_vertex(0, (0, 0, 0))
+    with pytest.raises(ValueError, match="corner"):
+        b.delete_vertex(0)
+    b.delete_vertex(c)
+    assert b.vertex_count == 18
+    assert b.undo() and b.vertex_count == 19
+    with pytest.raises(ValueError, match="pick the vertices"):
+        b.add_vertex_at_centroid()
+
+
+def test_structure_file_round_trip(tmp_path):
+    b = PolycubeBuilder(core.read_surface(PATCHES))
+    b.import_structure(STRUCTURE)
+    out = str(tmp_path / "out.k")
+    b.export_structure(out)
+    again = PolycubeBuilder(core.read_surface(PATCHES))
+    again.import_structure(out)
+    assert again.blocks == b.blocks and again.problems() == []
+
+
+def test_box_of_eight_blocks_needs_its_centre_vertex(doc):
+    """A 2 x 2 x 2 box: every face split in four by its CAD faces; the eight hex blocks share one
+    interior vertex, added at the centroid of two opposite corners."""
+    import Part
+    boxes = [Part.makeBox(5, 5, 5, FreeCAD.Vector(5 * i, 5 * j, 5 * k))
+             for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+    part = doc.addObject("Part::Feature", "Box8")
+    part.Shape = boxes[0].fuse(boxes[1:])
+    surf = make.make_surface(doc, source=part, size=1.5)
+    seg = make.make_segmentation(doc, surf, method="Surface patches")
+    api.recompute_document(doc, [surf, seg])
+    assert seg.PatchCount == 24 and list(seg.Issues) == []
+    s = segmentation.get_surface(seg)
+    b = PolycubeBuilder(s)
+    assert b.corner_count == 26
+
+    def at(p):
+        v, d = b.nearest_vertex(p)
+        assert d < 1e-6
+        return v
+
+    centre = b.add_vertex_at_centroid([at((0, 0, 0)), at((10, 10, 10))])
+    np.testing.assert_allclose(b.points[centre], (5, 5, 5))
+    for i in (0, 1):
+        for j in (0, 1):
+            for k in (0, 1):
+                b.add_block([at((5 * (i + a), 5 * (j + c), 5 * (k + d)))
+                             for a in (0, 1) for c in (0, 1) for d in (0, 1)])
+    assert b.counts()["hex"] == 8 and b.problems() == []
+    assert sum(centre in verts for _, verts in b.blocks) == 8
+    mesh = core.improve(core.generate(s, b.structure(), level=1), s)
+    assert mesh.count(core.HEX) == 64 and core.quality_report(mesh)["hex"]["inverted"] == 0
+
+
+@pytest.mark.skipif(not os.path.isfile(ROCKERARM_STRUCTURE),
+                    reason="paper data missing: {}".format(ROCKERARM_STRUCTURE))
+def test_rockerarm_structure_loads_with_no_problem():
+    b = PolycubeBuilder(core.read_surface(ROCKERARM_PATCHES))
+    assert b.corner_count == 141
+    assert b.import_structure(ROCKERARM_STRUCTURE) == 12
+    assert b.counts() == {"hex": 60, "prism": 11, "tet": 2}
+    assert b.problems() == []
