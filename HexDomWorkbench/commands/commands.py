@@ -326,9 +326,71 @@ class _ImproveQuality(CommandManager):
         return new
 
 
+def _of_type(objs, type_name):
+    return [o for o in objs if getattr(getattr(o, "Proxy", None), "Type", None) == type_name]
+
+
+class _EditPatches(CommandManager):
+    menutext = "Edit patches..."
+    tooltip = ("Opens the Edit Patches panel on the selected HexDom Segmentation: pick facets, "
+               "assign them to a patch, a new patch or an orientation, merge and split patches, "
+               "with the polycube problems listed live")
+
+    def IsActive(self):
+        return (FreeCAD.ActiveDocument is not None and not FreeCADGui.Control.activeDialog()
+                and manager.selected_of_type("HexDom::Segmentation") is not None)
+
+    def Activated(self):
+        seg = manager.selected_of_type("HexDom::Segmentation")
+        if seg is not None:
+            self.edit(seg)
+
+    def edit(self, segmentation):
+        """Opens the panel on ``segmentation`` (as a double-click does); True when it opened."""
+        FreeCADGui.doCommand("Gui.getDocument({!r}).setEdit({!r}, 0)".format(
+            segmentation.Document.Name, segmentation.Name))
+        return FreeCADGui.Control.activeDialog()
+
+
+class _BuildPolycube(CommandManager):
+    menutext = "Build polycube..."
+    tooltip = ("Opens the Build Polycube panel: blocks (hex, prism, tet) over the corners of the "
+               "selected HexDom Segmentation's patches, or edits the selected HexDom Polycube")
+
+    def IsActive(self):
+        if FreeCAD.ActiveDocument is None or FreeCADGui.Control.activeDialog():
+            return False
+        sel = FreeCADGui.Selection.getSelection()
+        segs = _of_type(sel, "HexDom::Segmentation")
+        polys = _of_type(sel, "HexDom::Polycube")
+        return len(segs) <= 1 and len(polys) <= 1 and len(segs) + len(polys) == len(sel) > 0
+
+    def Activated(self):
+        sel = FreeCADGui.Selection.getSelection()
+        segs = _of_type(sel, "HexDom::Segmentation")
+        polys = _of_type(sel, "HexDom::Polycube")
+        self.build(segs[0] if segs else None, polys[0] if polys else None)
+
+    def build(self, segmentation=None, polycube=None):
+        """Opens the panel: on ``polycube`` (against ``segmentation``, else the one found), or
+        for a new Polycube over ``segmentation``. True when it opened."""
+        from ..viewproviders.view_base import open_task_panel
+        if polycube is not None:
+            polycube.ViewObject.Proxy.edit_segmentation = segmentation
+            FreeCADGui.doCommand("Gui.getDocument({!r}).setEdit({!r}, 0)".format(
+                polycube.Document.Name, polycube.Name))
+            return FreeCADGui.Control.activeDialog()
+        if segmentation is None:
+            return False
+        from ..taskpanels import task_polycube
+        return open_task_panel(lambda: task_polycube._TaskPanel(None, segmentation=segmentation),
+                               "Build polycube")
+
+
 COMMANDS = [_ImportMesh(), _QualityReport(), _ExportMesh(), _AddToAnalysis()]
-PIPELINE_COMMANDS = [_Tessellate(), _Segment(), _ImportPatches(), _ImportStructure(),
-                     _GenerateMesh(), _ImproveQuality(), _ExportStructure()]
+PIPELINE_COMMANDS = [_Tessellate(), _Segment(), _ImportPatches(), _EditPatches(),
+                     _ImportStructure(), _BuildPolycube(), _GenerateMesh(), _ImproveQuality(),
+                     _ExportStructure()]
 TOOLBAR = [c.command_name for c in COMMANDS]
 PIPELINE_TOOLBAR = [c.command_name for c in PIPELINE_COMMANDS]
 MENU = PIPELINE_TOOLBAR + ["Separator"] + TOOLBAR

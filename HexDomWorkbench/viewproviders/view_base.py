@@ -41,3 +41,35 @@ class VPBaseHexDomObject:
 
     def loads(self, state):
         return None
+
+
+def open_task_panel(make_panel, title):
+    """Shows the task panel ``make_panel()`` builds; False (and a message) when another task
+    dialog is open or the panel cannot be built."""
+    import FreeCAD
+    import FreeCADGui
+    from PySide import QtGui
+
+    from .. import core
+    if FreeCADGui.Control.activeDialog():
+        FreeCAD.Console.PrintWarning("HexDom: close the open task dialog first\n")
+        return False
+    try:
+        panel = make_panel()
+    except (core.Error, ValueError) as e:
+        FreeCAD.Console.PrintError("HexDom: {}: {}\n".format(title, e))
+        QtGui.QMessageBox.critical(FreeCADGui.getMainWindow(), "HexDom: " + title, str(e))
+        return False
+    FreeCADGui.Control.showDialog(panel)
+    return True
+
+
+def edit_on_double_click(vobj):
+    """Opens the object's task panel (setEdit), unless another task dialog is open."""
+    import FreeCAD
+    import FreeCADGui
+    if FreeCADGui.Control.activeDialog():
+        FreeCAD.Console.PrintWarning("HexDom: close the open task dialog first\n")
+        return True
+    FreeCADGui.getDocument(vobj.Object.Document.Name).setEdit(vobj.Object.Name, 0)
+    return True

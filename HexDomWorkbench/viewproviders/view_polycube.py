@@ -1,10 +1,11 @@
 """View provider of HexDom Polycube: the block wireframe over semi-transparent boundary faces,
-coloured by block type (hex blue, prism orange, tet magenta, as in the HexDom Mesh view)."""
+coloured by block type (hex blue, prism orange, tet magenta, as in the HexDom Mesh view).
+Double-click (or HexDom_BuildPolycube) opens the Build Polycube task panel."""
 
 import numpy as np
 
 from . import coin_mesh
-from .view_base import VPBaseHexDomObject
+from .view_base import VPBaseHexDomObject, edit_on_double_click, open_task_panel
 
 HEX, WEDGE, TET = 12, 13, 10
 # Faces of each block type in VTK node order, outward.
@@ -72,3 +73,21 @@ class VPPolycube(coin_mesh.VPCoinBase, VPBaseHexDomObject):
         scene.set(V, faces, material, colors, edges, edges, transparency=alpha)
         scene.set_line_width(getattr(vobj, "LineWidth", 2.0))
         return True
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        from ..taskpanels import task_polycube
+        segmentation = getattr(self, "edit_segmentation", None)
+        self.edit_segmentation = None
+        return open_task_panel(
+            lambda: task_polycube._TaskPanel(vobj.Object, segmentation=segmentation),
+            "Build polycube")
+
+    def unsetEdit(self, vobj, mode=0):
+        import FreeCADGui
+        FreeCADGui.Control.closeDialog()
+        return True
+
+    def doubleClicked(self, vobj):
+        return edit_on_double_click(vobj)

@@ -1,11 +1,12 @@
 """View provider of HexDom Segmentation: the surface coloured by polycube label (+X red, -X cyan,
 +Y green, -Y magenta, +Z blue, -Z yellow; patches of one label in shades of its colour) or by
-patch, with the patch boundaries drawn as lines."""
+patch, with the patch boundaries drawn as lines. Double-click (or HexDom_EditPatches) opens the
+Edit Patches task panel."""
 
 import numpy as np
 
 from . import coin_mesh
-from .view_base import VPBaseHexDomObject
+from .view_base import VPBaseHexDomObject, edit_on_double_click, open_task_panel
 
 COLOR_BY = ["Label", "Patch", "Plain"]
 
@@ -48,3 +49,17 @@ class VPSegmentation(coin_mesh.VPCoinBase, VPBaseHexDomObject):
     def claimChildren(self):
         surface = getattr(getattr(self, "Object", None), "Surface", None)
         return [surface] if surface is not None else []
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        from ..taskpanels import task_segmentation
+        return open_task_panel(lambda: task_segmentation._TaskPanel(vobj.Object), "Edit patches")
+
+    def unsetEdit(self, vobj, mode=0):
+        import FreeCADGui
+        FreeCADGui.Control.closeDialog()
+        return True
+
+    def doubleClicked(self, vobj):
+        return edit_on_double_click(vobj)
