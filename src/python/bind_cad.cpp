@@ -119,6 +119,19 @@ void bind_cad(py::module_& m) {
         "Nearest points of the trimmed face Face{face_id} (1-based) to `points` (N x 3). Returns\n"
         "(points N x 3, distance N, uv N x 2). `source` is a CAD file path or BREP text.");
 
+  m.def("project_to_edge",
+        [](const std::string& source, int edge_id, const Eigen::MatrixXd& points, int solid) {
+          cad::Projection r;
+          {
+            py::gil_scoped_release nogil;
+            r = cad::project_to_edge(read_source(source, solid), edge_id, points);
+          }
+          return py::make_tuple(r.points, r.distance, Eigen::VectorXd(r.param.col(0)));
+        },
+        py::arg("source"), py::arg("edge_id"), py::arg("points"), py::arg("solid") = 0,
+        "Nearest points of the edge Edge{edge_id} (1-based) to `points` (N x 3), ends included. Returns\n"
+        "(points N x 3, distance N, curve parameter N).");
+
   m.def("project_to_shape",
         [](const std::string& source, const Eigen::MatrixXd& points, int solid) {
           cad::Projection r;

@@ -304,6 +304,23 @@ def test_project_to_face_on_a_cylinder(hx):
         hx.project_to_face(path, 99, P)
 
 
+def test_project_to_edge_clamps_to_the_ends(hx):
+    path = os.fspath(step_part("s11o_cube_cyl.stp"))
+    info = hx.cad_info(path)
+    lo, hi = np.array(info["bbox_min"]), np.array(info["bbox_max"])
+    far = hi + 10 * (hi - lo)  # beyond every edge's end
+    for e in range(1, info["edges"] + 1):
+        Q, dist, t = hx.project_to_edge(path, e, far[None, :])
+        # The nearest point of an edge to a far point is on the B-rep, and is one of the CAD vertices
+        # or inside the bounding box.
+        assert (Q[0] >= lo - 1e-6).all() and (Q[0] <= hi + 1e-6).all()
+        assert dist[0] == pytest.approx(np.linalg.norm(Q[0] - far))
+        _, on, _ = hx.project_to_shape(path, Q)
+        assert on[0] < 1e-7
+    with pytest.raises(hx.InputError, match="Edge999"):
+        hx.project_to_edge(path, 999, far[None, :])
+
+
 # ---- errors -----------------------------------------------------------------------------------------
 
 def test_missing_file_is_an_input_error(hx, tmp_path):
@@ -316,8 +333,8 @@ def test_missing_file_is_an_input_error(hx, tmp_path):
 
 def test_corrupt_step_is_an_input_error(hx, tmp_path):
     bad = tmp_path / "corrupt.step"
-    bad.write_text("ISO-10303-21;\nHEADER;\n#1 = this is ( not STEP\n")
-    with pytest.raises(hx.InputError, match="corrupt.step"):
+    bad.write_text("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1 = CARTESIAN_POINT('',(0.,0.,0.);\nENDSEC;\n")
+    with pytest.raises(hx.InputError, match=r"corrupt.step:5: Incorrect syntax"):
         hx.tessellate_file(os.fspath(bad))
 
 

@@ -27,6 +27,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -211,6 +212,19 @@ std::string reader_failure(const std::string& kind, const QuietOcct& quiet) {
   return "not a readable " + kind + " file" + (m.empty() ? "" : " (" + m + ")");
 }
 
+/// The STEP parser's "**** ERR StepFile : ... Line 7: Incorrect syntax: ... ****" as
+/// "path:6: Incorrect syntax: ..."; any other failure as "path: not a readable STEP file (...)".
+InputError step_failure(const std::string& path, const QuietOcct& quiet) {
+  const std::string m = trim_copy(quiet.first());
+  std::smatch match;
+  static const std::regex line_re(R"(Line (\d+):\s*(.*?)[\s*]*$)");
+  // OCCT 7.6's StepFile lexer counts one line too many ("Line 2" for a bad first line, "Line 85"
+  // for the end of an 84-line file).
+  if (std::regex_search(m, match, line_re))
+    return InputError(path, std::max(1L, std::stol(match[1]) - 1), match[2].str());
+  return InputError(path, 0, reader_failure("STEP", quiet));
+}
+
 }  // namespace
 
 bool is_brep_string(const std::string& text) {
@@ -233,7 +247,7 @@ Shape read_shape(const std::string& path, const ReadOptions& options) {
     QuietOcct quiet;
     if (step) {
       STEPControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw InputError(path, 0, reader_failure("STEP", quiet));
+      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw step_failure(path, quiet);
       if (reader.TransferRoots() == 0 || reader.NbShapes() == 0)
         throw InputError(path, 0, "STEP file holds no shape that can be transferred" +
                                       (quiet.first().empty() ? std::string() : " (" + trim_copy(quiet.first()) + ")"));

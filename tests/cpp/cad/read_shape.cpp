@@ -105,10 +105,18 @@ TEST(ReadShape, MissingFileIsAnInputErrorNamingThePath) {
   expect_error<InputError>([&] { cad::read_shape(path); }, {path, "cannot open"});
 }
 
-TEST(ReadShape, CorruptStepIsAnInputError) {
+TEST(ReadShape, CorruptStepIsAnInputErrorNamingTheLine) {
   const std::string path = test::temp_path("corrupt.step");
-  test::write_text(path, "ISO-10303-21;\nHEADER;\nthis is not STEP at all (((\nENDSEC;\n");
-  expect_error<InputError>([&] { cad::read_shape(path); }, {path});
+  test::write_text(path, "ISO-10303-21;\nHEADER;\nFILE_NAME('x');\nENDSEC;\nDATA;\n#1 = CARTESIAN_POINT('',(0.,0.,0.);\n"
+                         "ENDSEC;\nEND-ISO-10303-21;\n");
+  try {
+    cad::read_shape(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.path(), path);
+    EXPECT_EQ(e.line(), 6) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path + ":6: Incorrect syntax"), std::string::npos) << e.what();
+  }
   test::write_text(path, "");
   expect_error<InputError>([&] { cad::read_shape(path); }, {path});
 }
