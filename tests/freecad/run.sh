@@ -73,7 +73,8 @@ for script in "${GUI_SCRIPTS[@]}"; do
   elif ! grep -aq "^GUI TEST PASSED" "$ARTIFACTS/$name.log"; then
     record "GUI $name" "FAILED (no pass line, log $ARTIFACTS/$name.log)"
   else
-    record "GUI $name" "passed"
+    skipped=$(grep -a "^SKIP " "$ARTIFACTS/$name.log" | sed 's/^SKIP /skipped: /' | paste -sd ';' - || true)
+    record "GUI $name" "passed${skipped:+ ($skipped)}"
   fi
 done
 
