@@ -242,10 +242,14 @@ def freecad_parts(FreeCAD, Part):
                                           V(0, 20, 0), V(0, 0, 0)]))
     bracket = profile.extrude(V(0, 0, 15))
     cylinder = Part.makeCylinder(5, 12)
-    return {"box": box, "box_with_hole": hole, "l_bracket": bracket, "cylinder": cylinder}
+    # A document object's Placement reaches OCCT as a TopLoc_Location on the shape.
+    placed = hole.copy()
+    placed.Placement = FreeCAD.Placement(V(100, -50, 30), FreeCAD.Rotation(V(1, 2, 3), 37))
+    return {"box": box, "box_with_hole": hole, "l_bracket": bracket, "cylinder": cylinder,
+            "placed_box_with_hole": placed}
 
 
-@pytest.mark.parametrize("name", ["box", "box_with_hole", "l_bracket", "cylinder"])
+@pytest.mark.parametrize("name", ["box", "box_with_hole", "l_bracket", "cylinder", "placed_box_with_hole"])
 def test_freecad_part_hand_over(hx, freecad, name):
     FreeCAD, Part = freecad
     shape = freecad_parts(FreeCAD, Part)[name]
