@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include "hexdom/cad/remesh_surface.h"
@@ -44,11 +45,10 @@ gp_Pnt pnt(const Eigen::Vector3d& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
 /// The B-rep as RemeshGeometry: projections onto faces and edge curves, and the size field.
 class OcctGeometry : public detail::RemeshGeometry {
  public:
-  OcctGeometry(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+  OcctGeometry(const TopTools_IndexedMapOfShape& faces,
                const TopTools_IndexedMapOfShape& edges, const TopTools_IndexedMapOfShape& vertices,
                double max_size, double deflection, double angle, double min_size)
       : max_size_(max_size), deflection_(deflection), angle_(angle), min_size_(min_size) {
-    (void)shape;
     for (int i = 1; i <= faces.Extent(); ++i) {
       FaceData fd;
       fd.face = TopoDS::Face(faces(i));
@@ -361,8 +361,15 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
     TopExp::MapShapes(work, TopAbs_FACE, faces);
     TopExp::MapShapes(work, TopAbs_EDGE, edges);
     TopExp::MapShapes(work, TopAbs_VERTEX, vertices);
-    if (faces.Extent() != impl.faces.Extent())
-      throw MeshingError(source + ": copying the solid changed its number of faces");
+    // The copy's faces in the original's numbering (FreeCAD's FaceN), without relying on the copy
+    // keeping the order.
+    std::vector<int> original_face(faces.Extent(), -1);
+    for (int i = 1; i <= impl.faces.Extent(); ++i) {
+      const int w = faces.FindIndex(copier.ModifiedShape(impl.faces(i)));
+      if (w < 1 || original_face[w - 1] >= 0)
+        throw MeshingError(source + ": copying the solid lost track of Face" + std::to_string(i));
+      original_face[w - 1] = i;
+    }
 
     IMeshTools_Parameters mp;
     mp.Deflection = deflection;
@@ -501,7 +508,7 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
       options.log(0, "BRepMesh start: " + std::to_string(F.size()) + " triangles, " + std::to_string(V.size()) +
                          " vertices (" + std::to_string(dropped) + " degenerate dropped)");
 
-    OcctGeometry geometry(work, faces, edges, vertices, size, deflection, angle, min_size);
+    OcctGeometry geometry(faces, edges, vertices, size, deflection, angle, min_size);
     detail::RemeshParams rp;
     rp.max_size = size;
     rp.iterations = options.iterations;
@@ -515,7 +522,8 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
     mesh::SurfaceMesh out;
     Eigen::VectorXi face;
     remesher.extract(out.V, out.F, face);
-    out.patch = face.array() + 1;
+    out.patch.resize(face.size());
+    for (Eigen::Index t = 0; t < face.size(); ++t) out.patch(t) = original_face[face(t)];
     const std::string problem = closed_manifold_problem(out.F);
     if (!problem.empty()) throw MeshingError(source + ": the tessellation is not closed: " + problem);
     if (signed_volume(out.V, out.F) < 0) {
