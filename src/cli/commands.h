@@ -12,6 +12,7 @@ void add_generate(CLI::App& app);
 void add_improve(CLI::App& app);
 void add_segmentation_commands(CLI::App& app);  // segment, check, polycube
 void add_cad_commands(CLI::App& app);           // tessellate
+void add_auto_commands(CLI::App& app);          // autopolycube, mesh
 
 /// Prints progress and warnings from the core's log callback on stderr.
 void print_log(int level, const std::string& message);

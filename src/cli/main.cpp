@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   hexdom::cli::add_improve(app);
   hexdom::cli::add_segmentation_commands(app);
   hexdom::cli::add_cad_commands(app);
+  hexdom::cli::add_auto_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

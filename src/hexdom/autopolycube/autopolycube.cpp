@@ -1,0 +1,133 @@
+#include "hexdom/autopolycube/autopolycube.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/cut_along_grid.h"
+#include "hexdom/autopolycube/grid_structure.h"
+#include "hexdom/autopolycube/plane_groups.h"
+#include "hexdom/autopolycube/polycube_grid.h"
+#include "hexdom/autopolycube/polycube_map.h"
+#include "hexdom/autopolycube/repair_labels.h"
+#include "hexdom/autopolycube/split_chords.h"
+#include "hexdom/segmentation/axis_labels.h"
+
+namespace hexdom::autopolycube {
+
+namespace {
+// The surface without vertices that no triangle uses (.k files may list such nodes).
+mesh::SurfaceMesh drop_unused_vertices(const mesh::SurfaceMesh& s) {
+  std::vector<int> id(s.V.rows(), -1);
+  int n = 0;
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (id[s.F(f, k)] < 0) id[s.F(f, k)] = n++;
+  if (n == s.V.rows()) return s;
+  mesh::SurfaceMesh out;
+  out.V.resize(n, 3);
+  for (int v = 0; v < s.V.rows(); ++v)
+    if (id[v] >= 0) out.V.row(id[v]) = s.V.row(v);
+  out.F = s.F;
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) out.F(f, k) = id[s.F(f, k)];
+  out.patch = s.patch;
+  return out;
+}
+}  // namespace
+
+AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
+  segmentation::check_surface(labels);
+  if (opt.level < 0 || opt.level > 6) throw GeometryError("level " + std::to_string(opt.level) + " is outside 0..6");
+  if (opt.size < 0) throw GeometryError("the element size must not be negative");
+  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  const double diag = (labels.V.colwise().maxCoeff() - labels.V.colwise().minCoeff()).norm();
+  const double size = opt.size > 0 ? opt.size : diag / 30.0;
+  AutoPolycube local;
+  AutoPolycube& r = progress ? *progress : local;
+  r = AutoPolycube{};
+  r.cell = size * std::ldexp(1.0, opt.level);
+
+  mesh::SurfaceMesh s = drop_unused_vertices(labels);
+  r.labels = s;
+  for (int attempt = 0;; ++attempt) {
+    RepairOptions ro;
+    ro.max_relabels = std::max(0, opt.max_relabels - r.relabelled);
+    ro.log = opt.log;
+    RepairResult rep = repair_labels(s, ro);
+    s.patch = rep.label;
+    r.labels = s;
+    r.relabelled += rep.relabelled;
+    if (!rep.remaining.empty()) {
+      std::string m = std::to_string(rep.remaining.size()) + " problem" + (rep.remaining.size() == 1 ? "" : "s") +
+                      " of the labelling remain after relabelling " + std::to_string(r.relabelled) + " charts:";
+      for (size_t i = 0; i < rep.remaining.size() && i < 5; ++i) m += "\n  " + rep.remaining[i].message;
+      throw GeometryError(m);
+    }
+    const ChartGraph g0 = chart_graph(s);
+    int chords = 0;
+    s = split_chords(s, g0, &chords);
+    r.chords += chords;
+    r.labels = s;
+    const ChartGraph g = chart_graph(s);
+    const PlaneGroups pg = plane_groups(s, g);
+    r.charts = g.num_charts();
+    r.planes = pg.num_groups();
+
+    PolycubeMapOptions mo;
+    mo.cell = r.cell;
+    mo.log = opt.log;
+    const PolycubeMap map = polycube_map(s, g, pg, mo);
+    r.polycube = polycube_surface(s, map);
+    r.pushed = map.pushed;
+
+    // Charts to blame: folds of the map first, then mismatches of the grid.
+    std::vector<int> bad;
+    std::string why;
+    int folds = 0;
+    for (int c = 0; c < g.num_charts(); ++c)
+      if (map.flipped[c] > 0) { bad.push_back(c); folds += map.flipped[c]; }
+    PolycubeGrid grid;
+    if (bad.empty()) {
+      grid = polycube_grid(s, g, pg, map);
+      bad = grid.bad_charts;
+      why = grid.problem;
+    } else {
+      why = "the polycube map folds " + std::to_string(folds) + " triangles";
+    }
+    if (!bad.empty()) {
+      std::sort(bad.begin(), bad.end(), [&](int a, int b) { return g.area[a] < g.area[b]; });
+      std::string names;
+      for (size_t i = 0; i < bad.size() && i < 6; ++i) names += (i ? ", " : "") + chart_name(g, bad[i]);
+      if (bad.size() > 6) names += ", ...";
+      double total = 0;
+      for (double x : g.area) total += x;
+      if (attempt + 1 >= opt.max_attempts || r.relabelled >= opt.max_relabels || g.area[bad.front()] > opt.max_relabel_area * total)
+        throw GeometryError(why + "; charts: " + names + " (after relabelling " + std::to_string(r.relabelled) + " charts)");
+      log(why + ": relabelling " + chart_name(g, bad.front()));
+      s.patch = relabel_chart(s, g, bad.front());
+      ++r.relabelled;
+      continue;
+    }
+    r.squares = static_cast<int>(grid.squares.size());
+    r.blocks = static_cast<int>(grid.cells.size());
+    log("polycube: " + std::to_string(r.charts) + " charts, " + std::to_string(r.planes) + " planes, " +
+        std::to_string(r.squares) + " boundary squares, " + std::to_string(r.blocks) + " cells of " + std::to_string(r.cell));
+
+    GridCut cut = cut_along_grid(s, g, map, grid);
+    GridStructureOptions so;
+    so.untangle_rounds = opt.untangle_rounds;
+    so.log = opt.log;
+    GridStructure st = grid_structure(grid, cut.grid_vertex, cut.patches.V, so);
+    r.patches = std::move(cut.patches);
+    r.structure = std::move(st.structure);
+    r.boundary_vertices = st.boundary_vertices;
+    r.interior_vertices = st.interior_vertices;
+    r.min_block_quality = st.min_quality;
+    r.inverted_blocks = st.inverted;
+    break;
+  }
+  return progress ? *progress : local;
+}
+
+}  // namespace hexdom::autopolycube

@@ -1,0 +1,55 @@
+// Automatic polycube structure from a labelled surface (issue 9): the polycube map of the charts,
+// its planes on a grid of spacing h, one hex block per grid cell inside, and the surface re-split
+// along the grid lines so that `hexdom generate` takes the pair unchanged.
+//
+// Method: charts (connected regions of one label) are flattened by a least-squares deformation
+// that keeps the surface's gradients (one sparse solve per axis, plane offsets free), the planes are
+// put on the grid so that every chart boundary curve keeps its direction and a length of at least
+// one cell, curves are straightened between their corners and chart interiors mapped harmonically
+// into their plane polygons. The cells that polygons enclose are the blocks; the polycube's surface
+// is cut along the grid lines (cut vertices take the input position at the same barycentric
+// coordinates), and block vertices on the surface sit at those grid points' input positions.
+// Labellings that cannot be a polycube (opposite labels side by side, islands, pinches, faces with
+// fewer than 4 corners, zero-length edges, folds of the map) are repaired by joining the smallest
+// offending chart to a neighbour.
+#pragma once
+
+#include "hexdom/common/error.h"
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::autopolycube {
+
+struct AutoPolycubeOptions {
+  /// Target element size H (model units); 0: the bounding-box diagonal / 30.
+  double size = 0;
+  /// Subdivision level s that `generate` will use: blocks are grid cells of spacing h = H * 2^s.
+  int level = 1;
+  int max_relabels = 200;  ///< charts the label repair may relabel
+  int max_attempts = 20;   ///< relabel-and-retry rounds when the map folds or the cells do not match
+  /// A chart blamed for a fold or a mismatch is relabelled only when its area is at most this share
+  /// of the surface's; otherwise autopolycube gives up and names it.
+  double max_relabel_area = 0.03;
+  int untangle_rounds = 50;  ///< rounds of local moves of interior block vertices
+  LogCallback log;
+};
+
+struct AutoPolycube {
+  mesh::Mesh structure;        ///< hex blocks over the grid cells (VTK order), region = block number
+  mesh::SurfaceMesh patches;   ///< input geometry re-split along the grid; patch = boundary square
+  mesh::SurfaceMesh labels;    ///< the repaired labels on the surface the map used (chords split)
+  mesh::SurfaceMesh polycube;  ///< the polycube (labels' triangles at their polycube positions)
+  double cell = 0;             ///< h
+  int charts = 0, relabelled = 0, chords = 0, planes = 0, pushed = 0;
+  int squares = 0, blocks = 0, boundary_vertices = 0, interior_vertices = 0;
+  double min_block_quality = 0;  ///< worst block scaled Jacobian after untangling
+  int inverted_blocks = 0;
+};
+
+/// Builds the structure and the patch surface from `labels` (closed surface, label 1..6 per
+/// triangle). When `progress` is given it holds, also when this throws, the repaired labels and
+/// the last polycube computed, for inspection. Throws GeometryError naming the charts or corners
+/// when the labelling cannot be repaired, MeshingError when a solve fails.
+AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& options = {},
+                          AutoPolycube* progress = nullptr);
+
+}  // namespace hexdom::autopolycube

@@ -1,0 +1,150 @@
+#include "hexdom/autopolycube/grid_structure.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "hexdom/quality/metrics.h"
+
+namespace hexdom::autopolycube {
+
+namespace {
+constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+
+double block_quality(const mesh::Mesh& T, int b) {
+  return quality::scaled_jacobian(mesh::CellType::Hex, quality::cell_points(T, b));
+}
+double quality_value(double sj) { return std::isfinite(sj) && sj < 2 ? sj : -1.0; }
+}  // namespace
+
+GridStructure grid_structure(const PolycubeGrid& grid, const std::map<std::array<int, 3>, int>& grid_vertex,
+                             const Eigen::MatrixXd& V, const GridStructureOptions& opt) {
+  GridStructure out;
+  std::map<std::array<int, 3>, int> index;
+  std::set<std::array<int, 3>> on_surface;
+  for (const auto& q : grid.squares) {
+    const int b = (q.axis + 1) % 3, c = (q.axis + 2) % 3;
+    for (int di = 0; di < 2; ++di)
+      for (int dj = 0; dj < 2; ++dj) {
+        std::array<int, 3> p{};
+        p[q.axis] = q.plane;
+        p[b] = q.i + di;
+        p[c] = q.j + dj;
+        on_surface.insert(p);
+      }
+  }
+  mesh::MeshBuilder builder;
+  for (size_t k = 0; k < grid.cells.size(); ++k) {
+    int nodes[8];
+    for (int i = 0; i < 8; ++i) {
+      const std::array<int, 3> p{grid.cells[k][0] + kCorner[i][0], grid.cells[k][1] + kCorner[i][1], grid.cells[k][2] + kCorner[i][2]};
+      auto [it, fresh] = index.emplace(p, static_cast<int>(out.grid.size()));
+      if (fresh) out.grid.push_back(p);
+      nodes[i] = it->second;
+    }
+    builder.add(mesh::CellType::Hex, nodes, static_cast<int>(k) + 1);
+  }
+  const int n = static_cast<int>(out.grid.size());
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 3);
+  std::vector<char> fixed(n, 0);
+  for (int v = 0; v < n; ++v) {
+    if (!on_surface.count(out.grid[v])) continue;
+    auto it = grid_vertex.find(out.grid[v]);
+    if (it == grid_vertex.end())
+      throw MeshingError("grid point (" + std::to_string(out.grid[v][0]) + ", " + std::to_string(out.grid[v][1]) + ", " +
+                         std::to_string(out.grid[v][2]) + ") on the polycube's surface has no surface vertex");
+    X.row(v) = V.row(it->second);
+    fixed[v] = 1;
+    ++out.boundary_vertices;
+  }
+  out.interior_vertices = n - out.boundary_vertices;
+
+  // Grid-graph Laplace equation for the interior vertices.
+  std::vector<std::set<int>> nbr(n);
+  for (size_t k = 0; k < grid.cells.size(); ++k) {
+    static const int E[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    int nodes[8];
+    for (int i = 0; i < 8; ++i)
+      nodes[i] = index.at({grid.cells[k][0] + kCorner[i][0], grid.cells[k][1] + kCorner[i][1], grid.cells[k][2] + kCorner[i][2]});
+    for (const auto& e : E) { nbr[nodes[e[0]]].insert(nodes[e[1]]); nbr[nodes[e[1]]].insert(nodes[e[0]]); }
+  }
+  std::vector<int> slot(n, -1);
+  int m = 0;
+  for (int v = 0; v < n; ++v)
+    if (!fixed[v]) slot[v] = m++;
+  if (m > 0) {
+    std::vector<Eigen::Triplet<double>> t;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 3);
+    for (int v = 0; v < n; ++v) {
+      if (fixed[v]) continue;
+      t.emplace_back(slot[v], slot[v], static_cast<double>(nbr[v].size()));
+      for (int u : nbr[v]) {
+        if (fixed[u]) rhs.row(slot[v]) += X.row(u);
+        else t.emplace_back(slot[v], slot[u], -1.0);
+      }
+    }
+    Eigen::SparseMatrix<double> A(m, m);
+    A.setFromTriplets(t.begin(), t.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+    if (solver.info() != Eigen::Success) throw MeshingError("grid structure: the Laplace system is singular");
+    const Eigen::MatrixXd x = solver.solve(rhs);
+    for (int v = 0; v < n; ++v)
+      if (!fixed[v]) X.row(v) = x.row(slot[v]);
+  }
+  out.structure = builder.finish(X);
+  mesh::Mesh& T = out.structure;
+
+  // Untangling: move interior vertices of poor blocks to raise the worst scaled Jacobian around them.
+  std::vector<std::vector<int>> blocks_of(n);
+  for (int b = 0; b < T.num_cells(); ++b)
+    for (int i = 0; i < 8; ++i) blocks_of[T.cells(b, i)].push_back(b);
+  Eigen::VectorXd q(T.num_cells());
+  for (int b = 0; b < T.num_cells(); ++b) q(b) = quality_value(block_quality(T, b));
+  out.min_quality_harmonic = T.num_cells() ? q.minCoeff() : 1.0;
+  for (int round = 0; round < opt.untangle_rounds; ++round) {
+    int moved = 0;
+    for (int v = 0; v < n; ++v) {
+      if (fixed[v]) continue;
+      double worst = 1e300;
+      for (int b : blocks_of[v]) worst = std::min(worst, q(b));
+      if (worst >= opt.target_quality) continue;
+      double len = 0;
+      for (int u : nbr[v]) len += (T.V.row(u) - T.V.row(v)).norm();
+      len /= std::max<size_t>(nbr[v].size(), 1);
+      const Eigen::RowVector3d start = T.V.row(v);
+      for (double step = 0.25 * len; step > 1e-3 * len; step *= 0.5) {
+        bool improved = true;
+        while (improved) {
+          improved = false;
+          for (int dir = 0; dir < 6; ++dir) {
+            const Eigen::RowVector3d keep = T.V.row(v);
+            T.V(v, dir / 2) += dir % 2 ? -step : step;
+            double w = 1e300;
+            for (int b : blocks_of[v]) w = std::min(w, quality_value(block_quality(T, b)));
+            if (w > worst + 1e-9) {
+              worst = w;
+              improved = true;
+            } else {
+              T.V.row(v) = keep;
+            }
+          }
+        }
+      }
+      if ((T.V.row(v) - start).norm() > 0) {
+        ++moved;
+        for (int b : blocks_of[v]) q(b) = quality_value(block_quality(T, b));
+      }
+    }
+    if (moved == 0) break;
+  }
+  out.min_quality = T.num_cells() ? q.minCoeff() : 1.0;
+  for (int b = 0; b < T.num_cells(); ++b) out.inverted += q(b) <= 0;
+  if (opt.log)
+    opt.log(0, "structure: " + std::to_string(T.num_cells()) + " blocks, " + std::to_string(out.boundary_vertices) +
+                   " boundary and " + std::to_string(out.interior_vertices) + " interior vertices; worst block scaled Jacobian " +
+                   std::to_string(out.min_quality_harmonic) + " harmonic, " + std::to_string(out.min_quality) + " untangled");
+  return out;
+}
+
+}  // namespace hexdom::autopolycube

@@ -1,0 +1,467 @@
+#include "hexdom/autopolycube/polycube_map.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <Eigen/LU>
+#include <map>
+#include <queue>
+#include <set>
+
+#include "hexdom/parametrization/harmonic_map.h"
+#include "hexdom/segmentation/axis_labels.h"
+
+namespace hexdom::autopolycube {
+
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+// Distance (grid units) within which a computed coordinate counts as lying on a grid line: vertices
+// are snapped onto the line, so that cutting along the grid never leaves slivers thinner than this.
+constexpr double kSnap = 1e-6;
+
+struct Order {  // plane group hi lies at least one cell above plane group lo
+  int lo, hi;
+};
+
+struct Edge {
+  int i, j;
+  double w;
+};
+
+// Edges of the surface with cotangent weights, clamped from below to a small positive fraction of
+// the mean so that every system below is positive definite.
+std::vector<Edge> weighted_edges(const mesh::SurfaceMesh& s) {
+  const Sparse L = parametrization::cotmatrix(s.V, s.F);
+  std::vector<Edge> e;
+  double sum = 0;
+  for (int k = 0; k < L.outerSize(); ++k)
+    for (Sparse::InnerIterator it(L, k); it; ++it)
+      if (it.row() < it.col()) {
+        e.push_back({static_cast<int>(it.row()), static_cast<int>(it.col()), it.value()});
+        sum += std::abs(it.value());
+      }
+  const double floor = 1e-3 * sum / std::max<size_t>(e.size(), 1);
+  for (auto& x : e) x.w = std::max(x.w, floor);
+  return e;
+}
+
+// Orientation of triangle f in the plane of its chart (axis a, outward sign sg): twice the signed area
+// of its projection onto the in-plane axes (a+1, a+2), times sg.
+double plane_area(const Eigen::MatrixXd& D, const Eigen::MatrixXi& F, int f, int a, int sg) {
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  const Eigen::RowVector3d p = D.row(F(f, 0)), q = D.row(F(f, 1)), r = D.row(F(f, 2));
+  return sg * ((q(b) - p(b)) * (r(c) - p(c)) - (r(b) - p(b)) * (q(c) - p(c)));
+}
+
+// Mean-value weights (Floater), one row per vertex; not symmetric.
+void mean_value_rows(const mesh::SurfaceMesh& s, const std::vector<int>& tris, std::vector<Edge>& out) {
+  for (int f : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int i = s.F(f, k), j = s.F(f, (k + 1) % 3), o = s.F(f, (k + 2) % 3);
+      const Eigen::Vector3d eij = s.V.row(j) - s.V.row(i), eio = s.V.row(o) - s.V.row(i);
+      const double ang = std::atan2(eij.cross(eio).norm(), eij.dot(eio));
+      const double t = std::tan(0.5 * ang);
+      out.push_back({i, j, t / std::max(eij.norm(), 1e-300)});
+      out.push_back({i, o, t / std::max(eio.norm(), 1e-300)});
+    }
+}
+
+// Moves interior vertices of folded triangles of one chart, each to the point of its star farthest
+// from the lines of its opposite edges (the Chebyshev centre of the star's kernel), until nothing is
+// folded or no move helps. Returns the triangles still folded.
+int untangle_chart(Eigen::MatrixXd& D, const Eigen::MatrixXi& F, const std::vector<int>& tris, const std::vector<int>& slot,
+                   int a, int sg, int rounds) {
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  std::map<int, std::vector<std::pair<int, int>>> star;  // interior vertex -> opposite edges (q, r) in order
+  std::map<int, std::vector<int>> vtris;
+  for (int f : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int v = F(f, k);
+      if (slot[v] < 0) continue;
+      star[v].push_back({F(f, (k + 1) % 3), F(f, (k + 2) % 3)});
+      vtris[v].push_back(f);
+    }
+  auto folded = [&]() {
+    std::vector<int> out;
+    for (int f : tris)
+      if (plane_area(D, F, f, a, sg) <= 0) out.push_back(f);
+    return out;
+  };
+  std::vector<int> bad = folded();
+  std::set<int> active;
+  for (int round = 0; round < rounds && !bad.empty(); ++round) {
+    // The vertices of folded triangles, then their neighbours as rounds go by.
+    for (int f : bad)
+      for (int k = 0; k < 3; ++k)
+        if (slot[F(f, k)] >= 0) active.insert(F(f, k));
+    if (round > 0 && round % 5 == 0) {
+      std::set<int> grown = active;
+      for (int v : active)
+        for (const auto& e : star[v])
+          for (int u : {e.first, e.second})
+            if (slot[u] >= 0) grown.insert(u);
+      active = std::move(grown);
+    }
+    for (int v : active) {
+      const auto& st = star[v];
+      const int n = static_cast<int>(st.size());
+      if (n < 3) continue;
+      std::vector<Eigen::Vector2d> beta(n);
+      std::vector<double> alpha(n);
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Vector2d q(D(st[k].first, b), D(st[k].first, c)), r(D(st[k].second, b), D(st[k].second, c));
+        const Eigen::Vector2d w = q - r;
+        const double L = std::max(w.norm(), 1e-300);
+        beta[k] = sg * Eigen::Vector2d(w(1), -w(0)) / L;
+        alpha[k] = sg * (q(0) * r(1) - q(1) * r(0)) / L;
+      }
+      auto worst = [&](const Eigen::Vector2d& p) {
+        double t = 1e300;
+        for (int k = 0; k < n; ++k) t = std::min(t, alpha[k] + beta[k].dot(p));
+        return t;
+      };
+      Eigen::Vector2d best(D(v, b), D(v, c));
+      double best_t = worst(best);
+      for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+          for (int k = j + 1; k < n; ++k) {
+            Eigen::Matrix3d M;
+            M << beta[i](0), beta[i](1), -1, beta[j](0), beta[j](1), -1, beta[k](0), beta[k](1), -1;
+            const Eigen::Vector3d rhs(-alpha[i], -alpha[j], -alpha[k]);
+            const Eigen::FullPivLU<Eigen::Matrix3d> lu(M);
+            if (!lu.isInvertible()) continue;
+            const Eigen::Vector3d x = lu.solve(rhs);
+            const Eigen::Vector2d p = x.head<2>();
+            const double t = worst(p);
+            if (t > best_t + 1e-12) { best_t = t; best = p; }
+          }
+      D(v, b) = best(0);
+      D(v, c) = best(1);
+    }
+    bad = folded();
+  }
+  return static_cast<int>(bad.size());
+}
+
+// Puts the plane groups of axis a on integers: least squares toward the continuous offsets (area
+// weighted) subject to x_hi - x_lo >= 1 for every order (Hildreth's method), then a push along the
+// order graph for exact feasibility and rounding (which keeps differences >= 1).
+void quantize_axis(int a, const std::vector<Order>& ord, const PlaneGroups& pg, PolycubeMap& m,
+                   const std::vector<double>& weight, double h, const ChartGraph& g) {
+  const int ng = pg.num_groups();
+  // Least squares toward the continuous offsets subject to x_hi - x_lo >= 1 (Hildreth's method).
+  std::vector<double> x(ng, 0);
+  for (int gi = 0; gi < ng; ++gi) x[gi] = (m.offset(gi) - m.origin(a)) / h;
+  const std::vector<double> target = x;
+  double wsum = 0;
+  int nga = 0;
+  for (int gi = 0; gi < ng; ++gi)
+    if (pg.axis[gi] == a) { wsum += weight[gi]; ++nga; }
+  std::vector<double> w(ng, 1.0);
+  for (int gi = 0; gi < ng; ++gi)
+    if (pg.axis[gi] == a) w[gi] = std::max(weight[gi] / std::max(wsum / std::max(nga, 1), 1e-300), 1e-3);
+  std::vector<double> lambda(ord.size(), 0);
+  for (int sweep = 0; sweep < 5000; ++sweep) {
+    double worst = 0;
+    for (size_t k = 0; k < ord.size(); ++k) {
+      const int lo = ord[k].lo, hi = ord[k].hi;
+      const double slack = x[hi] - x[lo] - 1.0;
+      worst = std::max(worst, -slack);
+      const double nl = std::max(0.0, lambda[k] - slack / (1.0 / w[hi] + 1.0 / w[lo]));
+      const double dl = nl - lambda[k];
+      lambda[k] = nl;
+      x[hi] += dl / w[hi];
+      x[lo] -= dl / w[lo];
+    }
+    if (worst < 1e-9) break;
+  }
+  // Exact feasibility: push along the order graph in topological order (a cycle is an error).
+  std::vector<std::vector<int>> succ(ng);
+  std::vector<int> indeg(ng, 0);
+  for (const auto& o : ord) { succ[o.lo].push_back(o.hi); ++indeg[o.hi]; }
+  std::queue<int> ready;
+  for (int gi = 0; gi < ng; ++gi)
+    if (pg.axis[gi] == a && indeg[gi] == 0) ready.push(gi);
+  int seen = 0;
+  while (!ready.empty()) {
+    const int u = ready.front();
+    ready.pop();
+    ++seen;
+    for (int v : succ[u]) {
+      x[v] = std::max(x[v], x[u] + 1.0);
+      if (--indeg[v] == 0) ready.push(v);
+    }
+  }
+  if (seen != nga) {
+    std::string names;
+    for (int gi = 0; gi < ng; ++gi)
+      if (pg.axis[gi] == a && indeg[gi] > 0)
+        for (int c : pg.charts[gi]) names += (names.empty() ? "" : ", ") + chart_name(g, c);
+    throw GeometryError(std::string("the charts' curves order the ") + "XYZ"[a] + " planes in a cycle: " + names);
+  }
+  for (int gi = 0; gi < ng; ++gi)
+    if (pg.axis[gi] == a) {
+      m.plane(gi) = static_cast<int>(std::floor(x[gi] + 0.5));
+      if (std::abs(m.plane(gi) - target[gi]) > 1.0) ++m.pushed;
+    }
+}
+
+}  // namespace
+
+PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const PlaneGroups& pg,
+                         const PolycubeMapOptions& opt) {
+  if (!(opt.cell > 0)) throw GeometryError("the grid spacing must be positive");
+  const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows()), ng = pg.num_groups();
+  const double h = opt.cell;
+  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  PolycubeMap m;
+  m.cell = h;
+  m.continuous = s.V;
+  m.offset = Eigen::VectorXd::Zero(ng);
+
+  // ---- 1. continuous deformation, one axis at a time
+  const std::vector<Edge> edges = weighted_edges(s);
+  double wmean = 0;
+  for (const auto& e : edges) wmean += e.w;
+  wmean /= std::max<size_t>(edges.size(), 1);
+  for (int a = 0; a < 3; ++a) {
+    std::vector<int> local(ng, -1);
+    int nga = 0;
+    for (int gi = 0; gi < ng; ++gi)
+      if (pg.axis[gi] == a) local[gi] = nga++;
+    std::vector<int> idx(nv, -1);
+    int nfree = 0;
+    for (int v = 0; v < nv; ++v)
+      if (pg.of_vertex(v, a) < 0) idx[v] = nfree++;
+    for (int v = 0; v < nv; ++v)
+      if (pg.of_vertex(v, a) >= 0) idx[v] = nfree + local[pg.of_vertex(v, a)];
+    const int n = nfree + nga;
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n), z0 = Eigen::VectorXd::Zero(n), cnt = Eigen::VectorXd::Zero(n);
+    for (int v = 0; v < nv; ++v) { z0(idx[v]) += s.V(v, a); cnt(idx[v]) += 1; }
+    for (int i = 0; i < n; ++i) z0(i) /= std::max(cnt(i), 1.0);
+    Triplets t;
+    for (const auto& e : edges) {
+      const int p = idx[e.i], q = idx[e.j];
+      if (p == q) continue;
+      const double d = s.V(e.i, a) - s.V(e.j, a);
+      t.emplace_back(p, p, e.w);
+      t.emplace_back(q, q, e.w);
+      t.emplace_back(p, q, -e.w);
+      t.emplace_back(q, p, -e.w);
+      b(p) += e.w * d;
+      b(q) -= e.w * d;
+    }
+    const double eps = 1e-8 * wmean;
+    for (int i = 0; i < n; ++i) t.emplace_back(i, i, eps);
+    b += eps * z0;
+    Sparse A(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    Eigen::SimplicialLDLT<Sparse> solver(A);
+    if (solver.info() != Eigen::Success) throw MeshingError(std::string("polycube deformation: the system along ") + "XYZ"[a] + " is singular");
+    const Eigen::VectorXd z = solver.solve(b);
+    if (!z.allFinite()) throw MeshingError(std::string("polycube deformation: the solve along ") + "XYZ"[a] + " failed");
+    for (int v = 0; v < nv; ++v) m.continuous(v, a) = z(idx[v]);
+    for (int gi = 0; gi < ng; ++gi)
+      if (pg.axis[gi] == a) m.offset(gi) = z(nfree + local[gi]);
+  }
+  m.origin = m.continuous.colwise().minCoeff().transpose();
+
+  // ---- 2. planes on the grid: every curve keeps its direction and a length of at least one cell
+  std::vector<std::vector<Order>> order(3);
+  for (const auto& c : g.curves) {
+    if (c.closed) throw GeometryError(chart_name(g, c.left) + " and " + chart_name(g, c.right) + " meet along a loop without corners");
+    const int al = (g.label[c.left] - 1) / 2, ar = (g.label[c.right] - 1) / 2;
+    if (al == ar) throw GeometryError(chart_name(g, c.left) + " and " + chart_name(g, c.right) + " have opposite labels and share a curve");
+    const int ax = 3 - al - ar, p = c.vertices.front(), q = c.vertices.back();
+    const int gp = pg.of_vertex(p, ax), gq = pg.of_vertex(q, ax);
+    if (gp < 0 || gq < 0 || gp == gq)
+      throw GeometryError("the curve between " + chart_name(g, c.left) + " and " + chart_name(g, c.right) + " has no length along " + "XYZ"[ax]);
+    // The curve's direction along its axis is the input's: the planes of its two end corners keep the
+    // order they have there (a plane's offset is a compromise over its whole chart, and the input's
+    // local order is what keeps the chart's polygon from folding).
+    double d = s.V(q, ax) - s.V(p, ax);
+    if (d == 0) d = m.offset(gq) - m.offset(gp);
+    order[ax].push_back(d >= 0 ? Order{gp, gq} : Order{gq, gp});
+  }
+  for (const auto& sep : opt.separate) {
+    if (sep.first < 0 || sep.second < 0 || sep.first >= ng || sep.second >= ng || pg.axis[sep.first] != pg.axis[sep.second])
+      throw GeometryError("polycube map: plane groups " + std::to_string(sep.first) + " and " + std::to_string(sep.second) +
+                          " cannot be separated");
+    order[pg.axis[sep.first]].push_back({sep.first, sep.second});
+  }
+  std::vector<double> weight(ng, 0);
+  for (int c = 0; c < g.num_charts(); ++c) weight[pg.of_chart[c]] += g.area[c];
+  // The straight segment each curve becomes, seen from one of its charts: it lies at the plane of the
+  // other chart (`at`) and spans the planes of its end corners along its own axis.
+  struct Segment {
+    int chart, at, axis, from, to;  // plane groups: `at` (position), `from` / `to` (ends along `axis`)
+    double mean;                     // mean input coordinate of the curve along at's axis
+  };
+  std::vector<Segment> segments;
+  for (const auto& c : g.curves) {
+    const int al = (g.label[c.left] - 1) / 2, ar = (g.label[c.right] - 1) / 2, ax = 3 - al - ar;
+    const int p = c.vertices.front(), q = c.vertices.back();
+    for (int side = 0; side < 2; ++side) {
+      const int chart = side == 0 ? c.left : c.right, other = side == 0 ? c.right : c.left;
+      const int pa = (g.label[other] - 1) / 2;
+      double mean = 0;
+      for (int v : c.vertices) mean += s.V(v, pa);
+      segments.push_back({chart, pg.of_chart[other], ax, pg.of_vertex(p, ax), pg.of_vertex(q, ax), mean / c.vertices.size()});
+    }
+  }
+  std::vector<std::vector<int>> chart_segments(g.num_charts());
+  for (size_t i = 0; i < segments.size(); ++i) chart_segments[segments[i].chart].push_back(static_cast<int>(i));
+  m.plane = Eigen::VectorXi::Zero(ng);
+  std::set<std::pair<int, int>> added;
+  for (int round = 0;; ++round) {
+    m.pushed = 0;
+    for (int a = 0; a < 3; ++a) quantize_axis(a, order[a], pg, m, weight, h, g);
+    // Two parallel segments of one chart whose spans overlap must keep their input order, at least
+    // one cell apart: otherwise the chart pinches (a ring around a hole, a U-shaped face).
+    int fresh = 0;
+    for (int c = 0; c < g.num_charts(); ++c) {
+      const auto& cs = chart_segments[c];
+      for (size_t i = 0; i < cs.size(); ++i)
+        for (size_t j = i + 1; j < cs.size(); ++j) {
+          const Segment& u = segments[cs[i]];
+          const Segment& w = segments[cs[j]];
+          if (u.axis != w.axis || u.at == w.at) continue;
+          const int ulo = std::min(m.plane(u.from), m.plane(u.to)), uhi = std::max(m.plane(u.from), m.plane(u.to));
+          const int wlo = std::min(m.plane(w.from), m.plane(w.to)), whi = std::max(m.plane(w.from), m.plane(w.to));
+          if (std::min(uhi, whi) <= std::max(ulo, wlo)) continue;  // spans do not overlap
+          if (u.mean == w.mean) continue;
+          const int lo = u.mean < w.mean ? u.at : w.at, hi = u.mean < w.mean ? w.at : u.at;
+          if (m.plane(hi) - m.plane(lo) >= 1) continue;
+          if (!added.insert({lo, hi}).second) continue;
+          order[pg.axis[lo]].push_back({lo, hi});
+          ++fresh;
+        }
+    }
+    if (fresh == 0) break;
+    if (round >= 50) throw GeometryError("polycube map: the planes do not settle (separating the sides of pinched charts)");
+  }
+
+  // ---- 3. positions: planes, straight curves, harmonic chart interiors
+  m.D = Eigen::MatrixXd::Constant(nv, 3, std::nan(""));
+  for (int v = 0; v < nv; ++v)
+    for (int a = 0; a < 3; ++a)
+      if (pg.of_vertex(v, a) >= 0) m.D(v, a) = m.plane(pg.of_vertex(v, a));
+  for (const auto& c : g.curves) {
+    const int al = (g.label[c.left] - 1) / 2, ar = (g.label[c.right] - 1) / 2, ax = 3 - al - ar;
+    const auto& vs = c.vertices;
+    std::vector<double> arc(vs.size(), 0);
+    for (size_t i = 1; i < vs.size(); ++i) arc[i] = arc[i - 1] + (s.V.row(vs[i]) - s.V.row(vs[i - 1])).norm();
+    const double d0 = m.D(vs.front(), ax), d1 = m.D(vs.back(), ax);
+    for (size_t i = 1; i + 1 < vs.size(); ++i) {
+      double u = d0 + (d1 - d0) * arc[i] / std::max(arc.back(), 1e-300);
+      if (std::abs(u - std::round(u)) < kSnap) u = std::round(u);  // on a grid line, not a hair beside it
+      m.D(vs[i], ax) = u;
+    }
+  }
+  std::vector<std::vector<int>> chart_tris(g.num_charts());
+  for (int f = 0; f < nf; ++f) chart_tris[g.chart(f)].push_back(f);
+  // A vertex is on a chart boundary exactly when two or more axes' planes give it a coordinate.
+  std::vector<char> on_boundary(nv, 0);
+  for (int v = 0; v < nv; ++v) on_boundary[v] = (pg.of_vertex.row(v).array() >= 0).count() >= 2;
+  m.flipped.assign(g.num_charts(), 0);
+  std::vector<int> slot(nv, -1);
+  for (int c = 0; c < g.num_charts(); ++c) {
+    const int a = (g.label[c] - 1) / 2, sg = g.label[c] % 2 == 1 ? 1 : -1;
+    const int ax[2] = {(a + 1) % 3, (a + 2) % 3};
+    std::vector<int> inner;
+    for (int f : chart_tris[c])
+      for (int k = 0; k < 3; ++k) {
+        const int v = s.F(f, k);
+        if (!on_boundary[v] && slot[v] < 0) { slot[v] = static_cast<int>(inner.size()); inner.push_back(v); }
+      }
+    auto count_flips = [&]() {
+      int n = 0;
+      for (int f : chart_tris[c]) n += plane_area(m.D, s.F, f, a, sg) <= 0;
+      return n;
+    };
+    if (!inner.empty()) {
+      const int n = static_cast<int>(inner.size());
+      Eigen::MatrixXd best;
+      int best_flips = -1;
+      for (int pass = 0; pass < 2; ++pass) {
+        std::vector<Edge> rows;
+        if (pass == 0) {
+          for (const auto& e : edges)
+            if ((slot[e.i] >= 0 || slot[e.j] >= 0)) { rows.push_back(e); rows.push_back({e.j, e.i, e.w}); }
+        } else {
+          mean_value_rows(s, chart_tris[c], rows);
+        }
+        Triplets t;
+        Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+        for (const auto& e : rows) {
+          const int i = slot[e.i];
+          if (i < 0) continue;
+          // Only edges inside this chart: both ends are vertices of its triangles.
+          t.emplace_back(i, i, e.w);
+          if (slot[e.j] >= 0) t.emplace_back(i, slot[e.j], -e.w);
+          else for (int q = 0; q < 2; ++q) rhs(i, q) += e.w * m.D(e.j, ax[q]);
+        }
+        Sparse A(n, n);
+        A.setFromTriplets(t.begin(), t.end());
+        Eigen::MatrixXd x;
+        if (pass == 0) {
+          Eigen::SimplicialLDLT<Sparse> solver(A);
+          if (solver.info() != Eigen::Success) continue;
+          x = solver.solve(rhs);
+        } else {
+          Eigen::SparseLU<Sparse> solver;
+          solver.analyzePattern(A);
+          solver.factorize(A);
+          if (solver.info() != Eigen::Success) continue;
+          x = solver.solve(rhs);
+        }
+        if (!x.allFinite()) continue;
+        for (int i = 0; i < n; ++i)
+          for (int q = 0; q < 2; ++q) m.D(inner[i], ax[q]) = x(i, q);
+        const int flips = count_flips();
+        if (best_flips < 0 || flips < best_flips) { best_flips = flips; best = x; }
+        if (flips == 0) break;
+      }
+      if (best_flips < 0) throw MeshingError("polycube map: the harmonic map of " + chart_name(g, c) + " failed");
+      for (int i = 0; i < n; ++i)
+        for (int q = 0; q < 2; ++q) {
+          double u = best(i, q);
+          const double r = std::round(u);
+          if (std::abs(u - r) < kSnap) u = r;  // on a grid line, not a hair beside it
+          m.D(inner[i], ax[q]) = u;
+        }
+      if (best_flips > 0) {
+        untangle_chart(m.D, s.F, chart_tris[c], slot, a, sg, 60);
+        for (int v : inner)
+          for (int q = 0; q < 2; ++q) {
+            double& u = m.D(v, ax[q]);
+            const double r = std::round(u);
+            if (std::abs(u - r) < kSnap) u = r;
+          }
+      }
+    }
+    m.flipped[c] = count_flips();
+    if (m.flipped[c] > 0 && opt.log)
+      opt.log(1, chart_name(g, c) + ": " + std::to_string(m.flipped[c]) + " triangles stay folded in its plane");
+    for (int v : inner) slot[v] = -1;
+  }
+  for (int v = 0; v < nv; ++v)
+    if (!m.D.row(v).allFinite())
+      throw MeshingError("polycube map: vertex " + std::to_string(v + 1) + " got no position (planes " +
+                         std::to_string(pg.of_vertex(v, 0)) + " " + std::to_string(pg.of_vertex(v, 1)) + " " +
+                         std::to_string(pg.of_vertex(v, 2)) + ", corner " + std::to_string(g.corner_of(v)) + ")");
+  log("polycube map: " + std::to_string(ng) + " planes, " + std::to_string(m.pushed) + " pushed by more than a cell");
+  return m;
+}
+
+mesh::SurfaceMesh polycube_surface(const mesh::SurfaceMesh& s, const PolycubeMap& m) {
+  mesh::SurfaceMesh out = s;
+  out.V = (m.cell * m.D).rowwise() + m.origin.transpose();
+  return out;
+}
+
+}  // namespace hexdom::autopolycube

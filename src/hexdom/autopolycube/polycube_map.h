@@ -1,0 +1,48 @@
+// The polycube map of a labelled surface: every chart flattened onto an axis-aligned plane, the
+// planes snapped to a grid of spacing `cell`, every chart boundary curve straightened between its
+// corners and every chart interior mapped harmonically into its plane polygon.
+#pragma once
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/plane_groups.h"
+#include "hexdom/common/error.h"
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::autopolycube {
+
+struct PolycubeMapOptions {
+  double cell = 0;  ///< grid spacing h (model units); must be positive
+  /// Extra orders: plane group `second` must lie at least one cell above plane group `first` (same axis).
+  std::vector<std::pair<int, int>> separate;
+  LogCallback log;
+};
+
+struct PolycubeMap {
+  /// #V by 3: the least-squares deformation (model units) that keeps the surface's gradients
+  /// (cotangent Dirichlet energy of u - u0, per axis) while every plane group is flat at a free offset.
+  Eigen::MatrixXd continuous;
+  /// #V by 3: the polycube in grid units: chart planes at integers, curves straight between corners
+  /// at integer grid points, chart interiors harmonic; coordinates within 1e-6 of a grid line lie on it.
+  Eigen::MatrixXd D;
+  Eigen::VectorXd offset;  ///< per plane group: its offset in `continuous` (model units)
+  Eigen::VectorXi plane;   ///< per plane group: its integer plane (grid units)
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< model position of grid point (0, 0, 0)
+  double cell = 0;         ///< h: model position = origin + h * D
+  std::vector<int> flipped;  ///< per chart: triangles whose orientation in its plane is wrong or zero
+  int pushed = 0;            ///< plane groups moved more than one cell to keep every curve's length >= h
+};
+
+/// Computes the map. Expects a labelling without chart problems (see chart_problems) and no
+/// chord edges (split_chords). Throws GeometryError when the curves' directions order the planes of
+/// one axis in a cycle, naming the charts, and MeshingError when a solve fails.
+PolycubeMap polycube_map(const mesh::SurfaceMesh& labels, const ChartGraph& graph, const PlaneGroups& groups,
+                         const PolycubeMapOptions& options);
+
+/// The polycube in model units (origin + h D) with the labels as patch ids, for inspection.
+mesh::SurfaceMesh polycube_surface(const mesh::SurfaceMesh& labels, const PolycubeMap& map);
+
+}  // namespace hexdom::autopolycube

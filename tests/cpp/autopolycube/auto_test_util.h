@@ -1,0 +1,138 @@
+// Test surfaces for the automatic polycube: unions of unit cells (polycubes whose faces are split
+// into n x n squares of two triangles), a triangulated cylinder, and labels from normals.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/segmentation/axis_labels.h"
+
+namespace hexdom::test {
+
+/// Label 1..6 of the axis nearest to each triangle's normal.
+inline Eigen::VectorXi labels_from_normals(const mesh::SurfaceMesh& s) {
+  Eigen::VectorXi l(s.F.rows());
+  for (int f = 0; f < s.F.rows(); ++f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    l(f) = segmentation::nearest_label((b - a).cross(c - a));
+  }
+  return l;
+}
+
+/// Closed surface of the union of unit cells (lower corners `cells`), scaled by `scale`; every unit
+/// face is split into n x n squares of two triangles; labels from normals.
+inline mesh::SurfaceMesh cell_surface(const std::vector<std::array<int, 3>>& cells, int n, double scale = 1.0) {
+  std::set<std::array<int, 3>> in(cells.begin(), cells.end());
+  std::map<std::array<int, 3>, int> id;
+  std::vector<Eigen::RowVector3d> V;
+  std::vector<std::array<int, 3>> F;
+  auto vertex = [&](const std::array<int, 3>& p) {
+    auto [it, fresh] = id.emplace(p, static_cast<int>(V.size()));
+    if (fresh) V.push_back(Eigen::RowVector3d(p[0], p[1], p[2]) * scale / n);
+    return it->second;
+  };
+  for (const auto& c : cells)
+    for (int a = 0; a < 3; ++a)
+      for (int sg = -1; sg <= 1; sg += 2) {
+        std::array<int, 3> nb = c;
+        nb[a] += sg;
+        if (in.count(nb)) continue;
+        const int b = (a + 1) % 3, d = (a + 2) % 3;
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) {
+            std::array<int, 3> p[4];
+            for (int k = 0; k < 4; ++k) {
+              p[k] = {c[0] * n, c[1] * n, c[2] * n};
+              p[k][a] += sg > 0 ? n : 0;
+              p[k][b] += i + (k == 1 || k == 2);
+              p[k][d] += j + (k >= 2);
+            }
+            int q[4];
+            for (int k = 0; k < 4; ++k) q[k] = vertex(p[k]);
+            // (b, d, a) is right-handed: counter-clockwise in (b, d) faces +a.
+            if (sg > 0) { F.push_back({q[0], q[1], q[2]}); F.push_back({q[0], q[2], q[3]}); }
+            else { F.push_back({q[0], q[2], q[1]}); F.push_back({q[0], q[3], q[2]}); }
+          }
+      }
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
+  s.F.resize(static_cast<int>(F.size()), 3);
+  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
+  s.patch = labels_from_normals(s);
+  return s;
+}
+
+/// Closed cylinder of radius r and height h along z: `seg` segments around, `rows` rows along z,
+/// caps as rings of `rings` quads strips around a centre vertex; labels from normals.
+inline mesh::SurfaceMesh cylinder_surface(double r, double h, int seg, int rows, int rings) {
+  std::vector<Eigen::RowVector3d> V;
+  std::vector<std::array<int, 3>> F;
+  // Side: rows + 1 circles of seg vertices.
+  std::vector<std::vector<int>> circle(rows + 1);
+  for (int i = 0; i <= rows; ++i)
+    for (int k = 0; k < seg; ++k) {
+      const double t = 2 * M_PI * k / seg;
+      circle[i].push_back(static_cast<int>(V.size()));
+      V.push_back(Eigen::RowVector3d(r * std::cos(t), r * std::sin(t), h * i / rows));
+    }
+  for (int i = 0; i < rows; ++i)
+    for (int k = 0; k < seg; ++k) {
+      const int a = circle[i][k], b = circle[i][(k + 1) % seg], c = circle[i + 1][(k + 1) % seg], d = circle[i + 1][k];
+      F.push_back({a, b, c});
+      F.push_back({a, c, d});
+    }
+  // Caps: concentric circles down to a centre vertex.
+  for (int top = 0; top < 2; ++top) {
+    const double z = top ? h : 0;
+    std::vector<int> outer = top ? circle[rows] : circle[0];
+    for (int q = rings - 1; q >= 0; --q) {
+      std::vector<int> inner;
+      if (q == 0) {
+        inner.assign(seg, static_cast<int>(V.size()));
+        V.push_back(Eigen::RowVector3d(0, 0, z));
+      } else {
+        for (int k = 0; k < seg; ++k) {
+          const double t = 2 * M_PI * k / seg, rr = r * q / rings;
+          inner.push_back(static_cast<int>(V.size()));
+          V.push_back(Eigen::RowVector3d(rr * std::cos(t), rr * std::sin(t), z));
+        }
+      }
+      for (int k = 0; k < seg; ++k) {
+        const int a = outer[k], b = outer[(k + 1) % seg], c = inner[(k + 1) % seg], d = inner[k];
+        // Outward: -z at the bottom (clockwise seen from above), +z at the top.
+        if (top) {
+          F.push_back({a, b, c});
+          if (q > 0) F.push_back({a, c, d});
+        } else {
+          F.push_back({a, c, b});
+          if (q > 0) F.push_back({a, d, c});
+        }
+      }
+      outer = inner;
+    }
+  }
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
+  s.F.resize(static_cast<int>(F.size()), 3);
+  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
+  s.patch = labels_from_normals(s);
+  return s;
+}
+
+/// Volume enclosed by a closed, outward-oriented triangle surface (divergence theorem).
+inline double enclosed_volume(const mesh::SurfaceMesh& s) {
+  double v = 0;
+  for (int f = 0; f < s.F.rows(); ++f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    v += a.dot(b.cross(c)) / 6.0;
+  }
+  return v;
+}
+
+}  // namespace hexdom::test

@@ -1,0 +1,147 @@
+#include "hexdom/autopolycube/autopolycube.h"
+
+#include <map>
+
+#include "auto_test_util.h"
+#include "hexdom/generation/generate.h"
+#include "hexdom/io/mesh_io.h"
+#include "hexdom/polycube/patch_layout.h"
+#include "hexdom/quality/improve.h"
+#include "hexdom/quality/report.h"
+#include "hexdom/segmentation/segment_cvt.h"
+#include "test_common.h"
+
+using namespace hexdom;
+
+namespace {
+autopolycube::AutoPolycubeOptions cell_options(double h, int level) {
+  autopolycube::AutoPolycubeOptions o;
+  o.level = level;
+  o.size = h / (1 << level);
+  return o;
+}
+}  // namespace
+
+TEST(Autopolycube, BoxGivesOneBlockPerCell) {
+  // 2 x 1 x 1 box, cells of 0.5: 4 x 2 x 2 blocks, 2 (8 + 8 + 4) boundary squares.
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}}, 3);
+  auto r = autopolycube::autopolycube(s, cell_options(0.5, 1));
+  EXPECT_EQ(r.blocks, 16);
+  EXPECT_EQ(r.structure.num_cells(), 16);
+  EXPECT_EQ(r.squares, 40);
+  EXPECT_EQ(r.relabelled, 0);
+  EXPECT_EQ(r.inverted_blocks, 0);
+  EXPECT_NEAR(r.min_block_quality, 1.0, 1e-9);
+  // A box is its own polycube: every structure vertex sits on the grid of 0.5.
+  for (int v = 0; v < r.structure.num_nodes(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double x = r.structure.V(v, k) / 0.5;
+      EXPECT_NEAR(x, std::round(x), 1e-9) << v;
+    }
+}
+
+TEST(Autopolycube, EveryPatchIsOneSquareOfTheSurface) {
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 3);
+  auto r = autopolycube::autopolycube(s, cell_options(0.5, 1));
+  const auto layout = polycube::patch_layout(r.patches);
+  ASSERT_EQ(static_cast<int>(layout.patches.size()), r.squares);
+  for (const auto& p : layout.patches) {
+    double area = 0;
+    for (int f : p.triangles) {
+      const Eigen::Vector3d a = r.patches.V.row(r.patches.F(f, 0)), b = r.patches.V.row(r.patches.F(f, 1)),
+                            c = r.patches.V.row(r.patches.F(f, 2));
+      area += 0.5 * (b - a).cross(c - a).norm();
+    }
+    EXPECT_NEAR(area, 0.25, 1e-9);
+    EXPECT_EQ(p.num_loops, 1);
+    EXPECT_EQ(p.corners.size(), 4u);
+  }
+  // The re-split surface keeps the volume.
+  EXPECT_NEAR(test::enclosed_volume(r.patches), 3.0, 1e-9);
+}
+
+TEST(Autopolycube, GenerateTakesTheTwoOutputsUnchanged) {
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 2);
+  auto r = autopolycube::autopolycube(s, cell_options(0.5, 1));
+  generation::GenerateOptions go;
+  go.level = 1;
+  const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
+  EXPECT_EQ(m.count(mesh::CellType::Hex), 8 * r.blocks);
+  const auto q = quality::quality_report(m);
+  EXPECT_EQ(q.hex.inverted, 0);
+  EXPECT_NEAR(q.hex.sj_min, 1.0, 1e-9);
+  EXPECT_NEAR(q.total_volume, 4.0, 1e-9);
+}
+
+TEST(Autopolycube, RingWithAHoleWorks) {
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0}, {0, 2, 0}, {1, 2, 0}, {2, 2, 0}}, 2);
+  auto r = autopolycube::autopolycube(s, cell_options(1.0, 0));
+  EXPECT_EQ(r.blocks, 8);
+  EXPECT_EQ(r.inverted_blocks, 0);
+}
+
+TEST(Autopolycube, CylinderMapsOntoABoxOfCells) {
+  auto s = test::cylinder_surface(1.0, 2.0, 48, 12, 6);
+  ASSERT_GT(test::enclosed_volume(s), 0);
+  auto r = autopolycube::autopolycube(s, cell_options(0.25, 1));
+  EXPECT_GT(r.blocks, 0);
+  EXPECT_EQ(r.inverted_blocks, 0);
+  generation::GenerateOptions go;
+  go.level = 1;
+  const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
+  quality::ImproveOptions io;
+  io.surface = r.patches;
+  const auto imp = quality::improve(m, io);
+  EXPECT_EQ(imp.after.hex.inverted, 0);
+  EXPECT_GT(imp.after.hex.sj_min, 0.2);
+  EXPECT_NEAR(imp.after.total_volume, test::enclosed_volume(s), 0.01 * test::enclosed_volume(s));
+}
+
+TEST(Autopolycube, ProgressKeepsTheLabelsAndThePolycubeWhenItFails) {
+  // One +X triangle in the middle of each face: islands, but no relabelling allowed.
+  auto s = test::cell_surface({{0, 0, 0}}, 4);
+  for (int f = 0; f < s.F.rows(); f += 7) s.patch(f) = s.patch(f) == 1 ? 3 : 1;
+  auto o = cell_options(0.5, 1);
+  o.max_relabels = 0;
+  autopolycube::AutoPolycube progress;
+  try {
+    autopolycube::autopolycube(s, o, &progress);
+    FAIL() << "no error";
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("chart"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(progress.labels.F.rows(), s.F.rows());
+}
+
+TEST(Autopolycube, BadArgumentsAreGeometryErrors) {
+  auto s = test::cell_surface({{0, 0, 0}}, 1);
+  auto o = cell_options(0.5, 1);
+  o.level = 7;
+  EXPECT_THROW(autopolycube::autopolycube(s, o), GeometryError);
+  o.level = 1;
+  o.size = -1;
+  EXPECT_THROW(autopolycube::autopolycube(s, o), GeometryError);
+  s.patch(0) = 0;
+  EXPECT_THROW(autopolycube::autopolycube(s, cell_options(0.5, 1)), GeometryError);
+}
+
+// The paper's raw surfaces that the automatic path meshes with its defaults.
+class AutopolycubePaper : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AutopolycubePaper, SegmentAutopolycubeGenerateImproveHasNoInvertedCell) {
+  const std::string path = test::data_path("hexdom/" + GetParam() + "/" + GetParam() + ".k");
+  HEXDOM_REQUIRE_DATA(path);
+  auto s = io::read_surface(path);
+  s.patch = segmentation::segment_cvt(s).label;
+  auto r = autopolycube::autopolycube(s);
+  EXPECT_EQ(r.inverted_blocks, 0);
+  generation::GenerateOptions go;
+  go.level = 1;
+  const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
+  quality::ImproveOptions io;
+  io.surface = r.patches;
+  const auto imp = quality::improve(m, io);
+  EXPECT_EQ(imp.after.hex.inverted + imp.after.prism.inverted + imp.after.tet.inverted, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, AutopolycubePaper, ::testing::Values("hepta"));
