@@ -261,3 +261,115 @@ def split_patch(surface, patch_id, path):
     the shortest chain of its interior edges); the part without its first triangle gets a new id."""
     return _hexdom.split_patch(surface.V, surface.F, surface.patch, int(patch_id),
                                [int(v) for v in np.asarray(path).reshape(-1)])
+
+
+# CAD stage (hexdom_cad, OpenCASCADE): present when _hexdom was built with it. tessellate_* return
+# (V, F, face_id) with 1-based CAD face ids (FreeCAD's FaceN); project_* keep nodes on the B-rep.
+has_opencascade = getattr(_hexdom, "has_opencascade", lambda: False)
+if has_opencascade():
+    tessellate_file = _hexdom.tessellate_file
+    tessellate_brep = _hexdom.tessellate_brep
+    cad_volume = _hexdom.cad_volume
+    cad_info = _hexdom.cad_info
+    project_to_face = _hexdom.project_to_face
+    project_to_edge = _hexdom.project_to_edge
+    project_to_shape = _hexdom.project_to_shape
+
+
+# ------------------------------------------------------------------------------------------------
+# Automatic path (issue 9): autopolycube builds a polycube structure and the patch surface that goes
+# with it from a labelled surface; mesh_surface runs segment -> autopolycube -> generate -> improve.
+
+
+@dataclass
+class AutoPolycube:
+    """Result of autopolycube: ``structure`` (hex blocks over the grid cells), ``patches`` (the
+    input geometry re-split along the grid, one patch per boundary square: give both to generate),
+    ``labels`` (the repaired labelling on the surface the map used), ``polycube`` (that surface at its
+    polycube positions) and ``info`` (cell, charts, relabelled, chords, planes, pushed, squares, blocks,
+    boundary_vertices, interior_vertices, min_block_quality, inverted_blocks)."""
+
+    structure: Mesh
+    patches: Surface
+    labels: Surface
+    polycube: Surface
+    info: dict
+
+
+def _auto_polycube(r):
+    info = {k: v for k, v in r.items() if k not in ("structure", "patches", "labels", "polycube")}
+    return AutoPolycube(Mesh(*r["structure"]), Surface(*r["patches"]), Surface(*r["labels"]),
+                        Surface(*r["polycube"]), info)
+
+
+def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
+                 max_relabel_area=0.03, untangle_rounds=50):
+    """Polycube structure of a labelled Surface (patch = label 1..6 per triangle, e.g. from
+    segment()) with no manual step: blocks are the grid cells of spacing h = size * 2^level
+    (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto; the
+    surface is cut along the grid lines into one patch per boundary square, so that
+    generate(result.patches, result.structure, level) takes the pair unchanged. Raises
+    GeometryError naming the charts when the labelling cannot be repaired. Returns an AutoPolycube."""
+    return _auto_polycube(_hexdom.autopolycube(labels.V, labels.F, labels.patch, float(size),
+                                               int(level), int(max_relabels), int(max_attempts),
+                                               float(max_relabel_area), int(untangle_rounds)))
+
+
+MESH_STAGES = ("segment", "autopolycube", "generate", "improve")
+
+
+@dataclass
+class MeshRun:
+    """Result of mesh_surface / mesh_part: the final ``mesh``, the ``generated`` one before
+    improvement, the segmentation ``labels``, the ``polycube`` (an AutoPolycube), the quality reports
+    (dicts as quality_report gives) and ``seconds`` per stage (segment, autopolycube, generate,
+    improve; tessellate too for mesh_part)."""
+
+    mesh: Mesh
+    generated: Mesh
+    labels: Surface
+    polycube: AutoPolycube
+    quality: dict
+    generated_quality: dict
+    seconds: dict
+
+    @property
+    def inverted(self):
+        return sum(self.quality[t]["inverted"] for t in ("hex", "prism", "tet"))
+
+
+def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
+                 improve=True, allow_inverted=False):
+    """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
+    improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
+    of size * 2^level. Raises MeshingError when inverted cells remain, unless allow_inverted (then
+    MeshRun.inverted counts them). Returns a MeshRun."""
+    r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
+                             float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve))
+    run = MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
+                  _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
+                  dict(zip(MESH_STAGES, r["seconds"])))
+    if run.inverted and not allow_inverted:
+        raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
+                           "(allow_inverted=True returns the mesh anyway)")
+    return run
+
+
+def mesh_part(source, size=0.0, level=1, solid=0, **kwargs):
+    """mesh_surface of a CAD part: a .step/.stp, .iges/.igs or .brep/.brp path or BREP text
+    (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD faces kept
+    for the segmentation), then meshed. Needs _hexdom built with OpenCASCADE. Keyword arguments go
+    to mesh_surface. Returns a MeshRun whose seconds include "tessellate"."""
+    import time
+    if not getattr(_hexdom, "has_opencascade", lambda: False)():
+        raise Error("built without OpenCASCADE: cannot mesh a CAD part")
+    t0 = time.perf_counter()
+    text = os.fspath(source) if isinstance(source, os.PathLike) else source
+    if "CASCADE Topology" in text:
+        V, F, face = _hexdom.tessellate_brep(text, size=float(size), solid=int(solid))
+    else:
+        V, F, face = _hexdom.tessellate_file(text, size=float(size), solid=int(solid))
+    seconds = time.perf_counter() - t0
+    run = mesh_surface(Surface(V, F, face), size=size, level=level, **kwargs)
+    run.seconds = {"tessellate": seconds, **run.seconds}
+    return run
