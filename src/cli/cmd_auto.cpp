@@ -1,11 +1,17 @@
 // hexdom autopolycube: structure and patch surface from a labelled surface, automatically.
+// hexdom mesh: a surface or a CAD part to a hex mesh with no manual step.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 
 #include "commands.h"
 #include "hexdom/autopolycube/autopolycube.h"
+#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/cad/read_shape.h"
+#include "hexdom/cad/tessellate.h"
 #include "hexdom/io/mesh_io.h"
+#include "hexdom/io/text.h"
 
 namespace hexdom::cli {
 
@@ -73,10 +79,121 @@ void add_autopolycube(CLI::App& app) {
   });
 }
 
+bool is_cad_file(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos) return false;
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == "step" || ext == "stp" || ext == "iges" || ext == "igs" || ext == "brep" || ext == "brp";
+}
+
+// "part.vtk" -> "part": where the intermediate files go.
+std::string stem_of(const std::string& path) {
+  const auto dot = path.find_last_of('.'), slash = path.find_last_of('/');
+  return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? path : path.substr(0, dot);
+}
+
+void add_mesh(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "mesh",
+      "Hex mesh of a closed surface or a CAD part with no manual step: segment -> autopolycube -> generate ->\n"
+      "improve, one progress line per stage, then the quality summary. CAD files (.step/.stp, .iges/.igs,\n"
+      ".brep/.brp) are tessellated first (hexdom tessellate, CAD faces kept for the segmentation).");
+  struct Args {
+    std::string in, out, report;
+    bool keep = false, allow_inverted = false, no_improve = false;
+    int solid = 0;
+    autopolycube::MeshSurfaceOptions opt;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("input", a->in, "closed triangle surface (.k, .stl, .obj, .vtk) or CAD part (.step, .stp, .iges, .igs, .brep, .brp)")
+      ->required();
+  cmd->add_option("-o,--output", a->out, "mesh to write (.vtk, .vtu, .inp, .k)")->required();
+  cmd->add_option("--size", a->opt.size, "target element size H; 0: the bounding-box diagonal / 30")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("-s,--level", a->opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
+      ->capture_default_str()->check(CLI::Range(0, 6));
+  cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
+  cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
+  cmd->add_flag("--no-improve", a->no_improve, "skip the improvement stage");
+  cmd->add_option("--solid", a->solid, "CAD files: which solid (1-based); default: the first")->check(CLI::PositiveNumber);
+  cmd->add_flag("--keep", a->keep,
+                "also write <output stem>_labels.k, _structure.k, _patches.k and _polycube.vtk (on failure the labels "
+                "and the polycube are always written)");
+  cmd->add_option("--report", a->report, "also write the final quality report as JSON to this file");
+  cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
+  cmd->add_flag("-v,--verbose", a->opt.verbose, "also print the stages' own messages");
+  cmd->callback([a] {
+    io::format_of(a->out);
+    a->opt.log = print_log;
+    a->opt.improve = !a->no_improve;
+    const std::string stem = stem_of(a->out);
+    mesh::SurfaceMesh surface;
+    double reference_volume = 0;
+    const char* reference = "surface";
+    if (is_cad_file(a->in)) {
+      const auto t0 = std::chrono::steady_clock::now();
+      cad::ReadOptions ro;
+      ro.solid = a->solid;
+      ro.log = print_log;
+      const cad::Shape shape = cad::read_shape(a->in, ro);
+      cad::TessellateOptions to;
+      to.size = a->opt.size;
+      cad::TessellateStats st;
+      surface = cad::tessellate(shape, to, &st);
+      reference_volume = st.brep_volume;
+      reference = "B-rep";
+      char line[200];
+      std::snprintf(line, sizeof line, "tessellate: %d triangles on %d CAD faces in %.2f s", st.triangles, st.faces,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      print_log(0, line);
+    } else {
+      surface = io::read_surface(a->in);
+    }
+    if (reference_volume == 0)
+      for (int f = 0; f < surface.F.rows(); ++f) {
+        const Eigen::Vector3d p = surface.V.row(surface.F(f, 0)), q = surface.V.row(surface.F(f, 1)), r = surface.V.row(surface.F(f, 2));
+        reference_volume += p.dot(q.cross(r)) / 6.0;
+      }
+    autopolycube::MeshSurfaceRun run;
+    auto write_intermediate = [&](bool all) {
+      if (run.labels.F.rows() > 0) io::write_mesh(stem + "_labels.k", mesh::from_surface(run.labels));
+      if (run.polycube.polycube.F.rows() > 0) io::write_mesh(stem + "_polycube.vtk", mesh::from_surface(run.polycube.polycube));
+      if (all && run.polycube.structure.num_cells() > 0) {
+        io::write_mesh(stem + "_structure.k", run.polycube.structure);
+        io::write_mesh(stem + "_patches.k", mesh::from_surface(run.polycube.patches));
+      }
+    };
+    try {
+      autopolycube::mesh_surface(surface, a->opt, &run);
+    } catch (const Error&) {
+      write_intermediate(true);
+      print_log(1, "stage " + run.stage + " failed; wrote " + stem + "_labels.k" +
+                       (run.polycube.polycube.F.rows() ? " and " + stem + "_polycube.vtk" : std::string()) + " for inspection");
+      throw;
+    }
+    if (a->keep) write_intermediate(true);
+    io::write_mesh(a->out, run.mesh);
+    if (!a->report.empty())
+      io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(run.quality) << "\n"; });
+    std::cerr << "hexdom: wrote " << a->out << "\n";
+    std::cout << quality::to_text(run.quality);
+    char line[200];
+    std::snprintf(line, sizeof line, "%s volume %.10g (%+.3f%%)\n", reference, reference_volume,
+                  reference_volume != 0 ? 100.0 * (run.quality.total_volume - reference_volume) / reference_volume : 0.0);
+    std::cout << line;
+    const int inverted = run.quality.hex.inverted + run.quality.prism.inverted + run.quality.tet.inverted;
+    if (inverted > 0 && !a->allow_inverted)
+      throw MeshingError(std::to_string(inverted) + " inverted cells remain after improvement; " + a->out +
+                         " was written so that they can be inspected (--allow-inverted to accept)");
+  });
+}
+
 }  // namespace
 
 void add_auto_commands(CLI::App& app) {
   add_autopolycube(app);
+  add_mesh(app);
 }
 
 }  // namespace hexdom::cli

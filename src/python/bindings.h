@@ -6,4 +6,5 @@
 namespace hexdom::python {
 void bind_segmentation(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);
+void bind_auto(pybind11::module_& m);
 }  // namespace hexdom::python

@@ -137,7 +137,9 @@ TEST(CheckPatches, IslandIsAClosedCurveAndAHole) {
       EXPECT_EQ(c.patches[v.patches[0] - 1].id, 5);
       EXPECT_EQ(c.patches[v.patches[0] - 1].loops, 2);
     }
-    if (v.kind == ViolationKind::TwoPatchCorner) EXPECT_NE(v.message.find("closed curve"), std::string::npos);
+    if (v.kind == ViolationKind::TwoPatchCorner) {
+      EXPECT_NE(v.message.find("closed curve"), std::string::npos);
+    }
   }
 }
 

@@ -169,8 +169,12 @@ TEST(SegmentCvt, CadFacesKeepOneLabelAndBoundariesFollowCadEdges) {
   for (const auto& [face, labels] : labels_of) EXPECT_EQ(labels.size(), 1u) << "CAD face " << face;
   // The curved face (3) is mostly +X, the chamfer (4) nearest +Y.
   for (int f = 0; f < s.F.rows(); ++f) {
-    if (s.patch(f) == 3) EXPECT_EQ(seg.label(f), 1);
-    if (s.patch(f) == 4) EXPECT_EQ(seg.label(f), 3);
+    if (s.patch(f) == 3) {
+      EXPECT_EQ(seg.label(f), 1);
+    }
+    if (s.patch(f) == 4) {
+      EXPECT_EQ(seg.label(f), 3);
+    }
   }
   // Without faces, the curved face's triangles beyond 45 degrees go to +Y.
   CvtOptions off;

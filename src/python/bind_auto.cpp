@@ -1,0 +1,158 @@
+// _hexdom's automatic path: autopolycube (structure and patch surface from a labelled surface) and
+// mesh_surface (segment -> autopolycube -> generate -> improve in one call). Surfaces come in as
+// (V #V x 3, F #F x 3, patch #F); meshes go out as (V, cells #C x 8 -1 padded, VTK types, region).
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "hexdom/autopolycube/autopolycube.h"
+#include "hexdom/autopolycube/mesh_surface.h"
+
+namespace py = pybind11;
+
+namespace hexdom::python {
+
+namespace {
+
+using RefV = Eigen::Ref<const Eigen::MatrixXd>;
+using RefF = Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+using RefI = Eigen::Ref<const Eigen::VectorXi>;
+
+mesh::SurfaceMesh surface_of(const RefV& V, const RefF& F, const RefI& patch) {
+  if (V.cols() != 3) throw InputError("V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
+  if (F.cols() != 3) throw InputError("F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
+  if (patch.rows() != F.rows())
+    throw InputError("patch has " + std::to_string(patch.rows()) + " entries for " + std::to_string(F.rows()) + " triangles");
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (F(f, k) < 0 || F(f, k) >= V.rows())
+        throw InputError("triangle " + std::to_string(f) + " names vertex " + std::to_string(F(f, k)) + ", but there are " +
+                         std::to_string(V.rows()) + " vertices");
+  return mesh::SurfaceMesh{V, F, patch};
+}
+
+py::tuple surface_tuple(const mesh::SurfaceMesh& s) { return py::make_tuple(s.V, s.F, s.patch); }
+py::tuple mesh_tuple(const mesh::Mesh& m) { return py::make_tuple(m.V, m.cells, m.types, m.region); }
+
+py::dict type_dict(const quality::TypeStats& s) {
+  py::dict d;
+  d["count"] = s.count;
+  d["sj_min"] = s.sj_min;
+  d["sj_mean"] = s.sj_mean;
+  d["inverted"] = s.inverted;
+  d["edge_ratio_min"] = s.edge_ratio_min;
+  d["edge_ratio_max"] = s.edge_ratio_max;
+  d["volume"] = s.volume;
+  d["histogram"] = std::vector<int>(s.histogram.begin(), s.histogram.end());
+  return d;
+}
+
+py::dict report_dict(const quality::QualityReport& r) {
+  py::dict d;
+  d["hex"] = type_dict(r.hex);
+  d["prism"] = type_dict(r.prism);
+  d["tet"] = type_dict(r.tet);
+  d["total_volume"] = r.total_volume;
+  return d;
+}
+
+py::dict polycube_dict(const autopolycube::AutoPolycube& r) {
+  py::dict d;
+  d["structure"] = mesh_tuple(r.structure);
+  d["patches"] = surface_tuple(r.patches);
+  d["labels"] = surface_tuple(r.labels);
+  d["polycube"] = surface_tuple(r.polycube);
+  d["cell"] = r.cell;
+  d["charts"] = r.charts;
+  d["relabelled"] = r.relabelled;
+  d["chords"] = r.chords;
+  d["planes"] = r.planes;
+  d["pushed"] = r.pushed;
+  d["squares"] = r.squares;
+  d["blocks"] = r.blocks;
+  d["boundary_vertices"] = r.boundary_vertices;
+  d["interior_vertices"] = r.interior_vertices;
+  d["min_block_quality"] = r.min_block_quality;
+  d["inverted_blocks"] = r.inverted_blocks;
+  return d;
+}
+
+const char* kAutopolycubeDoc =
+    "Automatic polycube structure from a labelled surface (label 1..6 = +X, -X, +Y, -Y, +Z, -Z per\n"
+    "triangle, as segment() gives): the charts are flattened onto axis-aligned planes on a grid of spacing\n"
+    "h = size * 2^level (size 0: bounding-box diagonal / 30), every grid cell inside becomes a hex block, and\n"
+    "the surface is re-split along the grid lines into one patch per boundary square, so that generate()\n"
+    "takes the pair unchanged. Labellings that cannot be a polycube are repaired by relabelling the smallest\n"
+    "chart involved (at most max_relabels; charts blamed for a fold only up to max_relabel_area of the\n"
+    "surface). Returns a dict: structure (V, cells, types, region), patches (V, F, patch), labels (the\n"
+    "repaired labelling on the surface the map used), polycube (V, F, label at polycube positions), and the\n"
+    "figures cell, charts, relabelled, chords, planes, pushed, squares, blocks, boundary_vertices,\n"
+    "interior_vertices, min_block_quality, inverted_blocks. Raises GeometryError naming the charts when\n"
+    "the labelling cannot be repaired.";
+
+const char* kMeshSurfaceDoc =
+    "Hex mesh of a closed surface with no manual step: segment (CVT, edge_weight) -> autopolycube (size,\n"
+    "level, max_relabels) -> generate (level, relax_sweeps) -> improve (recommended sequence, boundary on\n"
+    "the patch surface; skipped with improve=False). The surface's patch ids are CAD faces when there are\n"
+    "several. Returns a dict: mesh and generated (V, cells, types, region), labels (V, F, label),\n"
+    "polycube (the autopolycube dict), quality and generated_quality (hex, prism, tet, total_volume),\n"
+    "seconds (segment, autopolycube, generate, improve). Inverted cells left are reported, not raised.";
+
+}  // namespace
+
+void bind_auto(py::module_& m) {
+  m.def("autopolycube",
+        [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
+           double max_relabel_area, int untangle_rounds) {
+          mesh::SurfaceMesh s = surface_of(V, F, label);
+          autopolycube::AutoPolycubeOptions opt;
+          opt.size = size;
+          opt.level = level;
+          opt.max_relabels = max_relabels;
+          opt.max_attempts = max_attempts;
+          opt.max_relabel_area = max_relabel_area;
+          opt.untangle_rounds = untangle_rounds;
+          autopolycube::AutoPolycube r;
+          {
+            py::gil_scoped_release nogil;
+            r = autopolycube::autopolycube(s, opt);
+          }
+          return polycube_dict(r);
+        },
+        py::arg("V"), py::arg("F"), py::arg("label"), py::arg("size") = 0.0, py::arg("level") = 1,
+        py::arg("max_relabels") = 200, py::arg("max_attempts") = 20, py::arg("max_relabel_area") = 0.03,
+        py::arg("untangle_rounds") = 50, kAutopolycubeDoc);
+
+  m.def("mesh_surface",
+        [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
+           int relax_sweeps, bool improve) {
+          mesh::SurfaceMesh s = surface_of(V, F, patch);
+          autopolycube::MeshSurfaceOptions opt;
+          opt.size = size;
+          opt.level = level;
+          opt.segment.edge_weight = edge_weight;
+          opt.polycube.max_relabels = max_relabels;
+          opt.relax_sweeps = relax_sweeps;
+          opt.improve = improve;
+          autopolycube::MeshSurfaceRun r;
+          {
+            py::gil_scoped_release nogil;
+            autopolycube::mesh_surface(s, opt, &r);
+          }
+          py::dict d;
+          d["mesh"] = mesh_tuple(r.mesh);
+          d["generated"] = mesh_tuple(r.generated);
+          d["labels"] = surface_tuple(r.labels);
+          d["polycube"] = polycube_dict(r.polycube);
+          d["quality"] = report_dict(r.quality);
+          d["generated_quality"] = report_dict(r.generated_quality);
+          d["seconds"] = std::vector<double>(r.seconds, r.seconds + 4);
+          return d;
+        },
+        py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
+        py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
+        py::arg("improve") = true, kMeshSurfaceDoc);
+}
+
+}  // namespace hexdom::python

@@ -1,0 +1,317 @@
+"""The automatic path (issue 9) checked from outside: `hexdom autopolycube` feeding `hexdom generate`,
+`hexdom mesh` on the paper's raw surfaces and the shared CAD parts, and core.autopolycube /
+mesh_surface / mesh_part. VTK reads the outputs and Verdict (vtkMeshQuality) judges the cells; the
+.k files are parsed by hexdom_oracles.parse_k, not by our readers."""
+
+import glob
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+import vtk
+
+import hexdom_oracles as oracle
+import hexdom_test_support as support
+
+DATA = support.DATA_ROOT
+
+
+def _need(path):
+    if not os.path.exists(path):
+        pytest.skip(support.missing(path))
+    return str(path)
+
+
+def _run(*args, ok=True):
+    r = subprocess.run([str(support.hexdom_bin()), *map(str, args)], capture_output=True, text=True)
+    if ok:
+        assert r.returncode == 0, r.stderr
+    return r
+
+
+def _raw(model):
+    return _need(DATA / "hexdom" / model / f"{model}.k")
+
+
+def _k_surface(path):
+    """(V, F, pid per triangle) of the shells of a .k file, parsed independently."""
+    k = oracle.parse_k(path)
+    ids = {nid: i for i, nid in enumerate(k["nodes"])}
+    V = np.array(list(k["nodes"].values()), float)
+    F = np.array([[ids[n] for n in s[2][:3]] for s in k["shells"]])
+    return V, F, np.array([s[1] for s in k["shells"]])
+
+
+def _enclosed(V, F):
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+
+def _locator(V, F):
+    pts = vtk.vtkPoints()
+    pts.SetDataTypeToDouble()
+    for p in V:
+        pts.InsertNextPoint(*p)
+    polys = vtk.vtkCellArray()
+    for t in F:
+        polys.InsertNextCell(3, [int(x) for x in t])
+    pd = vtk.vtkPolyData()
+    pd.SetPoints(pts)
+    pd.SetPolys(polys)
+    loc = vtk.vtkCellLocator()
+    loc.SetDataSet(pd)
+    loc.BuildLocator()
+    return loc, pd
+
+
+def _distance(loc, p):
+    closest = [0.0, 0.0, 0.0]
+    cid, sub, d2 = vtk.reference(0), vtk.reference(0), vtk.reference(0.0)
+    loc.FindClosestPoint(list(p), closest, cid, sub, d2)
+    return float(d2) ** 0.5
+
+
+def _faces(conn):
+    faces = {}
+    for c in conn:
+        for f in ([0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]):
+            key = tuple(sorted(c[i] for i in f))
+            faces.setdefault(key, []).append([c[i] for i in f])
+    return faces
+
+
+def _check_hex_mesh(path, surface_V, surface_F):
+    """All hexes, conforming and closed, boundary nodes on the surface; returns (Verdict SJ, VTK
+    volume)."""
+    g, _ = oracle.read_legacy_vtk(path)
+    P, types, conn = oracle.grid_arrays(g)
+    assert set(types.tolist()) == {oracle.HEX}
+    faces = _faces(conn)
+    assert max(len(v) for v in faces.values()) <= 2
+    boundary = [v[0] for v in faces.values() if len(v) == 1]
+    edges = {}
+    for f in boundary:
+        for i in range(4):
+            e = tuple(sorted((f[i], f[(i + 1) % 4])))
+            edges[e] = edges.get(e, 0) + 1
+    assert set(edges.values()) == {2}
+    loc, _ = _locator(surface_V, surface_F)
+    diag = np.linalg.norm(surface_V.max(0) - surface_V.min(0))
+    worst = max(_distance(loc, P[i]) for i in {i for f in boundary for i in f})
+    assert worst <= 1e-6 * diag, f"a boundary node is {worst / diag:.1e} x diagonal off the surface"
+    sj, _ = oracle.verdict_metrics(g)
+    return sj, float(oracle.signed_volumes(g).sum())
+
+
+# ------------------------------------------------------------------------------------------------
+# hexdom autopolycube -> hexdom generate
+
+@pytest.fixture(scope="module")
+def hepta_auto(tmp_path_factory):
+    d = tmp_path_factory.mktemp("hepta_auto")
+    raw = _raw("hepta")
+    _run("segment", "-i", raw, "-o", d / "labels.k")
+    r = _run("autopolycube", "-i", d / "labels.k", "-o", d / "structure.k", "--patches-out", d / "patches.k",
+             "--polycube-out", d / "polycube.vtk")
+    return d, raw, r
+
+
+def test_autopolycube_outputs_feed_generate_unchanged(hepta_auto):
+    d, raw, _ = hepta_auto
+    solids = oracle.parse_k(d / "structure.k")["solids"]
+    assert solids and all(len(set(s[2])) == 8 for s in solids)  # hex blocks only
+    _run("generate", "-i", d / "patches.k", "-p", d / "structure.k", "-s", "1", "-o", d / "mesh.vtk")
+    V, F, _ = _k_surface(raw)
+    sj, volume = _check_hex_mesh(d / "mesh.vtk", V, F)
+    g, _ = oracle.read_legacy_vtk(d / "mesh.vtk")
+    assert g.GetNumberOfCells() == 8 * len(solids)
+    assert sj.min() > 0
+    assert volume == pytest.approx(_enclosed(V, F), rel=0.01)
+
+
+def test_patch_surface_keeps_the_input_geometry(hepta_auto):
+    d, raw, _ = hepta_auto
+    V, F, _ = _k_surface(raw)
+    PV, PF, pid = _k_surface(d / "patches.k")
+    assert _enclosed(PV, PF) == pytest.approx(_enclosed(V, F), rel=1e-9)
+    loc, _ = _locator(V, F)
+    diag = np.linalg.norm(V.max(0) - V.min(0))
+    assert max(_distance(loc, p) for p in PV) <= 1e-9 * diag
+    # One patch per boundary face of the structure (faces used by one block only).
+    solids = [s[2] for s in oracle.parse_k(d / "structure.k")["solids"]]
+    boundary = [k for k, v in _faces(solids).items() if len(v) == 1]
+    assert len(set(pid.tolist())) == len(boundary)
+
+
+def test_autopolycube_reports_its_figures(hepta_auto):
+    _, _, r = hepta_auto
+    assert "blocks:" in r.stdout and "boundary squares:" in r.stdout and "worst block SJ:" in r.stdout
+
+
+def test_autopolycube_errors_write_nothing(tmp_path):
+    raw = _raw("hepta")
+    out, patches = tmp_path / "s.k", tmp_path / "p.k"
+    # A raw surface's part ids are not axis labels 1..6 everywhere.
+    V, F, _ = _k_surface(raw)
+    bad = tmp_path / "bad.obj"
+    with open(bad, "w") as f:
+        f.write("".join(f"v {x} {y} {z}\n" for x, y, z in V))
+        f.write("g patch_9\n" + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F))
+    r = _run("autopolycube", "-i", bad, "-o", out, "--patches-out", patches, ok=False)
+    assert r.returncode == 1 and "label 9" in r.stderr
+    assert not out.exists() and not patches.exists()
+    r = _run("autopolycube", "-i", raw, "-o", tmp_path / "s.xyz", "--patches-out", patches, ok=False)
+    assert r.returncode == 1 and not patches.exists()
+
+
+# ------------------------------------------------------------------------------------------------
+# hexdom mesh on the paper's raw surfaces
+
+_RAW_DEFECT = {
+    "mount1": "issue 9: the CVT labelling of mount1's ears (holes through 16-facet cylinders, touching the "
+              "channel floor) cannot be repaired into a polycube: relabelling cascades until one chart is left",
+    "rockerarm": "issue 9: the bore of rockerarm is thinner than a cell at the default size; the +-X charts "
+                 "around it fold (1827 triangles after 21 relabels)",
+}
+
+
+@pytest.mark.parametrize("model", [pytest.param(m, marks=pytest.mark.xfail(strict=True, reason=_RAW_DEFECT[m]))
+                                   if m in _RAW_DEFECT else m for m in ["hepta", "mount1", "rockerarm"]])
+def test_mesh_paper_model_has_no_inverted_cell(model, tmp_path):
+    raw = _raw(model)
+    out = tmp_path / f"{model}.vtk"
+    r = _run("mesh", raw, "-o", out, "--report", tmp_path / "q.json", ok=False)
+    assert r.returncode == 0, r.stderr
+    for stage in ("segment:", "autopolycube:", "generate:", "improve:"):
+        assert stage in r.stderr
+    V, F, _ = _k_surface(raw)
+    sj, volume = _check_hex_mesh(out, V, F)
+    assert sj.min() > 0
+    assert volume == pytest.approx(_enclosed(V, F), rel=0.01)
+    with open(tmp_path / "q.json") as f:
+        report = json.load(f)
+    assert report["hex"]["inverted"] == 0
+    assert report["hex"]["sj_min"] == pytest.approx(sj.min(), abs=1e-6)
+
+
+def test_mesh_failure_leaves_the_intermediate_files(tmp_path):
+    raw = _raw("rockerarm")
+    out = tmp_path / "r.vtk"
+    r = _run("mesh", raw, "-o", out, "--max-relabels", "0", ok=False)
+    assert r.returncode == 1
+    assert "problems of the labelling remain" in r.stderr
+    assert not out.exists()
+    V, F, label = _k_surface(tmp_path / "r_labels.k")
+    assert len(F) > 0 and set(label.tolist()) <= set(range(1, 7))
+
+
+def test_mesh_missing_input_is_exit_1(tmp_path):
+    r = _run("mesh", tmp_path / "none.k", "-o", tmp_path / "x.vtk", ok=False)
+    assert r.returncode == 1 and "none.k" in r.stderr
+    assert not (tmp_path / "x.vtk").exists()
+
+
+# ------------------------------------------------------------------------------------------------
+# hexdom mesh on CAD parts (size = bounding-box diagonal / 30, the default)
+
+CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
+             "n11o_limit_cycle", "i10o_simp", "i11o_s1"]
+_CAD_DEFECT = {
+    "s15o_cylinder": "issue 9: volume -1.49% (chords of the 4 polycube edges on the round side; improve slides "
+                     "feature nodes along chords) and worst hex SJ 0.298",
+    "s12o_cube_rounded_1": "issue 9: volume -1.56% at size = diagonal / 30 (chords of the rounds)",
+    "n11o_limit_cycle": "issue 9: worst hex SJ 0.139 (a polycube edge across a smooth blend)",
+    "i10o_simp": "issue 9: the labelling cannot be repaired (relabelling cascades to one chart)",
+    "i11o_s1": "issue 9: the polycube map folds four charts (1332 triangles)",
+}
+
+
+def _cad(stem):
+    paths = glob.glob(str(DATA / "cad" / f"{stem}.*"))
+    if not paths:
+        pytest.skip(support.missing(DATA / "cad" / f"{stem}.*"))
+    return paths[0]
+
+
+@pytest.mark.parametrize("stem", [pytest.param(s, marks=pytest.mark.xfail(strict=True, reason=_CAD_DEFECT[s]))
+                                  if s in _CAD_DEFECT else s for s in CAD_PARTS])
+def test_mesh_cad_part(stem, tmp_path, core):
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    part = _cad(stem)
+    out = tmp_path / f"{stem}.vtk"
+    _run("mesh", part, "-o", out, "--keep")
+    V, F, _ = _k_surface(tmp_path / f"{stem}_patches.k")
+    sj, volume = _check_hex_mesh(out, V, F)
+    assert sj.min() >= 0.3
+    assert volume == pytest.approx(core._hexdom.cad_volume(part), rel=0.01)
+
+
+# ------------------------------------------------------------------------------------------------
+# HexDomWorkbench.core
+
+def _box(core, nx, ny, nz, n=2):
+    """Closed surface of an nx x ny x nz box of unit cells, faces split into n x n squares, labels
+    from normals: built here with numpy."""
+    pts, tris = {}, []
+
+    def vid(p):
+        return pts.setdefault(p, len(pts))
+    size = (nx, ny, nz)
+    for a in range(3):
+        b, c = (a + 1) % 3, (a + 2) % 3
+        for side in (0, 1):
+            for i in range(size[b] * n):
+                for j in range(size[c] * n):
+                    q = []
+                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        p = [0, 0, 0]
+                        p[a] = side * size[a] * n
+                        p[b], p[c] = i + di, j + dj
+                        q.append(vid(tuple(p)))
+                    tris += [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] if side else [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
+    V = np.array(sorted(pts, key=pts.get), float) / n
+    F = np.array(tris, np.int32)
+    nrm = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    axis = np.abs(nrm).argmax(1)
+    label = (2 * axis + 1 + (nrm[np.arange(len(F)), axis] < 0)).astype(np.int32)
+    return core.Surface(V, F, label)
+
+
+def test_core_autopolycube_of_a_box(core):
+    s = _box(core, 3, 2, 1)
+    r = core.autopolycube(s, size=0.5, level=1)
+    assert r.info["blocks"] == 6 and r.info["squares"] == 2 * (6 + 3 + 2) and r.info["inverted_blocks"] == 0
+    assert r.structure.count(core.HEX) == 6
+    m = core.generate(r.patches, r.structure, level=1)
+    q = core.quality_report(m)
+    assert q["hex"]["count"] == 48 and q["hex"]["sj_min"] == pytest.approx(1.0)
+    assert q["total_volume"] == pytest.approx(6.0)
+
+
+def test_core_autopolycube_rejects_labels_outside_1_to_6(core):
+    s = _box(core, 1, 1, 1)
+    s.patch[0] = 8
+    with pytest.raises(core.GeometryError, match="label 8"):
+        core.autopolycube(s)
+
+
+def test_core_mesh_surface_runs_every_stage(core):
+    s = core.read_surface(_raw("hepta"))
+    run = core.mesh_surface(s)
+    assert list(run.seconds) == list(core.MESH_STAGES)
+    assert run.inverted == 0 and run.quality["hex"]["count"] == run.mesh.count(core.HEX)
+    assert run.generated.count(core.HEX) == 8 * run.polycube.info["blocks"]
+    sj, _ = oracle.verdict_metrics(oracle.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types))
+    assert sj.min() == pytest.approx(run.quality["hex"]["sj_min"], abs=1e-9)
+
+
+def test_core_mesh_part_tessellates_first(core):
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    part = _cad("s09o_bridge")
+    run = core.mesh_part(part)
+    assert list(run.seconds) == ["tessellate", *core.MESH_STAGES]
+    assert run.quality["total_volume"] == pytest.approx(core._hexdom.cad_volume(part), rel=0.01)
