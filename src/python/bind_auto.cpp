@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "convert.h"
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/autopolycube/mesh_surface.h"
 
@@ -14,48 +15,6 @@ namespace py = pybind11;
 namespace hexdom::python {
 
 namespace {
-
-using RefV = Eigen::Ref<const Eigen::MatrixXd>;
-using RefF = Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
-using RefI = Eigen::Ref<const Eigen::VectorXi>;
-
-mesh::SurfaceMesh surface_of(const RefV& V, const RefF& F, const RefI& patch) {
-  if (V.cols() != 3) throw InputError("V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
-  if (F.cols() != 3) throw InputError("F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
-  if (patch.rows() != F.rows())
-    throw InputError("patch has " + std::to_string(patch.rows()) + " entries for " + std::to_string(F.rows()) + " triangles");
-  for (int f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) < 0 || F(f, k) >= V.rows())
-        throw InputError("triangle " + std::to_string(f) + " names vertex " + std::to_string(F(f, k)) + ", but there are " +
-                         std::to_string(V.rows()) + " vertices");
-  return mesh::SurfaceMesh{V, F, patch};
-}
-
-py::tuple surface_tuple(const mesh::SurfaceMesh& s) { return py::make_tuple(s.V, s.F, s.patch); }
-py::tuple mesh_tuple(const mesh::Mesh& m) { return py::make_tuple(m.V, m.cells, m.types, m.region); }
-
-py::dict type_dict(const quality::TypeStats& s) {
-  py::dict d;
-  d["count"] = s.count;
-  d["sj_min"] = s.sj_min;
-  d["sj_mean"] = s.sj_mean;
-  d["inverted"] = s.inverted;
-  d["edge_ratio_min"] = s.edge_ratio_min;
-  d["edge_ratio_max"] = s.edge_ratio_max;
-  d["volume"] = s.volume;
-  d["histogram"] = std::vector<int>(s.histogram.begin(), s.histogram.end());
-  return d;
-}
-
-py::dict report_dict(const quality::QualityReport& r) {
-  py::dict d;
-  d["hex"] = type_dict(r.hex);
-  d["prism"] = type_dict(r.prism);
-  d["tet"] = type_dict(r.tet);
-  d["total_volume"] = r.total_volume;
-  return d;
-}
 
 py::dict polycube_dict(const autopolycube::AutoPolycube& r) {
   py::dict d;

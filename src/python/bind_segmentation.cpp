@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "convert.h"
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/segmentation/check_patches.h"
 #include "hexdom/segmentation/edit_patches.h"
@@ -19,23 +20,6 @@ namespace py = pybind11;
 namespace hexdom::python {
 
 namespace {
-
-using RefV = Eigen::Ref<const Eigen::MatrixXd>;
-using RefF = Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
-using RefI = Eigen::Ref<const Eigen::VectorXi>;
-
-mesh::SurfaceMesh surface(const RefV& V, const RefF& F, const RefI& patch) {
-  if (V.cols() != 3) throw InputError("V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
-  if (F.cols() != 3) throw InputError("F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
-  if (patch.rows() != F.rows())
-    throw InputError("patch has " + std::to_string(patch.rows()) + " entries for " + std::to_string(F.rows()) + " triangles");
-  for (int f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) < 0 || F(f, k) >= V.rows())
-        throw InputError("triangle " + std::to_string(f) + " names vertex " + std::to_string(F(f, k)) + ", but there are " +
-                         std::to_string(V.rows()) + " vertices");
-  return mesh::SurfaceMesh{V, F, patch};
-}
 
 py::array_t<double> vec3(const Eigen::Vector3d& v) {
   py::array_t<double> a(3);
@@ -75,7 +59,7 @@ void bind_segmentation(py::module_& m) {
         [](const RefV& V, const RefF& F, const RefI& patch, double edge_weight, int classical_sweeps, int edge_sweeps,
            int min_moves, double max_drift, int ring, std::optional<bool> respect_faces, double planar_angle,
            double face_majority, std::optional<Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>> manual) {
-          mesh::SurfaceMesh s = surface(V, F, patch);
+          mesh::SurfaceMesh s = surface_of(V, F, patch);
           segmentation::CvtOptions opt;
           opt.edge_weight = edge_weight;
           opt.classical_sweeps = classical_sweeps;
@@ -127,7 +111,7 @@ void bind_segmentation(py::module_& m) {
 
   m.def("segmentation_stats",
         [](const RefV& V, const RefF& F, const RefI& label, double max_angle) {
-          mesh::SurfaceMesh s = surface(V, F, label);
+          mesh::SurfaceMesh s = surface_of(V, F, label);
           segmentation::check_surface(s);
           return stats_dict(segmentation::segmentation_stats(s, label, max_angle));
         },
@@ -139,7 +123,7 @@ void bind_segmentation(py::module_& m) {
   m.def("check_patches",
         [](const RefV& V, const RefF& F, const RefI& patch, double opposite_angle, double corner_defect,
            double corner_angle, double turn_window, const std::vector<int>& triangular_ids) {
-          mesh::SurfaceMesh s = surface(V, F, patch);
+          mesh::SurfaceMesh s = surface_of(V, F, patch);
           segmentation::CheckOptions opt;
           opt.opposite_angle = opposite_angle;
           opt.corner_defect = corner_defect;
@@ -198,7 +182,7 @@ void bind_segmentation(py::module_& m) {
 
   m.def("polycube_boundary",
         [](const RefV& V, const RefF& F, const RefI& patch) {
-          mesh::SurfaceMesh s = surface(V, F, patch);
+          mesh::SurfaceMesh s = surface_of(V, F, patch);
           segmentation::PolycubeBoundary b;
           mesh::Mesh shells;
           {
@@ -237,24 +221,24 @@ void bind_segmentation(py::module_& m) {
         "3 or 4 corners.");
 
   m.def("number_patches",
-        [](const RefV& V, const RefF& F, const RefI& patch) { return segmentation::number_patches(surface(V, F, patch)); },
+        [](const RefV& V, const RefF& F, const RefI& patch) { return segmentation::number_patches(surface_of(V, F, patch)); },
         py::arg("V"), py::arg("F"), py::arg("patch"),
         "One id per connected region, 1..R in the order of each region's first triangle.");
   m.def("reassign_triangles",
         [](const RefV& V, const RefF& F, const RefI& patch, const std::vector<int>& triangles, int id) {
-          return segmentation::reassign_triangles(surface(V, F, patch), triangles, id);
+          return segmentation::reassign_triangles(surface_of(V, F, patch), triangles, id);
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("triangles"), py::arg("id") = 0,
         "New patch map: `triangles` (0-based) take patch id `id` (<= 0: a new id, the largest + 1).");
   m.def("merge_patches",
         [](const RefV& V, const RefF& F, const RefI& patch, int a, int b) {
-          return segmentation::merge_patches(surface(V, F, patch), a, b);
+          return segmentation::merge_patches(surface_of(V, F, patch), a, b);
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("a"), py::arg("b"),
         "New patch map: patch id b's triangles take id a. Raises GeometryError when they share no edge.");
   m.def("split_patch",
         [](const RefV& V, const RefF& F, const RefI& patch, int id, const std::vector<int>& path) {
-          return segmentation::split_patch(surface(V, F, patch), id, path);
+          return segmentation::split_patch(surface_of(V, F, patch), id, path);
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("id"), py::arg("path"),
         "New patch map: patch id `id` cut along a path of vertices (0-based; consecutive ones joined by the\n"

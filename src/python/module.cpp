@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "convert.h"
 #include "hexdom/common/error.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/quality/improve.h"
@@ -16,37 +17,7 @@
 namespace py = pybind11;
 using namespace hexdom;
 
-namespace {
-
-using CellArray = mesh::CellMatrix;
-
-mesh::Mesh make_mesh(const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
-                     const std::optional<Eigen::VectorXi>& region) {
-  mesh::Mesh m;
-  m.V = V;
-  m.cells = cells;
-  m.types = types;
-  m.region = region ? *region : Eigen::VectorXi::Zero(cells.rows());
-  mesh::validate(m);
-  return m;
-}
-
-py::tuple mesh_tuple(const mesh::Mesh& m) { return py::make_tuple(m.V, m.cells, m.types, m.region); }
-
-py::dict stats_dict(const quality::TypeStats& s) {
-  py::dict d;
-  d["count"] = s.count;
-  d["sj_min"] = s.sj_min;
-  d["sj_mean"] = s.sj_mean;
-  d["inverted"] = s.inverted;
-  d["edge_ratio_min"] = s.edge_ratio_min;
-  d["edge_ratio_max"] = s.edge_ratio_max;
-  d["volume"] = s.volume;
-  d["histogram"] = std::vector<int>(s.histogram.begin(), s.histogram.end());
-  return d;
-}
-
-}  // namespace
+using namespace hexdom::python;
 
 PYBIND11_MODULE(_hexdom, m) {
   m.doc() = "HexDom core: hex-dominant meshing by polycubes (numpy in, numpy out)";
@@ -122,12 +93,7 @@ PYBIND11_MODULE(_hexdom, m) {
     mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
     quality::QualityReport r;
     { py::gil_scoped_release nogil; r = quality::quality_report(msh); }
-    py::dict d;
-    d["hex"] = stats_dict(r.hex);
-    d["prism"] = stats_dict(r.prism);
-    d["tet"] = stats_dict(r.tet);
-    d["total_volume"] = r.total_volume;
-    return d;
+    return report_dict(r);
   }, py::arg("V"), py::arg("cells"), py::arg("types"),
   "Dict with keys hex, prism, tet (count, sj_min, sj_mean, inverted, edge_ratio_min, edge_ratio_max, volume, histogram) and total_volume.");
 
