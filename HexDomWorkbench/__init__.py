@@ -10,6 +10,7 @@ Macro API (no GUI needed)::
     mesh = hexdom.generate(hexdom.segment(surface), hexdom.read_structure("s.k"), level=2)
     fem = hexdom.to_fem_mesh(hexdom.improve(mesh))
     objs = hexdom.make_document_objects(doc, patch_file="p.k", structure_file="s.k")
+    objs = hexdom.mesh_part(doc, part_obj, size=2.0, level=1)   # no manual step: all four objects
 
 The meshing itself lives in the compiled module ``_hexdom``; this package converts, displays and
 dispatches. Importing it does not import FreeCAD: the names of ``api`` (which import FreeCAD only
@@ -37,12 +38,12 @@ __version__ = "0.1.0"
 
 # Names served lazily from .api (PEP 562), so that importing the package stays FreeCAD-free.
 _API_NAMES = (
-    "LABEL_NAMES", "Progress", "RecomputeError", "SegmentedSurface", "apply_label_edits",
-    "check_patches", "clear_edits", "export_structure", "from_fem_mesh", "has_cad",
-    "has_segmentation", "import_patches", "import_structure", "improve_object",
-    "labels_from_normals", "make_document_objects", "patches_from_labels", "read_structure",
-    "recompute_document", "segment", "set_labels", "tessellate", "to_fem_mesh",
-    "transfer_patches",
+    "Cancelled", "LABEL_NAMES", "MeshPartError", "Progress", "RecomputeError",
+    "SegmentedSurface", "apply_label_edits", "check_patches", "clear_edits", "export_structure",
+    "from_fem_mesh", "has_cad", "has_segmentation", "import_patches", "import_structure",
+    "improve_object", "labels_from_normals", "make_document_objects", "mesh_part",
+    "patches_from_labels", "read_structure", "recompute_document", "segment", "set_labels",
+    "tessellate", "to_fem_mesh", "transfer_patches",
 )
 
 

@@ -538,12 +538,14 @@ def _tessellate_meshpart(shape, size, deflection, angle):
     return V, F, face_id, "MeshPart (standard)"
 
 
-def _tessellate_core(shape, size, deflection, angle):
+def _tessellate_core(shape, size, deflection, angle, run=None):
     brep = shape.exportBrepToString()
+    run = run or (lambda text, fn, *args, **kw: fn(*args, **kw))
     try:
-        result = core.tessellate_brep(brep, size=size, deflection=deflection, angle=angle)
+        result = run("tessellate", core.tessellate_brep, brep, size=size, deflection=deflection,
+                     angle=angle)
     except TypeError:  # a core wrapper that takes the size only
-        result = core.tessellate_brep(brep, size=size)
+        result = run("tessellate", core.tessellate_brep, brep, size=size)
     if hasattr(result, "F"):
         V, F, face_id = result.V, result.F, result.patch
     else:
@@ -554,7 +556,7 @@ def _tessellate_core(shape, size, deflection, angle):
     return np.asarray(V, float), np.asarray(F, np.int32).reshape(-1, 3), face_id
 
 
-def tessellate(shape, size=0.0, deflection=0.0, angle=20.0, method="auto"):
+def tessellate(shape, size=0.0, deflection=0.0, angle=20.0, method="auto", run=None):
     """Triangulates a Part shape (its faces) into a core.Surface whose ``patch`` is the CAD face
     number per triangle (1-based: triangle t lies on shape.Faces[patch[t] - 1], FreeCAD's
     Face<patch[t]>).
@@ -565,7 +567,9 @@ def tessellate(shape, size=0.0, deflection=0.0, angle=20.0, method="auto"):
     (core.tessellate_brep) when the build has it, else FreeCAD's MeshPart (each face meshed by
     Mefisto at one edge length, shortened for the curvature, shared edges merged; the standard
     mesher refined by bisection if that fails); "core" or "meshpart" force one. Returns a closed
-    core.Surface for a solid; ``tessellate.last_method`` tells which mesher ran.
+    core.Surface for a solid; ``tessellate.last_method`` tells which mesher ran. ``run``
+    (Progress.run) runs the core's call, in a worker thread under the GUI; MeshPart runs in the
+    calling thread.
     """
     if shape is None or shape.isNull() or not shape.Faces:
         raise ValueError("the shape has no faces to tessellate")
@@ -584,7 +588,7 @@ def tessellate(shape, size=0.0, deflection=0.0, angle=20.0, method="auto"):
     if use_core:
         if not has_cad():
             raise core.Error("CAD tessellation not available in this build")
-        V, F, face_id = _tessellate_core(shape, size, deflection, angle)
+        V, F, face_id = _tessellate_core(shape, size, deflection, angle, run)
         tessellate.last_method = "core"
     else:
         V, F, face_id, tessellate.last_method = _tessellate_meshpart(shape, size, deflection,
@@ -621,43 +625,10 @@ def read_structure(path):
 
 
 # ------------------------------------------------------------------------------------------------
-# Progress (FreeCAD's progress bar when the GUI is up)
+# Progress (FreeCAD's progress bar, a Cancel button and a responsive GUI for long core calls):
+# see progress.py.
 
-class Progress:
-    """Context manager: ``with Progress("Meshing", 3) as p: ...; p.step("improving")``.
-
-    Shows FreeCAD's progress bar (Base.ProgressIndicator) when the GUI is up and logs each step
-    to the report view; without FreeCAD it does nothing.
-    """
-
-    def __init__(self, title, steps):
-        self.title, self.steps, self.bar = title, steps, None
-
-    def __enter__(self):
-        try:
-            import FreeCAD
-        except ImportError:
-            return self
-        if FreeCAD.GuiUp:
-            self.bar = FreeCAD.Base.ProgressIndicator()
-            self.bar.start(self.title, self.steps)
-        return self
-
-    def step(self, text=None):
-        if text:
-            try:
-                import FreeCAD
-                FreeCAD.Console.PrintLog("HexDom: {}: {}\n".format(self.title, text))
-            except ImportError:
-                pass
-        if self.bar is not None:
-            self.bar.next()
-
-    def __exit__(self, *exc):
-        if self.bar is not None:
-            self.bar.stop()
-            self.bar = None
-        return False
+from .progress import Cancelled, Progress  # noqa: E402,F401
 
 
 # ------------------------------------------------------------------------------------------------
@@ -812,4 +783,104 @@ def make_document_objects(doc, shape=None, surface=None, patch_file=None, struct
                                           improve=improve)
     if recompute:
         recompute_document(doc, list(objs.values()))
+    return objs
+
+
+# ------------------------------------------------------------------------------------------------
+# One-command meshing of a CAD part (issue 9): Surface -> Segmentation -> automatic Polycube ->
+# Mesh, every intermediate object kept in the document and editable.
+
+MESH_PART_STAGES = (("surface", "tessellate"), ("segmentation", "segment"),
+                    ("polycube", "automatic polycube"), ("mesh", "generate and improve"))
+
+
+class MeshPartError(RecomputeError):
+    """A stage of mesh_part failed: ``stage`` names it, ``objects`` holds the objects created
+    (all kept in the document, the finished ones valid), the message is the core's."""
+
+    def __init__(self, message, stage=None, objects=None):
+        super().__init__(message)
+        self.stage = stage
+        self.objects = objects or {}
+
+
+def part_size(shape):
+    """Target element size mesh_part uses when given 0: the bounding-box diagonal / 30 (as
+    `hexdom mesh`)."""
+    return shape.BoundBox.DiagonalLength / 30.0
+
+
+def make_mesh_part(doc, part, size=0.0, level=1, improve=True):
+    """Adds the four objects of mesh_part to ``doc`` without recomputing; returns them as a dict
+    (surface, segmentation, polycube, mesh)."""
+    from . import make
+    shape = getattr(part, "Shape", None)
+    if shape is None or shape.isNull() or not shape.Solids:
+        raise ValueError("{}: select a Part solid to mesh".format(getattr(part, "Label", part)))
+    size = float(size) if size and size > 0 else part_size(shape)
+    if int(level) < 0:
+        raise ValueError("level must be 0 or more")
+    label = part.Label
+    objs = {}
+    # The tessellation of `hexdom mesh`: triangles of the element size, chords within size / 50.
+    objs["surface"] = make.make_surface(doc, source=part, size=size, deflection=size / 50.0,
+                                        angle=30.0)
+    objs["segmentation"] = make.make_segmentation(doc, objs["surface"], method="Automatic")
+    objs["polycube"] = make.make_polycube(doc, segmentation=objs["segmentation"], size=size,
+                                          level=level)
+    objs["mesh"] = make.make_hex_mesh(doc, segmentation=objs["segmentation"],
+                                      polycube=objs["polycube"], level=level, improve=improve)
+    try:  # one Level for both: the blocks are made for the mesh's subdivision
+        objs["mesh"].setExpression("Level", objs["polycube"].Name + ".Level")
+    except (AttributeError, RuntimeError, ValueError):
+        pass
+    for key, suffix in (("surface", "_surface"), ("segmentation", "_segmentation"),
+                        ("polycube", "_polycube"), ("mesh", "_mesh")):
+        objs[key].Label = label + suffix
+    return objs
+
+
+def check_mesh_part(objs, allow_inverted=False):
+    """Raises MeshPartError for the first of mesh_part's objects that failed (naming its stage
+    and the core's message), or when the mesh has inverted cells (unless ``allow_inverted``)."""
+    for key, stage in MESH_PART_STAGES:
+        obj = objs.get(key)
+        if obj is None:
+            continue
+        state = obj.State
+        if "Invalid" in state or "Error" in state or "Touched" in state:
+            message = obj.getStatusString() if hasattr(obj, "getStatusString") else ""
+            if not message or message == "Touched":
+                message = "not computed"
+            raise MeshPartError("{} failed at {} ({}): {}".format(
+                objs["mesh"].Label.rsplit("_mesh", 1)[0], stage, obj.Label, message),
+                stage, objs)
+    mesh = objs["mesh"]
+    if mesh.InvertedCount and not allow_inverted:
+        raise MeshPartError(
+            "{}: {} inverted cells remain after improvement (worst hex SJ {:.3f}); the "
+            "objects are kept: edit the Segmentation (Edit Patches) or switch the Polycube to "
+            "Manual and edit it (Build Polycube)".format(mesh.Label, mesh.InvertedCount,
+                                                         mesh.MinHexSJ), "mesh", objs)
+    return objs
+
+
+def mesh_part(doc, part, size=0.0, level=1, improve=True, recompute=True, allow_inverted=False):
+    """Meshes the Part solid ``part`` with no manual step, as `hexdom mesh` does, keeping every
+    stage as an editable document object: HexDom Surface (tessellation at ``size``, 0: bounding-box
+    diagonal / 30), Segmentation (automatic), Polycube (Mode Automatic: blocks of size * 2^level)
+    and Mesh (generated at ``level`` and improved if ``improve``; its Level follows the Polycube's).
+    Returns a dict with keys surface, segmentation, polycube, mesh.
+
+    With ``recompute`` the document is recomputed; a stage that fails raises MeshPartError naming
+    the stage and the core's message (which names the charts or corners at fault), with the
+    objects kept in the document (``error.objects``); so do inverted cells left in the mesh,
+    unless ``allow_inverted``.
+    """
+    objs = make_mesh_part(doc, part, size=size, level=level, improve=improve)
+    if recompute:
+        with Progress("Meshing " + part.Label, 1) as bar:
+            doc.recompute()
+            bar.step("recomputed")
+        check_mesh_part(objs, allow_inverted)
     return objs

@@ -83,12 +83,22 @@ def make_segmentation(doc, surface, method=None, patch_file=None, name="HexDomSe
     return obj
 
 
-def make_polycube(doc, structure=None, path=None, name="HexDomPolycube"):
+def make_polycube(doc, structure=None, path=None, name="HexDomPolycube", segmentation=None,
+                  size=0.0, level=None):
     """Adds a HexDom Polycube holding the structure core.Mesh ``structure`` (read from ``path``
-    on recompute when no structure is given)."""
+    on recompute when no structure is given). With ``segmentation`` (a HexDom Segmentation) and
+    no structure it is automatic: Mode "Automatic", blocks of ``size`` * 2^``level`` built on
+    recompute by core.autopolycube (size 0: bounding-box diagonal / 30; level default 1)."""
     obj = doc.addObject("App::FeaturePython", name)
     from .objects import polycube
     polycube.Polycube(obj)
+    if segmentation is not None:
+        obj.Segmentation = segmentation
+        obj.Size = float(size or 0.0)
+        if level is not None:
+            obj.Level = int(level)
+        if structure is None and not path:
+            obj.Mode = "Automatic"
     if structure is not None:
         polycube.store_structure(obj, structure)
         if path:

@@ -326,6 +326,73 @@ class _ImproveQuality(CommandManager):
         return new
 
 
+class _MeshPart(CommandManager):
+    menutext = "Mesh part"
+    tooltip = ("Meshes the selected Part solid with no manual step: a HexDom Surface "
+               "(tessellation), Segmentation (automatic), Polycube (automatic) and Mesh "
+               "(generated and improved), all kept and editable; element size = bounding-box "
+               "diagonal / 30, level 1 (change Size and Level on the Polycube and recompute)")
+    is_active = "with_part"
+
+    def Activated(self):
+        parts = manager.selected_parts()
+        if len(parts) != 1:
+            manager.show_error("Mesh part", "select one Part solid")
+            return
+        self.mesh_part(parts[0])
+
+    def mesh_part(self, part, size=0.0, level=1):
+        """Creates the four objects for ``part`` and recomputes them in order, with progress and
+        Cancel. Returns the dict of objects (api.mesh_part's), or None if none were made. A
+        stage that fails, or Cancel, keeps the objects: the finished ones stay valid and the
+        message names the stage."""
+        from .. import api
+        doc = part.Document
+        before = set(o.Name for o in doc.Objects)
+        doc.openTransaction("Mesh part")
+        cancelled = False
+        try:
+            with api.Progress("Meshing " + part.Label, 2) as bar:
+                FreeCADGui.addModule("HexDomWorkbench.api")
+                FreeCADGui.doCommand(
+                    "HexDomWorkbench.api.make_mesh_part(App.ActiveDocument, {}, size={!r}, "
+                    "level={})".format(_doc_expr(part), float(size), int(level)))
+                bar.step("objects created")
+                FreeCADGui.doCommand("App.ActiveDocument.recompute()")
+                bar.step("recomputed")
+                cancelled = bar.is_cancelled()
+        except manager.USER_ERRORS as e:  # bad input: nothing made
+            doc.abortTransaction()
+            manager.show_error("Mesh part", e)
+            return None
+        doc.commitTransaction()
+        objs = {}
+        for o in doc.Objects:
+            if o.Name in before:
+                continue
+            for key, type_name in (("surface", "HexDom::Surface"),
+                                   ("segmentation", "HexDom::Segmentation"),
+                                   ("polycube", "HexDom::Polycube"), ("mesh", "HexDom::Mesh")):
+                if getattr(getattr(o, "Proxy", None), "Type", None) == type_name:
+                    objs[key] = o
+        _fit()
+        try:
+            api.check_mesh_part(objs)
+        except api.MeshPartError as e:
+            if cancelled:
+                FreeCAD.Console.PrintWarning("HexDom: Mesh part: cancelled ({}); the objects "
+                                             "are kept, recompute to resume\n".format(e))
+            else:
+                manager.show_error("Mesh part", e)
+            return objs
+        mesh = objs["mesh"]
+        FreeCAD.Console.PrintMessage(
+            "HexDom: {}: {} hex, {} prism, {} tet; worst hex SJ {:.3f}, mean {:.3f}; "
+            "volume {:.6g}\n".format(mesh.Label, mesh.HexCount, mesh.PrismCount, mesh.TetCount,
+                                      mesh.MinHexSJ, mesh.MeanHexSJ, mesh.MeshVolume))
+        return objs
+
+
 def _of_type(objs, type_name):
     return [o for o in objs if getattr(getattr(o, "Proxy", None), "Type", None) == type_name]
 
@@ -388,7 +455,7 @@ class _BuildPolycube(CommandManager):
 
 
 COMMANDS = [_ImportMesh(), _QualityReport(), _ExportMesh(), _AddToAnalysis()]
-PIPELINE_COMMANDS = [_Tessellate(), _Segment(), _ImportPatches(), _EditPatches(),
+PIPELINE_COMMANDS = [_MeshPart(), _Tessellate(), _Segment(), _ImportPatches(), _EditPatches(),
                      _ImportStructure(), _BuildPolycube(), _GenerateMesh(), _ImproveQuality(),
                      _ExportStructure()]
 TOOLBAR = [c.command_name for c in COMMANDS]

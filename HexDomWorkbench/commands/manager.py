@@ -144,12 +144,14 @@ def run_and_recompute(doc, title, modules, steps):
 
     Returns the objects the transaction added. If a line raises one of USER_ERRORS, or an object
     fails to recompute, the transaction is aborted (nothing is added) and the error shown in a
-    message box; returns None then.
+    message box (a warning in the report view after Cancel); returns None then. Long core calls
+    inside the recompute share this Progress: one dialog with a Cancel button.
     """
     from .. import api
     before = set(o.Name for o in doc.Objects)
     invalid_before = set(o.Name for o in doc.Objects if "Invalid" in o.State)
     doc.openTransaction(title)
+    cancelled = False
     try:
         with api.Progress(title, len(steps) + 1) as bar:
             for module in modules:
@@ -159,6 +161,7 @@ def run_and_recompute(doc, title, modules, steps):
                 bar.step(text)
             FreeCADGui.doCommand("App.ActiveDocument.recompute()")
             bar.step("recomputed")
+            cancelled = bar.is_cancelled()
         failed = [o for o in doc.Objects
                   if ("Invalid" in o.State or "Error" in o.State) and o.Name not in invalid_before]
         if failed:
@@ -167,7 +170,11 @@ def run_and_recompute(doc, title, modules, steps):
     except USER_ERRORS as e:
         doc.abortTransaction()
         doc.recompute()
-        show_error(title, e)
+        if cancelled:  # the user asked for it: no message box
+            FreeCAD.Console.PrintWarning("HexDom: {}: cancelled; the document is as it was\n"
+                                         .format(title))
+        else:
+            show_error(title, e)
         return None
     doc.commitTransaction()
     return [o for o in doc.Objects if o.Name not in before]

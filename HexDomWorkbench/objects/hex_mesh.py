@@ -6,7 +6,12 @@ recompute. Meshing stages plug in through ``HexMesh.generate``, which returns a 
 that ``execute`` stores:
 
 - with Segmentation and Polycube linked: core.generate at Level (2^Level cells per block edge),
-  then core.improve (boundary nodes kept on the segmented surface) when Improve is true;
+  then core.improve (boundary nodes kept on the segmented surface) when Improve is true; an
+  automatic Polycube brings its own patch surface (the segmentation cut along its grid), which
+  both stages then use instead of the Segmentation's patches;
+- when the Segmentation's Surface tessellates a Part and the core has snap_to_brep (SnapToCAD
+  true), the final boundary nodes are moved onto the CAD faces, so that FEM constraints on those
+  faces find them (BrepDistance reports the largest distance left);
 - with BaseMesh linked (another FEM mesh): a copy of it, improved when Improve is true;
 - with no input (an imported mesh): None, the stored mesh stays.
 """
@@ -70,13 +75,23 @@ class HexMesh(BaseHexDomObject):
                             "Improve quality after generation: pillowing, smoothing and "
                             "Jacobian optimisation, the core's recommended sequence")
             obj.Improve = True
+        if not hasattr(obj, "SnapToCAD"):
+            obj.addProperty("App::PropertyBool", "SnapToCAD", "HexDom",
+                            "Move the boundary nodes onto the CAD faces of the Part the Surface "
+                            "tessellates (when the core has snap_to_brep)")
+            obj.SnapToCAD = True
+        if not hasattr(obj, "BrepDistance"):
+            obj.addProperty("App::PropertyFloat", "BrepDistance", "Quality",
+                            "Largest distance of a boundary node from the CAD faces after "
+                            "snapping; -1 when the nodes were not snapped")
+            obj.BrepDistance = -1.0
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
         for name, prop_type, doc in _QUALITY:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Quality", doc)
-        set_read_only(obj, ["SourceFile"] + QUALITY_PROPERTIES)
+        set_read_only(obj, ["SourceFile", "BrepDistance"] + QUALITY_PROPERTIES)
         obj.setEditorMode("Region", 2)  # hidden: one entry per cell
 
     def generate(self, obj):
@@ -93,31 +108,59 @@ class HexMesh(BaseHexDomObject):
             mesh = get_mesh(base)
             if obj.Improve:
                 with api.Progress("Improving " + obj.Label, 1) as bar:
-                    mesh = core.improve(mesh)
+                    mesh = bar.run("improve", core.improve, mesh)
                     bar.step("improved")
             return mesh
         if seg is None or poly is None:
             raise ValueError("{}: link both a Segmentation and a Polycube (or neither)".format(
                 obj.Label))
         from . import polycube, segmentation
-        surface = segmentation.get_surface(seg)
+        surface = polycube.get_patch_surface(poly)
+        if surface is None:
+            surface = segmentation.get_surface(seg)
         structure = polycube.get_structure(poly)
         if obj.Level < 0:
             raise ValueError("{}: Level must be 0 or more".format(obj.Label))
-        with api.Progress("Meshing " + obj.Label, 2 if obj.Improve else 1) as bar:
-            mesh = core.generate(surface, structure, level=obj.Level)
+        snap = snap_source(obj)
+        with api.Progress("Meshing " + obj.Label,
+                          1 + bool(obj.Improve) + bool(snap)) as bar:
+            mesh = bar.run("generate", core.generate, surface, structure, level=obj.Level)
             bar.step("generated {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if obj.Improve:
-                mesh = core.improve(mesh, surface)
+                mesh = bar.run("improve", core.improve, mesh, surface)
                 bar.step("improved")
+            if snap:
+                brep, cad_surface = snap
+                mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface)
+                self.brep_distance = float(info["max_distance"])
+                bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
         return mesh
 
     def execute(self, obj):
+        self.brep_distance = -1.0
         mesh = self.generate(obj)
         if mesh is not None:
             store_mesh(obj, mesh)
+            if hasattr(obj, "BrepDistance") and obj.BrepDistance != self.brep_distance:
+                obj.BrepDistance = self.brep_distance
         else:
             update_quality(obj)
+
+
+def snap_source(obj):
+    """(BREP text, core.Surface with CAD face ids) to snap the mesh of HexDom Mesh ``obj`` to, or
+    None: SnapToCAD off, the core without snap_to_brep, or no Part behind the Segmentation."""
+    from .. import api
+    if not getattr(obj, "SnapToCAD", False) or not api._core_has("snap_to_brep"):
+        return None
+    seg = getattr(obj, "Segmentation", None)
+    surface_obj = getattr(seg, "Surface", None)
+    part = getattr(surface_obj, "Source", None)
+    shape = getattr(part, "Shape", None)
+    if shape is None or shape.isNull() or not shape.Faces:
+        return None
+    from . import tessellation
+    return shape.exportBrepToString(), tessellation.get_surface(surface_obj)
 
 
 def is_hex_mesh(obj):

@@ -5,6 +5,14 @@ VTK node order, -1 padded: 8 for a hex, 6 for a prism, 4 for a tet) and BlockTyp
 block: 12 hex, 13 prism, 10 tet). SourceFile names the .k structure file it was imported from;
 setting it to another file and recomputing reads that file (api.import_structure and
 api.export_structure read and write the original program's .k files through core).
+
+Mode "Automatic" computes the structure on recompute with core.autopolycube from the labels of the
+linked Segmentation, with blocks of Size * 2^Level (Size 0: bounding-box diagonal / 30). The
+automatic structure comes with its own patch surface (the segmented surface cut along the grid,
+one patch per boundary square: PatchPoints, PatchTriangles, PatchIds), which the HexDom Mesh then
+generates from instead of the Segmentation's patches. Mode "Manual" keeps the stored blocks (and
+that patch surface, if any) as they are: the Build Polycube panel switches an automatic Polycube
+to Manual when its OK writes edited blocks, and setting Mode back to Automatic recomputes them.
 """
 
 import os
@@ -16,6 +24,20 @@ from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Polycube"
 BLOCK_TYPES = (core.HEX, core.WEDGE, core.TET)
+MODES = ["Manual", "Automatic"]
+
+# Figures of the last automatic build (read-only): (property, type, tooltip, AutoPolycube.info key)
+_AUTO_RESULTS = [
+    ("CellSize", "App::PropertyFloat", "Edge length h of the grid cells the blocks are made of",
+     "cell"),
+    ("Charts", "App::PropertyInteger", "Charts (connected regions of one label) flattened",
+     "charts"),
+    ("Relabelled", "App::PropertyInteger", "Charts whose label the repair changed", "relabelled"),
+    ("MinBlockSJ", "App::PropertyFloat", "Smallest scaled Jacobian of the blocks",
+     "min_block_quality"),
+    ("InvertedBlocks", "App::PropertyInteger", "Blocks with scaled Jacobian <= 0",
+     "inverted_blocks"),
+]
 
 _RESULTS = [
     ("HexBlocks", "Number of hex blocks"),
@@ -50,20 +72,124 @@ class Polycube(BaseHexDomObject):
         if not hasattr(obj, "BlockTypes"):
             obj.addProperty("App::PropertyIntegerList", "BlockTypes", "Structure",
                             "VTK cell type per block: 12 hex, 13 prism, 10 tet")
-        set_read_only(obj, ["LoadedFile"] + [name for name, _ in _RESULTS])
-        for name in ("Points", "Blocks", "BlockTypes", "LoadedFile"):
+        if not hasattr(obj, "Mode"):
+            obj.addProperty("App::PropertyEnumeration", "Mode", "Input",
+                            "Manual: the stored blocks (hand-built, imported or edited); "
+                            "Automatic: computed on recompute from Segmentation "
+                            "(core.autopolycube)")
+            obj.Mode = MODES
+            obj.Mode = "Manual"
+        if not hasattr(obj, "Segmentation"):
+            obj.addProperty("App::PropertyLink", "Segmentation", "Automatic",
+                            "HexDom Segmentation whose labels Mode Automatic builds the "
+                            "polycube of")
+        if not hasattr(obj, "Size"):
+            obj.addProperty("App::PropertyLength", "Size", "Automatic",
+                            "Target element size H; blocks are grid cells of H * 2^Level "
+                            "(0: bounding-box diagonal / 30)")
+        if not hasattr(obj, "Level"):
+            obj.addProperty("App::PropertyInteger", "Level", "Automatic",
+                            "Subdivision level the blocks are made for (the HexDom Mesh's Level): "
+                            "2^Level cells per block edge")
+            obj.Level = 1
+        for name, prop_type, doc, _ in _AUTO_RESULTS:
+            if not hasattr(obj, name):
+                obj.addProperty(prop_type, name, "Automatic", doc)
+        for name, prop_type, doc in _PATCH_SURFACE:
+            if not hasattr(obj, name):
+                obj.addProperty(prop_type, name, "Structure", doc)
+        set_read_only(obj, ["LoadedFile"] + [name for name, _ in _RESULTS]
+                      + [name for name, _, _, _ in _AUTO_RESULTS])
+        for name in ("Points", "Blocks", "BlockTypes", "LoadedFile") + PATCH_SURFACE_PROPERTIES:
             obj.setEditorMode(name, 2)
 
     def execute(self, obj):
+        if getattr(obj, "Mode", "Manual") == "Automatic":
+            build_automatic(obj)
+            return
         path = obj.SourceFile
         if path and os.path.abspath(path) != obj.LoadedFile:
             from .. import api
             store_structure(obj, api.read_structure(path))
+            store_patch_surface(obj, None)  # a file's blocks go with the Segmentation's patches
             obj.LoadedFile = os.path.abspath(path)
         else:
             structure = get_structure(obj)
             check_structure(structure)
             update_counts(obj, structure.types, len(structure.V))
+
+
+_PATCH_SURFACE = [
+    ("PatchPoints", "App::PropertyVectorList",
+     "Points of the automatic structure's patch surface (empty: the Segmentation's patches)"),
+    ("PatchTriangles", "App::PropertyIntegerList",
+     "Point indices (0-based), three per triangle of the patch surface"),
+    ("PatchIds", "App::PropertyIntegerList", "Patch id per triangle of the patch surface"),
+]
+PATCH_SURFACE_PROPERTIES = tuple(name for name, _, _ in _PATCH_SURFACE)
+
+
+def build_automatic(obj):
+    """Mode Automatic: the structure and patch surface of core.autopolycube on the labels of
+    obj.Segmentation; raises core.GeometryError naming the charts when it cannot."""
+    from .. import api
+    from . import segmentation
+    seg = obj.Segmentation
+    if seg is None or not segmentation.is_segmentation(seg):
+        raise ValueError("{}: Mode Automatic needs a HexDom Segmentation (property "
+                         "Segmentation)".format(obj.Label))
+    if obj.Level < 0:
+        raise ValueError("{}: Level must be 0 or more".format(obj.Label))
+    labels = segmentation.get_label_surface(seg)
+    with api.Progress("Automatic polycube " + obj.Label, 1) as bar:
+        result = bar.run("automatic polycube", core.autopolycube, labels,
+                         size=float(obj.Size.Value), level=int(obj.Level))
+        bar.step("{} blocks of {:g}".format(len(result.structure.types),
+                                            float(result.info.get("cell", 0.0))))
+    store_structure(obj, result.structure)
+    store_patch_surface(obj, result.patches)
+    for name, _, _, key in _AUTO_RESULTS:
+        value = result.info.get(key)
+        if value is not None:
+            value = type(getattr(obj, name))(value)
+            if getattr(obj, name) != value:
+                setattr(obj, name, value)
+    return result
+
+
+def store_patch_surface(obj, surface):
+    """Keeps the core.Surface ``surface`` (patch ids per triangle) as the patch surface the blocks
+    go with; None clears it (the Segmentation's patches are used)."""
+    if surface is None:
+        if len(obj.PatchTriangles) or len(obj.PatchPoints):
+            obj.PatchTriangles = []
+            obj.PatchIds = []
+            obj.PatchPoints = []
+        return
+    V = np.asarray(surface.V, float).reshape(-1, 3)
+    F = np.asarray(surface.F, np.int64).reshape(-1, 3)
+    ids = np.asarray(surface.patch, np.int64).reshape(-1)
+    obj.PatchTriangles = []
+    obj.PatchPoints = [tuple(p) for p in V.tolist()]
+    obj.PatchIds = ids.tolist()
+    obj.PatchTriangles = F.reshape(-1).tolist()
+
+
+def has_patch_surface(obj):
+    return is_polycube(obj) and len(getattr(obj, "PatchTriangles", ())) > 0
+
+
+def get_patch_surface(obj):
+    """core.Surface of the blocks' own patch surface (automatic structures), or None."""
+    if not has_patch_surface(obj):
+        return None
+    V = np.array([tuple(p) for p in obj.PatchPoints], float).reshape(-1, 3)
+    F = np.array(obj.PatchTriangles, np.int32).reshape(-1, 3)
+    ids = np.array(obj.PatchIds, np.int32)
+    if len(ids) != len(F):
+        raise ValueError("{}: {} patch ids for {} patch triangles; recompute it".format(
+            obj.Label, len(ids), len(F)))
+    return core.Surface(V, F, ids)
 
 
 def is_polycube(obj):

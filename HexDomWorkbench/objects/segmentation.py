@@ -93,7 +93,8 @@ class Segmentation(BaseHexDomObject):
         issues = []
         with api.Progress("Segmenting " + obj.Surface.Label, 2) as bar:
             triangles, new_labels = valid_edits(obj, n, issues)
-            labels, patches, keep = base_segmentation(obj, surface, triangles, new_labels)
+            labels, patches, keep = base_segmentation(obj, surface, triangles, new_labels,
+                                                      run=bar.run)
             bar.step("labels")
             labels, patches = api.apply_label_edits(surface.F, labels, patches, triangles,
                                                     new_labels, keep_patches=keep)
@@ -107,14 +108,16 @@ class Segmentation(BaseHexDomObject):
             obj.Issues = issues
 
 
-def base_segmentation(obj, surface, triangles=(), new_labels=()):
+def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
     """(labels, patches, keep_patches) of the method, before user edits (which the automatic
-    method already takes as fixed labels)."""
+    method already takes as fixed labels). ``run(text, fn, *args, **kw)`` runs the core call
+    (Progress.run: a worker thread under the GUI); default: a direct call."""
     from .. import api
     method = obj.Method
     if method == "Automatic":
         edits = np.c_[np.asarray(triangles, np.int32), np.asarray(new_labels, np.int32)]
-        result = api.segment(surface, edits=edits if len(edits) else None)
+        run = run or (lambda text, fn, *args, **kw: fn(*args, **kw))
+        result = run("segment", api.segment, surface, edits=edits if len(edits) else None)
         return result.labels, result.patch, False
     if method == "Surface patches":
         patches = np.asarray(surface.patch, np.int32)
@@ -185,6 +188,17 @@ def store_segmentation(obj, labels, patches):
 
 def get_labels(obj):
     return np.array(obj.Labels, np.int32)
+
+
+def get_label_surface(obj):
+    """core.Surface of the Surface's triangles with this segmentation's label (1..6) per
+    triangle, as core.autopolycube takes it."""
+    surface = get_surface(obj)
+    labels = np.array(obj.Labels, np.int32)
+    if len(labels) != len(surface.F):
+        raise ValueError("{}: {} labels for {} triangles; recompute it".format(
+            obj.Label, len(labels), len(surface.F)))
+    return core.Surface(surface.V, surface.F, labels)
 
 
 def get_surface(obj):

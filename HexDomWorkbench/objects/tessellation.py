@@ -85,7 +85,7 @@ def compute_surface(obj):
             raise ValueError("{}: source {} has no faces".format(obj.Label, obj.Source.Label))
         with api.Progress("Tessellating " + obj.Source.Label, 1) as bar:
             surface = api.tessellate(shape, size=obj.Size.Value, deflection=obj.Deflection.Value,
-                                     angle=obj.Angle.Value)
+                                     angle=obj.Angle.Value, run=bar.run)
             bar.step("tessellated")
         obj.Method = api.tessellate.last_method or ""
         return surface

@@ -106,12 +106,18 @@ class _TaskPanel:
 
     def _make_builder(self, seg, structure):
         surface = segmentation.get_surface(seg) if seg is not None else None
+        own = polycube.get_patch_surface(self.obj) if self.obj is not None else None
+        if own is not None:  # an automatic structure: its blocks go with its own patches
+            surface = own
         builder = PolycubeBuilder(surface, structure)
         builder.listeners.append(self._on_builder)
         self.patch_labels = {}
         if seg is not None and builder.boundary is not None:
             numbers = np.asarray(core.number_patches(surface), np.int32)
             labels = np.asarray(seg.Labels, np.int32)
+            if own is not None:
+                from .. import api
+                labels = api.labels_from_normals(surface.V, surface.F, surface.patch)
             _, first = np.unique(numbers, return_index=True)
             for n, t in zip(np.unique(numbers).tolist(), first.tolist()):
                 self.patch_labels[n] = int(labels[t]) if len(labels) > t else 0
@@ -338,6 +344,8 @@ class _TaskPanel:
                     self.obj.Label = self.segmentation.Label + "_polycube"
             else:
                 polycube.store_structure(self.obj, structure)
+                if getattr(self.obj, "Mode", "Manual") == "Automatic":
+                    self.obj.Mode = "Manual"  # hand-edited now: keep it, do not rebuild it
                 if self.obj.SourceFile:
                     self.obj.SourceFile = ""
                     self.obj.LoadedFile = ""

@@ -43,7 +43,7 @@ record() { NAMES+=("$1"); RESULTS+=("$2"); }
 # exits with pytest's code, and a missing pytest summary line counts as a failure too.
 echo "== App tests (freecadcmd + pytest) =="
 set +e
-(cd "$FC_HOME" && timeout 240 freecadcmd "$HERE/run_app_tests.py") 2>&1 | tee "$ARTIFACTS/app.log"
+(cd "$FC_HOME" && timeout 600 freecadcmd "$HERE/run_app_tests.py") 2>&1 | tee "$ARTIFACTS/app.log"
 rc=${PIPESTATUS[0]}
 set -e
 app_summary=$(grep -aE "^=+ .*(passed|failed|error|skipped).* =+$" "$ARTIFACTS/app.log" | tail -1 || true)

@@ -1,0 +1,219 @@
+"""GUI test of Mesh Part, run by tests/freecad/run.sh as `freecad gui_test_mesh_part.py` under xvfb.
+
+1. HexDom_MeshPart is registered with an icon and a tooltip, and sits in the "HexDom pipeline"
+   toolbar; triggering that toolbar action on the selected STEP bracket (examples/data) adds a
+   HexDom Surface, Segmentation, Polycube (Mode Automatic) and Mesh, all valid, the mesh with no
+   inverted cell. While the core works the GUI keeps processing events (a 50 ms timer keeps
+   ticking; the longest gap is printed and checked). Screenshot of the mesh coloured by cell type
+   (artifacts/mesh_part_bracket.png): hex blue must show; one of the patches
+   (mesh_part_patches.png) too.
+2. Cancel: on a box, the progress dialog's Cancel button is clicked as soon as it shows. The
+   command keeps the objects, shows no message box, the stage that was running is marked failed
+   with "cancelled", no later stage ran (the Mesh holds no node); a plain recompute afterwards
+   makes every object valid: the document was left consistent.
+Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
+"""
+
+import os
+import sys
+import time
+import traceback
+
+TEST_DIR = os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(
+    os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, TEST_DIR)
+
+import gui_shots as g  # noqa: E402
+
+g.start_watchdog(170.0)
+check = g.check
+
+TYPE_HUES = {"hex blue": 215, "prism orange": 35, "tet magenta": 300}
+
+
+def colour_shares(path, hues, tolerance=16, min_saturation=0.3):
+    """Fraction of drawn (non-white) pixels, and of those the share near each named hue."""
+    from PySide import QtGui
+    img = QtGui.QImage(path)
+    counts = dict.fromkeys(hues, 0)
+    drawn = total = 0
+    for y in range(0, img.height(), 2):
+        for x in range(0, img.width(), 2):
+            c = QtGui.QColor(img.pixel(x, y))
+            total += 1
+            if c.red() > 245 and c.green() > 245 and c.blue() > 245:
+                continue
+            drawn += 1
+            h, s, v, _ = c.getHsvF()
+            if not hues or s < min_saturation or v < 0.2 or h < 0:
+                continue
+            deg = h * 360.0
+            dist = {k: min(abs(deg - hv), 360 - abs(deg - hv)) for k, hv in hues.items()}
+            name = min(dist, key=dist.get)
+            if dist[name] < tolerance:
+                counts[name] += 1
+    return drawn / max(total, 1), {k: v / max(drawn, 1) for k, v in counts.items()}
+
+
+def screenshot(name, objs):
+    import FreeCADGui
+    doc = objs[0].Document
+    for o in doc.Objects:
+        if getattr(o, "ViewObject", None) is not None:
+            o.ViewObject.Visibility = o in objs
+    g.process_events()
+    view = FreeCADGui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    return g.view_image(name, 800, 600)
+
+
+def toolbar_action(toolbar_title, text):
+    import FreeCADGui
+    from PySide import QtGui
+    for bar in FreeCADGui.getMainWindow().findChildren(QtGui.QToolBar):
+        if bar.windowTitle() == toolbar_title:
+            for action in bar.actions():
+                if action.text().replace("&", "") == text:
+                    return action
+    return None
+
+
+def run():
+    import FreeCAD
+    import FreeCADGui
+    import Part
+    from PySide import QtCore, QtGui
+
+    import fc_testdata
+    from HexDomWorkbench import paths, progress
+    from HexDomWorkbench.objects import polycube
+
+    FreeCADGui.activateWorkbench("HexDomWorkbench")
+    g.process_events()
+    check("HexDom_MeshPart" in FreeCADGui.listCommands(), "HexDom_MeshPart registered")
+    check(os.path.isfile(paths.icon("HexDom_MeshPart")), "HexDom_MeshPart has its icon")
+    action = toolbar_action("HexDom pipeline", "Mesh part")
+    check(action is not None, "Mesh part is in the HexDom pipeline toolbar")
+    if action is None:
+        return
+    check(len(action.toolTip()) > 40 and not action.icon().isNull(),
+          "the toolbar action has a tooltip and an icon")
+    errors = []
+    QtGui.QMessageBox.critical = staticmethod(lambda parent, title, text, *a: errors.append(
+        (title, text)))
+
+    # 1. The STEP bracket, from the toolbar action.
+    doc = FreeCAD.newDocument("MeshPartGui")
+    part = doc.addObject("Part::Feature", "Bracket")
+    part.Shape = Part.read(fc_testdata.example_path("bracket.step"))
+    doc.recompute()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(part)
+    g.process_events()
+    check(action.isEnabled(), "Mesh part is enabled with a Part solid selected")
+    ticks = []
+    timer = QtCore.QTimer()
+    timer.timeout.connect(lambda: ticks.append(time.time()))
+    timer.start(50)
+    start = time.time()
+    action.trigger()
+    elapsed = time.time() - start
+    timer.stop()
+    gaps = [b - a for a, b in zip([start] + ticks, ticks + [start + elapsed])]
+    print("  mesh part: {:.1f} s, {} timer ticks, longest gap {:.2f} s".format(
+        elapsed, len(ticks), max(gaps)))
+    check(not errors, "Mesh part reported no error: {}".format(errors))
+    types = {"HexDom::Surface": [], "HexDom::Segmentation": [], "HexDom::Polycube": [],
+             "HexDom::Mesh": []}
+    for o in doc.Objects:
+        t = getattr(getattr(o, "Proxy", None), "Type", None)
+        if t in types:
+            types[t].append(o)
+    check(all(len(v) == 1 for v in types.values()),
+          "one object of each HexDom type: {}".format({k: len(v) for k, v in types.items()}))
+    if not all(len(v) == 1 for v in types.values()):
+        return
+    seg, poly, mesh = (types[k][0] for k in ("HexDom::Segmentation", "HexDom::Polycube",
+                                             "HexDom::Mesh"))
+    check(all("Invalid" not in v[0].State and "Error" not in v[0].State for v in types.values()),
+          "every object recomputed")
+    check(poly.Mode == "Automatic" and polycube.has_patch_surface(poly),
+          "the Polycube is automatic, with its patch surface")
+    check(mesh.HexCount > 0 and mesh.InvertedCount == 0 and mesh.MinHexSJ >= 0.3,
+          "mesh: {} hex, {} prism, {} tet, {} inverted, worst hex SJ {:.3f}".format(
+              mesh.HexCount, mesh.PrismCount, mesh.TetCount, mesh.InvertedCount, mesh.MinHexSJ))
+    check(elapsed < 2.0 or max(gaps) < 1.0,
+          "the GUI kept processing events while the core worked (longest gap {:.2f} s of "
+          "{:.1f} s)".format(max(gaps), elapsed))
+    check(progress.current() is None, "no progress session left open")
+    dialogs = [w for w in QtGui.QApplication.topLevelWidgets()
+               if w.objectName() == "HexDomProgress" and w.isVisible()]
+    check(not dialogs, "the progress dialog is closed")
+
+    check(mesh.ViewObject.ColorBy == "Cell type", "the mesh is coloured by cell type")
+    path = screenshot("mesh_part_bracket.png", [mesh])
+    drawn, share = colour_shares(path, TYPE_HUES)
+    print("  mesh by type: drawn {:.3f} {}".format(drawn, {k: round(v, 3)
+                                                           for k, v in share.items()}))
+    check(drawn > 0.05 and share["hex blue"] > 0.2, "the mesh shows, hexes in blue")
+    path = screenshot("mesh_part_patches.png", [seg])
+    drawn, _ = colour_shares(path, {})
+    check(drawn > 0.05, "the segmentation shows")
+    FreeCAD.closeDocument(doc.Name)
+    g.process_events()
+
+    # 2. Cancel as soon as the progress dialog shows.
+    doc = FreeCAD.newDocument("MeshPartCancel")
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 40.0, 20.0, 10.0
+    doc.recompute()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(box)
+    clicked = []
+
+    def click_cancel():
+        if clicked:
+            return
+        for w in QtGui.QApplication.topLevelWidgets():
+            if w.objectName() == "HexDomProgress" and w.isVisible():
+                button = w.findChild(QtGui.QPushButton, "HexDomProgressCancel")
+                if button is not None and button.isEnabled():
+                    clicked.append(w.label.text())
+                    button.click()
+
+    canceller = QtCore.QTimer()
+    canceller.timeout.connect(click_cancel)
+    canceller.start(5)
+    errors.clear()
+    action.trigger()
+    canceller.stop()
+    print("  cancel clicked during: {}".format(clicked))
+    check(bool(clicked), "the Cancel button was clicked")
+    check(not errors, "no message box after Cancel: {}".format(errors))
+    objs = {getattr(o.Proxy, "Type", ""): o for o in doc.Objects if hasattr(o, "Proxy")}
+    check(len(objs) == 4, "the four objects are kept after Cancel")
+    if len(objs) != 4:
+        return
+    failed = [o for o in objs.values() if "Invalid" in o.State or "Error" in o.State]
+    check(len(failed) == 1 and "cancelled" in failed[0].getStatusString(),
+          "exactly one stage is marked cancelled: {}".format(
+              [(o.Label, o.getStatusString()) for o in failed]))
+    mesh = objs["HexDom::Mesh"]
+    check(mesh.FemMesh.NodeCount == 0, "no stage after the cancelled one stored anything")
+    check("Invalid" not in objs["HexDom::Surface"].State, "the finished Surface stays valid")
+    doc.recompute()
+    g.process_events()
+    check(all("Invalid" not in o.State and "Error" not in o.State for o in objs.values())
+          and mesh.HexCount > 0,
+          "recomputing after Cancel meshes the part ({} hex)".format(mesh.HexCount))
+    check(mesh.InvertedCount == 0, "and the mesh has no inverted cell")
+    FreeCAD.closeDocument(doc.Name)
+
+
+try:
+    run()
+except Exception:  # any error fails the test; the GUI must still exit
+    traceback.print_exc()
+    g.failures.append("exception")
+g.finish()
