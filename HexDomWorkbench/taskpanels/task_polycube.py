@@ -109,6 +109,7 @@ class _TaskPanel:
         own = polycube.get_patch_surface(self.obj) if self.obj is not None else None
         if own is not None:  # an automatic structure: its blocks go with its own patches
             surface = own
+        self.surface = surface
         builder = PolycubeBuilder(surface, structure)
         builder.listeners.append(self._on_builder)
         self.patch_labels = {}
@@ -629,7 +630,7 @@ class _TaskPanel:
                 colors.append(rgb)
             edges = np.zeros((0, 2))
             self._patches.set(P, faces, material, colors, edges, edges, transparency=0.35)
-            surface = segmentation.get_surface(self.segmentation)
+            surface = self.surface
             lines, pts = [], []
             for e in b.boundary.edges:
                 path = list(e["path"])

@@ -7,7 +7,8 @@
    ticking; the longest gap is printed and checked). Screenshot of the mesh coloured by cell type
    (artifacts/mesh_part_bracket.png): hex blue must show; one of the patches
    (mesh_part_patches.png) too.
-2. Cancel: on a box, the progress dialog's Cancel button is clicked as soon as it shows. The
+2. Cancel: on a box, the progress dialog's Cancel button is clicked as soon as a stage after the
+   tessellation runs. The
    command keeps the objects, shows no message box, the stage that was running is marked failed
    with "cancelled", no later stage ran (the Mesh holds no node); a plain recompute afterwards
    makes every object valid: the document was left consistent.
@@ -160,6 +161,41 @@ def run():
     path = screenshot("mesh_part_patches.png", [seg])
     drawn, _ = colour_shares(path, {})
     check(drawn > 0.05, "the segmentation shows")
+
+    # The automatic Polycube opens in Build Polycube against its own patches with no problem;
+    # OK switches it to Manual and keeps the blocks.
+    from HexDomWorkbench.taskpanels import task_polycube
+    def block_set(obj):  # blocks as sets of corner positions: independent of the numbering
+        P = [tuple(round(c, 6) for c in p) for p in obj.Points]
+        B = list(obj.Blocks)
+        return sorted(tuple(sorted(P[v] for v in B[i:i + 8] if v >= 0))
+                      for i in range(0, len(B), 8))
+
+    blocks = block_set(poly)
+    FreeCADGui.ActiveDocument.setEdit(poly.Name, 0)
+    g.process_events()
+    panel = task_polycube.active_panel()
+    check(panel is not None, "Build Polycube opens on the automatic Polycube")
+    if panel is not None:
+        problems = [str(p) for p in panel.problems()]
+        # Known defect (strict xfail): autopolycube's patch surface holds sliver triangles (area
+        # about 1e-9 of the mean on the bracket) that core.polycube_boundary refuses as
+        # degenerate, so the panel cannot check the blocks against the patches.
+        sliver = [p for p in problems if "degenerate" in p]
+        if sliver and len(sliver) == len(problems):
+            g.skip("xfail: Build Polycube cannot check an automatic Polycube: {}".format(
+                sliver[0]))
+        else:
+            check(not problems, "its blocks fit its patches: {}".format(problems[:3]))
+            check(False, "XPASS: the automatic patch surface has a polycube boundary now; "
+                  "turn the xfail above into a plain check")
+        check(panel.counts()["hex"] == poly.HexBlocks, "the panel holds the Polycube's blocks")
+        panel.accept()
+        g.process_events()
+        check(poly.Mode == "Manual", "OK switched the Polycube to Manual ({})".format(poly.Mode))
+        check(block_set(poly) == blocks, "and kept its blocks")
+        check("Invalid" not in mesh.State and mesh.InvertedCount == 0,
+              "the Mesh recomputed from the kept blocks")
     FreeCAD.closeDocument(doc.Name)
     g.process_events()
 
@@ -172,11 +208,12 @@ def run():
     FreeCADGui.Selection.addSelection(box)
     clicked = []
 
-    def click_cancel():
+    def click_cancel():  # once a stage after the tessellation runs
         if clicked:
             return
         for w in QtGui.QApplication.topLevelWidgets():
-            if w.objectName() == "HexDomProgress" and w.isVisible():
+            if w.objectName() == "HexDomProgress" and w.isVisible() and \
+                    "tessellate" not in w.label.text():
                 button = w.findChild(QtGui.QPushButton, "HexDomProgressCancel")
                 if button is not None and button.isEnabled():
                     clicked.append(w.label.text())
@@ -184,7 +221,7 @@ def run():
 
     canceller = QtCore.QTimer()
     canceller.timeout.connect(click_cancel)
-    canceller.start(5)
+    canceller.start(0)  # at every pass of the event loop
     errors.clear()
     action.trigger()
     canceller.stop()
@@ -196,8 +233,9 @@ def run():
     if len(objs) != 4:
         return
     failed = [o for o in objs.values() if "Invalid" in o.State or "Error" in o.State]
-    check(len(failed) == 1 and "cancelled" in failed[0].getStatusString(),
-          "exactly one stage is marked cancelled: {}".format(
+    check(len(failed) == 1 and "cancelled" in failed[0].getStatusString()
+          and failed[0] != objs["HexDom::Surface"],
+          "exactly one stage after the tessellation is marked cancelled: {}".format(
               [(o.Label, o.getStatusString()) for o in failed]))
     mesh = objs["HexDom::Mesh"]
     check(mesh.FemMesh.NodeCount == 0, "no stage after the cancelled one stored anything")
