@@ -19,7 +19,7 @@ import Part
 
 import HexDomWorkbench as hexdom
 from HexDomWorkbench import api, core, progress
-from HexDomWorkbench.objects import polycube
+from HexDomWorkbench.objects import hex_mesh, polycube
 
 import fc_testdata
 from conftest import reopen
@@ -286,3 +286,38 @@ def test_mesh_part_bar_solves_in_calculix(doc, tmp_path):
                                      mesh.HexCount, u, theory, 100 * (u - theory) / theory,
                                      n_fixed, n_load))
     assert u == pytest.approx(theory, rel=0.02)
+
+
+def test_snap_to_brep_wiring(doc, monkeypatch):
+    """Until core.snap_to_brep lands the Mesh does not snap (BrepDistance -1); with it, the Mesh
+    hands it its final mesh, the Part's BREP text and the Surface's tessellation with the CAD face
+    ids, uses the mesh it returns and reports its max_distance. A stand-in records the call."""
+    box = _box(doc)
+    if not api._core_has("snap_to_brep"):
+        objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
+        assert objs["mesh"].BrepDistance == -1.0
+    calls = []
+
+    def fake_snap(mesh, source, surface, solid=0):
+        calls.append((mesh, source, surface, solid))
+        moved = core.Mesh(mesh.V + 0.0, mesh.cells, mesh.types, mesh.region)
+        moved.V[0] += 1e-3  # so the test sees that the returned mesh is the one stored
+        return moved, {"max_distance": 2.5e-9}
+
+    monkeypatch.setattr(core, "snap_to_brep", fake_snap, raising=False)
+    monkeypatch.setattr(core._hexdom, "snap_to_brep", fake_snap, raising=False)
+    assert api._core_has("snap_to_brep")
+    objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
+    mesh = objs["mesh"]
+    assert len(calls) == 1
+    given, source, surface, solid = calls[0]
+    assert "CASCADE Topology" in source and solid == 0
+    assert sorted(set(np.asarray(surface.patch).tolist())) == list(range(1, 7))  # Face1..Face6
+    assert len(surface.F) == objs["surface"].TriangleCount
+    assert mesh.BrepDistance == pytest.approx(2.5e-9)
+    stored = hex_mesh.get_mesh(mesh)
+    np.testing.assert_allclose(stored.V[0], given.V[0] + 1e-3, atol=1e-12)
+    mesh.SnapToCAD = False
+    mesh.touch()
+    api.recompute_document(doc, [mesh])
+    assert len(calls) == 1 and mesh.BrepDistance == -1.0

@@ -12,6 +12,7 @@
    command keeps the objects, shows no message box, the stage that was running is marked failed
    with "cancelled", no later stage ran (the Mesh holds no node); a plain recompute afterwards
    makes every object valid: the document was left consistent.
+3. Cancel during HexDom_GenerateMesh: the command's transaction is aborted, nothing is added.
 Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
 """
 
@@ -246,6 +247,23 @@ def run():
           and mesh.HexCount > 0,
           "recomputing after Cancel meshes the part ({} hex)".format(mesh.HexCount))
     check(mesh.InvertedCount == 0, "and the mesh has no inverted cell")
+
+    # 3. Cancel during HexDom_GenerateMesh: its transaction is aborted, nothing is added.
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(objs["HexDom::Segmentation"])
+    FreeCADGui.Selection.addSelection(objs["HexDom::Polycube"])
+    names = [o.Name for o in doc.Objects]
+    clicked.clear()
+    errors.clear()
+    canceller.start(0)
+    FreeCADGui.runCommand("HexDom_GenerateMesh")
+    canceller.stop()
+    print("  cancel clicked during: {}".format(clicked))
+    check(bool(clicked), "Cancel clicked during Generate mesh")
+    check([o.Name for o in doc.Objects] == names and not errors,
+          "cancelled Generate mesh added nothing and showed no message box: {}".format(errors))
+    check(all("Invalid" not in o.State and "Error" not in o.State for o in objs.values()),
+          "the document's objects are still valid")
     FreeCAD.closeDocument(doc.Name)
 
 
