@@ -46,7 +46,7 @@ def bench(name, path):
             if "Invalid" in state or "Error" in state:
                 return "{:<28} failed at {}: {}".format(name, key, objs[key].getStatusString())
         m = objs["mesh"]
-        volume = part.Shape.Volume
+        volume = sum(s.Volume for s in part.Shape.Solids)  # a STEP compound may repeat it
         return ("{:<28} {:6.2f} {:6.2f} {:6.2f} {:7.2f}  {:6d} {:5d} {:5d}  {:6.3f} {:6.3f} {:4d}"
                 "  {:+7.3f}%".format(
                     name, seconds["surface"], seconds["segmentation"], seconds["polycube"],
