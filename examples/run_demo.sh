@@ -6,8 +6,9 @@
 #   2. the L-bracket from its hand-made patches and structure (examples/make_lbracket.py).
 # Usage: examples/run_demo.sh [BUILD_DIR]; output in $HEXDOM_DEMO_OUT (default out/demo).
 set -euo pipefail
-BUILD=$(cd "${1:-build}" && pwd)
-cd "$(dirname "$0")/.."
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=$(cd "${1:-$ROOT/build}" && pwd)  # a relative BUILD_DIR is taken from the caller's directory
+cd "$ROOT"
 OUT=${HEXDOM_DEMO_OUT:-out/demo}
 mkdir -p "$OUT"
 HEXDOM="$BUILD/bin/hexdom"
