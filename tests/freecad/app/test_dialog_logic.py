@@ -288,6 +288,69 @@ def test_inverted_overlapping_and_shared_faces_are_listed():
     assert [p.kind for p in b.problems()] == ["no_boundary"] + ["unused_vertex"] * 8
 
 
+def two_hexes(shift):
+    """A builder with the unit cube and a second unit cube moved by ``shift`` (own vertices)."""
+    V, hexa = unit_cube()
+    b = PolycubeBuilder(structure=core.Mesh(V, np.array([hexa], np.int32),
+                                            np.array([core.HEX], np.int32),
+                                            np.ones(1, np.int32)))
+    moved = [b.add_vertex(b.points[v] + np.asarray(shift, float)) for v in hexa]
+    b.add_block(moved)
+    return b
+
+
+@pytest.mark.parametrize("shift", [(0.9, 0.1, 0.1), (0.8, 0.8, 0.8), (-0.85, 0.3, -0.2)])
+def test_a_block_poking_into_another_without_sharing_a_face_is_flagged(shift):
+    b = two_hexes(shift)
+    assert not set(b.blocks[0][1]) & set(b.blocks[1][1])
+    # The poke is shallow: neither cube's centre nor the points half-way from it to its corners
+    # (what a centroid test samples) lies in the other cube (axis-aligned: a box test).
+    for a, o in ((0, 1), (1, 0)):
+        pts = b.points[list(b.blocks[o][1])]
+        centre = pts.mean(axis=0)
+        samples = np.vstack([centre, 0.5 * (pts + centre)])
+        lo = b.points[list(b.blocks[a][1])].min(axis=0)
+        hi = b.points[list(b.blocks[a][1])].max(axis=0)
+        assert not np.any(np.all((samples > lo) & (samples < hi), axis=1))
+    overlap = [p for p in b.problems() if p.kind == "overlap"]
+    assert len(overlap) == 1 and overlap[0].blocks == [0, 1]
+    assert set(overlap[0].vertices) == set(b.blocks[0][1]) | set(b.blocks[1][1])
+
+
+@pytest.mark.parametrize("shift", [(1.0, 0.0, 0.0), (1.0, 0.5, 0.0), (1.0, 1.0, 1.0),
+                                   (0.0, 0.0, -1.0)])
+def test_blocks_that_only_touch_do_not_overlap(shift):
+    assert [p.kind for p in two_hexes(shift).problems()] == ["no_boundary"]
+
+
+def test_inside_block_agrees_with_the_block_map():
+    """Points made by each block's own map from parameters inside / outside its domain are
+    found inside / outside, on a warped hex, a prism and a tet (the tet against a barycentric
+    solve)."""
+    rng = np.random.default_rng(11)
+    V, hexa = unit_cube()
+    warped = V[hexa] + rng.uniform(-0.12, 0.12, (8, 3))
+    params = rng.uniform(0.03, 0.97, (300, 3))
+    N, _ = polycube_building._shape(core.HEX, params)
+    assert polycube_building.inside_block(core.HEX, warped, N @ warped).all()
+    outside = params.copy()
+    outside[:, 0] = rng.choice([-0.3, 1.3], 300) + rng.uniform(-0.1, 0.1, 300)
+    N, _ = polycube_building._shape(core.HEX, outside)
+    assert not polycube_building.inside_block(core.HEX, warped, N @ warped).any()
+    prism = V[[hexa[i] for i in (0, 1, 3, 4, 5, 7)]]
+    tri = rng.dirichlet([1, 1, 1], 200) * 0.94 + 0.02
+    pts = np.hstack([tri[:, 1:], rng.uniform(0.03, 0.97, (200, 1))])
+    N, _ = polycube_building._shape(core.WEDGE, pts)
+    assert polycube_building.inside_block(core.WEDGE, prism, N @ prism).all()
+    tet = np.array([[0, 0, 0], [2, 0.1, 0], [0.3, 1.5, 0.2], [0.1, 0.4, 1.7]])
+    queries = rng.uniform(-0.5, 2.0, (500, 3))
+    bary = np.linalg.solve(np.c_[tet, np.ones(4)].T, np.c_[queries, np.ones(500)].T).T
+    expected = np.all(bary > 1e-3, axis=1)
+    assert 20 < expected.sum() < 480
+    np.testing.assert_array_equal(polycube_building.inside_block(core.TET, tet, queries),
+                                  expected)
+
+
 def test_interior_vertices_added_moved_deleted():
     b = PolycubeBuilder(core.read_surface(PATCHES))
     c = b.add_vertex_at_centroid([0, 1, 2])
