@@ -27,7 +27,7 @@ from .. import core, paths
 from ..objects import segmentation
 from ..viewproviders import coin_mesh
 from . import panel_undo, view_overlay
-from .patch_editing import LABEL_NAMES, PatchEditor
+from .patch_editing import LABEL_NAMES, PatchEditor, points_in_polygon
 
 USER_ERRORS = (core.Error, ValueError)
 PICK_MODES = ("facet", "patch", "face", "path")
@@ -182,7 +182,7 @@ class _TaskPanel:
         if len(polygon) < 3:
             raise ValueError("a lasso needs three or more points, got {}".format(len(polygon)))
         return self._select_projected(
-            lambda cxy: view_overlay.points_in_polygon(cxy, polygon), mode, hidden, "lasso")
+            lambda cxy: points_in_polygon(cxy, polygon), mode, hidden, "lasso")
 
     def _select_projected(self, inside_of, mode, hidden, what):
         if self.overlay is None:

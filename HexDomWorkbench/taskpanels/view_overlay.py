@@ -284,24 +284,6 @@ def pick_triangle(origin, direction, V, F):
     return best, origin + t[best] * direction
 
 
-def points_in_polygon(points, polygon):
-    """Which of ``points`` (#P x 2) lie inside ``polygon`` (#Q x 2 vertices, closed implicitly,
-    may cross itself: even-odd rule)."""
-    p = np.asarray(points, float).reshape(-1, 2)
-    q = np.asarray(polygon, float).reshape(-1, 2)
-    inside = np.zeros(len(p), bool)
-    if len(q) < 3:
-        return inside
-    a, b = q, np.roll(q, -1, axis=0)
-    for (ax, ay), (bx, by) in zip(a.tolist(), b.tolist()):
-        if ay == by:
-            continue
-        crosses = (ay > p[:, 1]) != (by > p[:, 1])
-        x = ax + (p[:, 1] - ay) * (bx - ax) / (by - ay)
-        inside ^= crosses & (p[:, 0] < x)
-    return inside
-
-
 def front_facing(xy, F):
     """Triangles whose projected corners (``xy``: pixel positions of the points) turn
     counter-clockwise, i.e. that face the camera (orthographic or perspective)."""

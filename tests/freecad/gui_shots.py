@@ -108,14 +108,17 @@ def mouse_drag(a, b, steps=6):
     process_events()
 
 
-def mouse_path(points):
+def mouse_path(points, before_release=None):
     """Presses the left button at the first of ``points`` (Coin pixels), moves through the
-    others and releases at the last: a lasso drawn by hand."""
+    others and releases at the last: a lasso drawn by hand. ``before_release()`` runs with the
+    button still down (to take a picture of the drawing)."""
     _park_cursor()
     from PySide import QtCore
     _send_mouse(QtCore.QEvent.MouseButtonPress, points[0][0], points[0][1], QtCore.Qt.LeftButton)
     for x, y in points[1:]:
         _send_mouse(QtCore.QEvent.MouseMove, x, y, QtCore.Qt.LeftButton)
+    if before_release is not None:
+        before_release()
     _send_mouse(QtCore.QEvent.MouseButtonRelease, points[-1][0], points[-1][1],
                 QtCore.Qt.NoButton)
     process_events()

@@ -169,6 +169,33 @@ def test_selection_modes_faces_and_errors():
         e.merge(1, 17)  # the ramp and the far end share no edge
 
 
+def test_lasso_polygon_test_against_winding_angles():
+    """points_in_polygon (even-odd crossings) against the total angle a polygon turns about each
+    point, on a star and on a polygon with a notch; points near an edge are left out."""
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 2 * np.pi, 14, endpoint=False)
+    star = np.c_[np.cos(t), np.sin(t)] * np.where(np.arange(14) % 2 == 0, 10.0, 4.0)[:, None]
+    notch = np.array([[0, 0], [10, 0], [10, 10], [6, 10], [6, 3], [4, 3], [4, 10], [0, 10]],
+                     float)
+    for polygon in (star, notch):
+        pts = rng.uniform(polygon.min(axis=0) - 1, polygon.max(axis=0) + 1, (4000, 2))
+        d = polygon[None, :, :] - pts[:, None, :]
+        e = np.roll(d, -1, axis=1)
+        turn = np.arctan2(d[..., 0] * e[..., 1] - d[..., 1] * e[..., 0],
+                          (d * e).sum(axis=2)).sum(axis=1)
+        expected = np.abs(turn) > np.pi
+        a, b = polygon, np.roll(polygon, -1, axis=0)
+        ab = b - a
+        u = np.clip(np.einsum("pqk,qk->pq", pts[:, None, :] - a[None], ab)
+                    / np.einsum("qk,qk->q", ab, ab), 0, 1)
+        far = np.linalg.norm(pts[:, None, :] - (a[None] + u[..., None] * ab[None]),
+                             axis=2).min(axis=1) > 1e-6
+        got = patch_editing.points_in_polygon(pts, polygon)
+        assert 500 < expected.sum() < 3500
+        np.testing.assert_array_equal(got[far], expected[far])
+    assert not patch_editing.points_in_polygon([[0, 0]], [[0, 0], [1, 1]]).any()
+
+
 def test_changes_name_exactly_the_edited_triangles():
     _, e = bracket_editor()
     planted = island(e)

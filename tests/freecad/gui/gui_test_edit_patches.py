@@ -123,6 +123,22 @@ def run():
           and "valid polycube" in f.lbl_status.text(), "the bracket's patches start valid: {}"
           .format(f.lbl_status.text()))
     check(f.cb_patch.count() == 17, "17 patches offered in the patch box")
+    # Each patch drawn in one colour of its own, a shade of its label's (same hue).
+    import colorsys
+    from HexDomWorkbench.viewproviders import coin_mesh
+    field = panel._scene.faces.materialIndex
+    material = np.array([int(field[i]) for i in range(field.getNum())])
+    diffuse = panel._scene.material.diffuseColor
+    colours = [tuple(diffuse[i].getValue()) for i in range(diffuse.getNum())]
+    e0 = panel.editor
+    per_patch = {pid: {colours[m] for m in material[e0.patches == pid].tolist()}
+                 for pid in e0.patch_ids()}
+    hue = lambda rgb: colorsys.rgb_to_hsv(*rgb)[0]  # noqa: E731
+    same_hue = all(abs(hue(next(iter(c))) - hue(coin_mesh.label_color(e0.patch_label(pid))))
+                   < 0.01 for pid, c in per_patch.items())
+    check(len(material) == len(e0.F) and all(len(c) == 1 for c in per_patch.values())
+          and len({next(iter(c)) for c in per_patch.values()}) == 17 and same_hue,
+          "17 patches in 17 colours, each a shade of its label's colour")
 
     # 2. Plant a violation: click facets in the middle of patch 5 (+X, facing the camera).
     e = panel.editor
@@ -304,8 +320,25 @@ def run():
     drawn = np.vstack([star, star[:1]])
     steps = np.vstack([a + (b - a) * k / 4.0 for a, b in zip(drawn[:-1], drawn[1:])
                        for k in range(4)])
-    g.mouse_path([tuple(p) for p in steps.tolist()])
+    drawing = []
+
+    def picture():  # the lasso as drawn, and the planted patch inside it
+        panel.select_facets(planted, "replace")
+        g.compose("edit_patches_lasso_drawn.png", f)
+        band = panel.overlay._band
+        shown = g.view_image("_lasso_shown.png", 400, 300)
+        band.hide()
+        hidden = g.view_image("_lasso_hidden.png", 400, 300)
+        band.show_polygon(panel.overlay._lasso, panel.overlay.size())
+        drawing.append(g.changed_to(shown, hidden, (25, 25, 25), 40))
+        for tmp in (shown, hidden):
+            os.remove(tmp)
+        panel.clear_selection()
+
+    g.mouse_path([tuple(p) for p in steps.tolist()], picture)
     dragged = set(e.selected().tolist())
+    check(drawing and drawing[0] > 0.001, "the lasso line is drawn while the button is down "
+          "({:.4f} of the view turns dark with it)".format(drawing[0] if drawing else 0.0))
     check(not panel.overlay.lasso_mode and not f.pb_lasso.isChecked()
           and not view.getViewer().isRedirectedToSceneGraph(),
           "lasso mode ends when the button is released, navigation back on")
