@@ -196,6 +196,42 @@ def test_lasso_polygon_test_against_winding_angles():
     assert not patch_editing.points_in_polygon([[0, 0]], [[0, 0], [1, 1]]).any()
 
 
+def test_opposite_orientations_touching_are_listed_highlighted_and_cut_apart():
+    """A thin wedge (its long sides' normals 165 degrees apart, +Y and -Y, meet at the apex
+    edge): the editor lists the opposite orientations touching, the problem's facets are the two
+    sides, and a +X strip made at the apex separates them."""
+    h = 10 * np.tan(np.radians(7.5))
+    ring = [(0, -h), (5, -h / 2), (10, 0), (5, h / 2), (0, h), (0, 0)]
+    side = [1, 1, 2, 2, 3, 3]
+    n, layers = len(ring), 3
+    V = [(x, y, 4.0 * k / layers) for k in range(layers + 1) for x, y in ring]
+    V += [(10 / 3, 0, 0), (10 / 3, 0, 4.0)]
+    tris = []
+    for k in range(layers):
+        for i in range(n):
+            j = (i + 1) % n
+            a, b, c, d = k * n + i, k * n + j, (k + 1) * n + j, (k + 1) * n + i
+            tris += [(side[i], (a, b, c)), (side[i], (a, c, d))]
+    bottom, top = len(V) - 2, len(V) - 1
+    for i in range(n):
+        j = (i + 1) % n
+        tris += [(4, (layers * n + i, layers * n + j, top)), (5, (j, i, bottom))]
+    V = np.array(V, float)
+    F = np.array([t for _, t in tris])
+    P = np.array([p for p, _ in tris])
+    e = PatchEditor(V, F, P)
+    problems = e.problems()
+    assert [p.kind for p in problems] == ["opposite_orientations"]
+    assert sorted(e.problem_triangles(problems[0]).tolist()) == np.flatnonzero(
+        np.isin(P, [1, 2])).tolist()
+    apex = np.flatnonzero(np.isclose(V[:, 0], 10.0))
+    strip = [t for t in range(len(F)) if P[t] in (1, 2) and np.isin(F[t], apex).any()]
+    e.select_facets(strip, "replace")
+    new = e.new_patch()
+    assert patch_editing.LABEL_NAMES[e.patch_label(new)] == "+X"
+    assert "opposite_orientations" not in [p.kind for p in e.problems()]
+
+
 def test_changes_name_exactly_the_edited_triangles():
     _, e = bracket_editor()
     planted = island(e)
@@ -376,6 +412,30 @@ def test_inside_block_agrees_with_the_block_map():
     assert 20 < expected.sum() < 480
     np.testing.assert_array_equal(polycube_building.inside_block(core.TET, tet, queries),
                                   expected)
+
+
+def test_patches_covered_twice_and_faces_in_three_blocks_are_listed():
+    """The bracket's structure with block 1 twice: its patches are covered twice, its face
+    inside the bracket is in three blocks, and the copy overlaps it; add_block refuses a copy."""
+    b = PolycubeBuilder(core.read_surface(PATCHES))
+    b.import_structure(STRUCTURE)
+    with pytest.raises(ValueError, match="block 1 already uses these vertices"):
+        b.add_block(list(b.blocks[0][1]))
+    shared = [f for f in polycube_building.block_faces(*b.blocks[0])
+              if polycube_building.face_key(f) not in b.patch_faces]
+    b.blocks = b.blocks + [b.blocks[0]]
+    b._problems = None
+    problems = b.problems()
+    kinds = sorted({p.kind for p in problems})
+    assert kinds == ["duplicate_block", "face_shared", "overlap", "patch_covered_twice"]
+    twice = [p for p in problems if p.kind == "patch_covered_twice"]
+    on_patches = [f for f in polycube_building.block_faces(*b.blocks[0])
+                  if polycube_building.face_key(f) in b.patch_faces]
+    assert len(twice) == len(on_patches) and all(p.blocks == [0, 4] for p in twice)
+    in_three = [p for p in problems if p.kind == "face_shared"]
+    assert len(in_three) == len(shared) and all(sorted(p.blocks)[0] == 0 and 4 in p.blocks
+                                                and len(p.blocks) == 3 for p in in_three)
+    assert [p.blocks for p in problems if p.kind == "overlap"] == [[0, 4]]
 
 
 def test_interior_vertices_added_moved_deleted():

@@ -247,6 +247,10 @@ def run():
     undo = g.menu_action("Edit", "HexDomPanel_Std_Undo")
     check(undo is not None and g.menu_action("Edit", "Std_Undo") is None,
           "Edit > Undo is the panel's while it is open")
+    f.sb_x.setFocus()
+    g.key_click("Ctrl+Z", f.sb_x)
+    check(len(b.blocks) == 4 and b.vertex_count == 24,
+          "Ctrl+Z in a coordinate box is the box's own (the blocks stay)")
     g.key_click("Ctrl+Z")
     check(len(b.blocks) == 3 and b.vertex_count == 24, "Ctrl+Z takes the poking block away")
     for _ in range(7):
@@ -282,6 +286,12 @@ def run():
         f, b = panel.form, panel.builder
         check(b.corner_count == 141 and len(panel.problems()) == 145,
               "rocker arm: 141 corners, 145 patches to cover")
+        patch_faces = indices(panel._patches.faces.coordIndex)
+        sides = np.diff([-1] + [i for i, v in enumerate(patch_faces) if v < 0]) - 1
+        check(sorted(np.unique(sides, return_counts=True)[1].tolist()) == [8, 137]
+              and set(sides.tolist()) == {3, 4}, "its patches are drawn as 137 quads and 8 "
+              "triangles: {}".format(dict(zip(*[x.tolist() for x in np.unique(
+                  sides, return_counts=True)]))))
         interior = panel.import_structure(structure_k)
         check(panel.counts() == {"hex": 60, "prism": 11, "tet": 2} and interior == 12,
               "withtet structure: {} blocks, {} interior vertices".format(panel.counts(),
