@@ -55,6 +55,19 @@ def freecad_screen(view, points):
                      for p in points], float)
 
 
+def toolbar_undo_names():
+    """Object names of the undo / redo actions on the main window's toolbars ("" for FreeCAD's
+    own, which have no name there)."""
+    import FreeCADGui
+    from PySide import QtGui
+    names = []
+    for bar in FreeCADGui.getMainWindow().findChildren(QtGui.QToolBar):
+        for action in bar.actions():
+            if action.text().replace("&", "") in ("Undo", "Redo"):
+                names.append(action.objectName())
+    return names
+
+
 def inside_polygon(points, polygon):
     """Winding-angle test: the total angle the polygon turns about each point (2 pi inside)."""
     import numpy as np
@@ -368,6 +381,9 @@ def run():
     undo = g.menu_action("Edit", "HexDomPanel_Std_Undo")
     check(undo is not None and g.menu_action("Edit", "Std_Undo") is None and undo.isEnabled(),
           "Edit > Undo is the panel's while it is open")
+    bar_names = toolbar_undo_names()
+    check("HexDomPanel_Std_Undo" in bar_names and "HexDomPanel_Std_Redo" in bar_names,
+          "the toolbar's Undo and Redo buttons are the panel's too: {}".format(bar_names))
     g.key_click("Ctrl+Z")
     check(len(panel.problems()) == 3 and list(doc.UndoNames) == doc_undos
           and seg.Label2 == "bracket patches",
@@ -395,7 +411,10 @@ def run():
           and seg.ViewObject.Visibility, "Cancel keeps the Segmentation as it was, shown again")
     std_undo = g.menu_action("Edit", "Std_Undo")
     check(std_undo is not None and g.menu_action("Edit", "HexDomPanel_Std_Undo") is None
-          and std_undo.shortcut().toString() == "Ctrl+Z", "FreeCAD's Edit > Undo is back")
+          and std_undo.shortcut().toString() == "Ctrl+Z"
+          and not any(n.startswith("HexDomPanel") for n in toolbar_undo_names())
+          and len(toolbar_undo_names()) == len(bar_names),
+          "FreeCAD's Edit > Undo and its toolbar buttons are back")
     g.key_click("Ctrl+Z")
     check(seg.Label2 == "" and "Describe" in doc.RedoNames,
           "with the panel closed Ctrl+Z undoes the document again")
