@@ -43,6 +43,25 @@ def nearest_label(normal):
     return int(np.argmax(AXES @ np.asarray(normal, float).reshape(3)) + 1)
 
 
+def points_in_polygon(points, polygon):
+    """Which of ``points`` (#P x 2) lie inside ``polygon`` (#Q x 2 vertices, closed implicitly,
+    may cross itself: even-odd rule)."""
+    p = np.asarray(points, float).reshape(-1, 2)
+    q = np.asarray(polygon, float).reshape(-1, 2)
+    inside = np.zeros(len(p), bool)
+    if len(q) < 3:
+        return inside
+    a, b = q, np.roll(q, -1, axis=0)
+    for (ax, ay), (bx, by) in zip(a.tolist(), b.tolist()):
+        if ay == by:
+            continue
+        crosses = (ay > p[:, 1]) != (by > p[:, 1])
+        x = ax + (p[:, 1] - ay) * (bx - ax) / (by - ay)
+        inside ^= crosses & (p[:, 0] < x)
+    return inside
+
+
+
 class PatchEditor:
     """Patch map of a surface under edit.
 

@@ -116,26 +116,125 @@ def order_block(points, vertices, known_faces=()):
     return block_type, [int(v) for v in ids[perms[scored[0][3]]]]
 
 
-def _triangles_of(block_type, vertices):
-    """Outward triangles (k x 3 vertex ids) of a block's faces."""
-    tris = []
-    for f in block_faces(block_type, vertices):
-        tris.append((f[0], f[1], f[2]))
-        if len(f) == 4:
-            tris.append((f[0], f[2], f[3]))
-    return np.array(tris, np.int64)
+OVERLAP_LEVELS = 4  # lattice steps per parameter direction of the overlap samples
+OVERLAP_MARGIN = 0.08  # how far the samples are pulled from a block's faces to its middle
+_SAMPLE_WEIGHTS = {}
 
 
-def winding_numbers(points, triangles, queries):
-    """Winding number of each query point about the closed triangle surface (solid angles)."""
-    a = points[triangles[:, 0]][None, :, :] - queries[:, None, :]
-    b = points[triangles[:, 1]][None, :, :] - queries[:, None, :]
-    c = points[triangles[:, 2]][None, :, :] - queries[:, None, :]
-    la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
-    det = np.einsum("qtk,qtk->qt", a, np.cross(b, c))
-    div = (la * lb * lc + np.einsum("qtk,qtk->qt", a, b) * lc
-           + np.einsum("qtk,qtk->qt", a, c) * lb + np.einsum("qtk,qtk->qt", b, c) * la)
-    return (2.0 * np.arctan2(det, div)).sum(axis=1) / (4.0 * np.pi)
+def _lattice(dims, level):
+    """Barycentric lattice points of a simplex with ``dims`` + 1 corners, ``level`` steps."""
+    out = [c + (level - sum(c),) for c in itertools.product(range(level + 1), repeat=dims)
+           if sum(c) <= level]
+    return np.array(out, float) / level
+
+
+def sample_weights(block_type, level=OVERLAP_LEVELS, margin=OVERLAP_MARGIN):
+    """Weights (#samples x corners) of the overlap samples of a block: a lattice over its
+    parameter space (trilinear for a hex, triangle x segment for a prism, barycentric for a
+    tet), shrunk by ``margin`` towards the parametric middle."""
+    key = (block_type, level, margin)
+    if key not in _SAMPLE_WEIGHTS:
+        ticks = np.linspace(0.0, 1.0, level + 1)
+        if block_type == HEX:
+            u, v, w = (g.reshape(-1) for g in np.meshgrid(ticks, ticks, ticks, indexing="ij"))
+            u, v, w = (margin * 0.5 + (1 - margin) * x for x in (u, v, w))
+            cu = [(1 - u), u, u, (1 - u)]
+            cv = [(1 - v), (1 - v), v, v]
+            W = np.stack([cu[k % 4] * cv[k % 4] * (w if k >= 4 else 1 - w) for k in range(8)],
+                         axis=1)
+        elif block_type == WEDGE:
+            tri = _lattice(2, level)
+            tri = (1 - margin) * tri + margin / 3.0
+            w = margin * 0.5 + (1 - margin) * ticks
+            W = np.vstack([np.hstack([tri * (1 - z), tri * z]) for z in w])
+        else:
+            W = (1 - margin) * _lattice(3, level) + margin / 4.0
+        _SAMPLE_WEIGHTS[key] = W
+    return _SAMPLE_WEIGHTS[key]
+
+
+def block_samples(block_type, corners):
+    """Points spread through a block with corner positions ``corners`` (VTK order)."""
+    return sample_weights(block_type) @ np.asarray(corners, float).reshape(-1, 3)
+
+
+def _shape(block_type, xi):
+    """(N, dN): the block's shape functions at parameters ``xi`` (#Q x 3; hex: u v w in 0..1,
+    prism: r s (triangle) and t, tet: r s t) and their derivatives (#Q x corners x 3)."""
+    u, v, w = xi[:, 0], xi[:, 1], xi[:, 2]
+    one, zero = np.ones_like(u), np.zeros_like(u)
+    if block_type == HEX:
+        fu = [(1 - u, -one), (u, one), (u, one), (1 - u, -one)]
+        fv = [(1 - v, -one), (1 - v, -one), (v, one), (v, one)]
+        N, dN = [], []
+        for k in range(8):
+            (a, da), (b, db) = fu[k % 4], fv[k % 4]
+            c, dc = (w, one) if k >= 4 else (1 - w, -one)
+            N.append(a * b * c)
+            dN.append(np.stack([da * b * c, a * db * c, a * b * dc], axis=1))
+        return np.stack(N, axis=1), np.stack(dN, axis=1)
+    if block_type == WEDGE:
+        tri = [(1 - u - v, -one, -one), (u, one, zero), (v, zero, one)]
+        N, dN = [], []
+        for c, dc in ((1 - w, -one), (w, one)):
+            for a, da, db in tri:
+                N.append(a * c)
+                dN.append(np.stack([da * c, db * c, a * dc], axis=1))
+        return np.stack(N, axis=1), np.stack(dN, axis=1)
+    N = np.stack([1 - u - v - w, u, v, w], axis=1)
+    d = np.array([[-1, -1, -1], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    return N, np.broadcast_to(d, (len(u), 4, 3))
+
+
+_MIDDLE = {HEX: (0.5, 0.5, 0.5), WEDGE: (1 / 3.0, 1 / 3.0, 0.5), TET: (0.25, 0.25, 0.25)}
+
+
+def inside_block(block_type, corners, points, margin=1e-3, iterations=25):
+    """Which ``points`` (#Q x 3) lie inside the block with corner positions ``corners`` (VTK
+    order; one block, or #Q x corners x 3: one block per point): the parameters of each point
+    under the block's map (trilinear hex, linear x linear prism, linear tet; found by Newton's
+    method) are inside its parameter domain by more than ``margin``. Points the iteration
+    cannot place count as outside."""
+    X = np.asarray(points, float).reshape(-1, 3)
+    n = NODE_COUNT[block_type]
+    C = np.asarray(corners, float)
+    C = np.broadcast_to(C.reshape(-1, n, 3), (len(X), n, 3)) if C.ndim < 3 else C
+    if len(X) == 0:
+        return np.zeros(0, bool)
+    size = np.linalg.norm(C.max(axis=1) - C.min(axis=1), axis=1)
+    size = np.where(size > 0, size, 1.0)
+    xi = np.tile(np.array(_MIDDLE[block_type], float), (len(X), 1))
+    active = np.arange(len(X))
+    for _ in range(iterations):
+        N, dN = _shape(block_type, xi[active])
+        Ca = C[active]
+        r = np.einsum("qk,qkj->qj", N, Ca) - X[active]
+        # Columns of the Jacobian (d x / d xi_i), then Cramer's rule.
+        a, b, c = (np.einsum("qk,qkj->qj", dN[:, :, i], Ca) for i in range(3))
+        bc = np.cross(b, c)
+        det = np.einsum("qj,qj->q", a, bc)
+        ok = np.abs(det) > 1e-30 * size[active] ** 3
+        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        step = np.stack([np.einsum("qj,qj->q", r, bc),
+                         np.einsum("qj,qj->q", a, np.cross(r, c)),
+                         np.einsum("qj,qj->q", a, np.cross(b, r))], axis=1) * inv[:, None]
+        xi[active] = np.clip(xi[active] - step, -1.0, 2.0)
+        # Done: converged, or (after a few steps) far outside the domain, where it stays.
+        far = np.any((xi[active] < -0.5) | (xi[active] > 1.5), axis=1) & (_ > 3)
+        active = active[(np.abs(step).max(axis=1) > 1e-12) & ~far]
+        if len(active) == 0:
+            break
+    N, _ = _shape(block_type, xi)
+    converged = np.linalg.norm(np.einsum("qk,qkj->qj", N, C) - X, axis=1) <= 1e-7 * size
+    u, v, w = xi[:, 0], xi[:, 1], xi[:, 2]
+    lo, hi = margin, 1.0 - margin
+    if block_type == HEX:
+        inside = (u > lo) & (u < hi) & (v > lo) & (v < hi) & (w > lo) & (w < hi)
+    elif block_type == WEDGE:
+        inside = (u > lo) & (v > lo) & (u + v < hi) & (w > lo) & (w < hi)
+    else:
+        inside = (u > lo) & (v > lo) & (w > lo) & (u + v + w < hi)
+    return inside & converged
 
 
 class PolycubeBuilder:
@@ -529,23 +628,28 @@ class PolycubeBuilder:
         return problems
 
     def _overlaps(self):
-        """Pairs of blocks where points well inside one (its centroid, and half-way from it to
-        each corner) lie inside the other."""
+        """Pairs of blocks whose insides meet, shared faces or not: points spread through each
+        block (block_samples: a lattice in its parameter space, pulled OVERLAP_MARGIN towards
+        its middle) that lie inside another block (inside_block: inside its parameter domain,
+        so curved faces count as the block's trilinear map draws them), testing only the
+        samples inside the other's bounding box. A block poking into another by more than about
+        OVERLAP_MARGIN / 2 of its size is found; neighbours that share a face, an edge or a
+        vertex are not flagged."""
         n = len(self.blocks)
         if n < 2:
             return []
         P = self.points
-        boxes, samples, tris = [], [], []
+        boxes, samples = [], []
         for t, b in self.blocks:
             pts = P[list(b)]
-            centre = pts.mean(axis=0)
-            samples.append(np.vstack([centre, 0.5 * (pts + centre)]))
+            samples.append(block_samples(t, pts))
             boxes.append((pts.min(axis=0), pts.max(axis=0)))
-            tris.append(_triangles_of(t, b))
         lo = np.array([b[0] for b in boxes])
         hi = np.array([b[1] for b in boxes])
         tol = 1e-9 * self.scale
-        found = []
+        # (sample, block it may lie in) pairs: samples of each block inside the bounding box of
+        # another, then one Newton solve per block type.
+        pairs = {}
         for a in range(n):
             others = np.flatnonzero(np.all(lo <= hi[a] + tol, axis=1)
                                     & np.all(hi >= lo[a] - tol, axis=1))
@@ -554,11 +658,19 @@ class PolycubeBuilder:
                 continue
             queries = np.vstack([samples[o] for o in others])
             owner = np.repeat(others, [len(samples[o]) for o in others])
-            w = winding_numbers(P, tris[a], queries)
-            for o in np.unique(owner[np.abs(w) > 0.5]).tolist():
-                pair = (min(a, o), max(a, o))
-                if pair not in found:
-                    found.append(pair)
+            near = np.all((queries >= lo[a] - tol) & (queries <= hi[a] + tol), axis=1)
+            if near.any():
+                pairs.setdefault(self.blocks[a][0], []).append(
+                    (queries[near], owner[near], np.full(int(near.sum()), a)))
+        found = set()
+        for t, parts in pairs.items():
+            queries = np.vstack([q for q, _, _ in parts])
+            owner = np.concatenate([o for _, o, _ in parts])
+            container = np.concatenate([c for _, _, c in parts])
+            corners = np.array([self.blocks[a][1] for a in container.tolist()], np.int64)
+            inside = inside_block(t, P[corners], queries)
+            for o, a in zip(owner[inside].tolist(), container[inside].tolist()):
+                found.add((min(a, o), max(a, o)))
         return [Problem("overlap", "blocks {} and {} overlap".format(i + 1, j + 1),
                         blocks=[i, j], vertices=sorted(set(self.blocks[i][1])
                                                        | set(self.blocks[j][1])))

@@ -7,7 +7,9 @@ vertices (at a clicked point, at the centroid of picked vertices, at typed coord
 blocks from picked vertices: 8 give a hex, 6 a prism, 4 a tet, ordered by the tool so that the
 block is not inverted. Blocks are listed, deleted and re-picked; the problems that keep the
 blocks from filling the boundary are listed live and shown when clicked. Structure files (.k as
-the original program's) are imported and exported. OK writes the blocks into the Polycube (or a
+the original program's) are imported and exported. Undo and redo work inside the panel, and
+while it is open FreeCAD's Edit > Undo / Redo and Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y act on them
+rather than on the document (panel_undo.UndoRedirect). OK writes the blocks into the Polycube (or a
 new one), Cancel leaves the document as it was.
 
 The work is done by polycube_building.PolycubeBuilder; the public methods below are what the
@@ -25,7 +27,7 @@ from PySide import QtGui
 from .. import core, paths
 from ..objects import polycube, segmentation
 from ..viewproviders import coin_mesh
-from . import view_overlay
+from . import panel_undo, view_overlay
 from .polycube_building import BLOCK_FACES, TYPE_NAMES, PolycubeBuilder
 
 USER_ERRORS = (core.Error, ValueError, OSError)
@@ -101,6 +103,8 @@ class _TaskPanel:
             self.overlay.on_click = self._on_click
             self.overlay.install_mouse()
             self._hide_objects()
+        self.undo_redirect = panel_undo.UndoRedirect(
+            self.undo, self.redo, lambda: self.builder.can_undo, lambda: self.builder.can_redo)
         self._refresh_all()
         _active.append(self)
 
@@ -496,6 +500,7 @@ class _TaskPanel:
             f.lbl_status.setText("No problems: the blocks fill the boundary exactly")
         f.pb_undo.setEnabled(b.can_undo)
         f.pb_redo.setEnabled(b.can_redo)
+        self.undo_redirect.update()
         f.pb_export.setEnabled(bool(b.blocks))
         self._refresh_scene()
         self._refresh_selection()
@@ -702,6 +707,7 @@ class _TaskPanel:
         self._closed = True
         if self in _active:
             _active.remove(self)
+        self.undo_redirect.remove()
         if self.overlay is not None:
             self.overlay.remove()
             self.overlay = None

@@ -2,11 +2,14 @@
 
 The surface is drawn with each patch coloured (its label's colour, a shade per patch); a click in
 the 3D view picks facets, whole patches, whole CAD faces or the vertices of a split path, a drag
-in box mode picks the visible facets facing the camera inside the rectangle, and "Add selected
-CAD faces" takes the faces selected on the source Part. The selection then joins a patch, becomes
+in box mode picks the visible facets facing the camera inside the rectangle, a drag in lasso mode
+those inside the polygon the mouse draws (hidden ones too when asked), and "Add selected CAD
+faces" takes the faces selected on the source Part. The selection then joins a patch, becomes
 a new patch, or takes one of the six orientations; patches merge and split. The problems
 core.check_patches finds are listed live; clicking one selects its facets, marks its vertex and
-zooms to it. Undo and redo work inside the panel. OK writes the edits into the Segmentation
+zooms to it. Undo and redo work inside the panel, and while it is open FreeCAD's Edit > Undo /
+Redo, their toolbar buttons and Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y act on them rather than on the
+document (panel_undo.UndoRedirect). OK writes the edits into the Segmentation
 (EditedTriangles / EditedLabels, EditedPatchTriangles / EditedPatchIds) and recomputes; Cancel
 leaves it untouched.
 
@@ -23,8 +26,8 @@ from PySide import QtGui
 from .. import core, paths
 from ..objects import segmentation
 from ..viewproviders import coin_mesh
-from . import view_overlay
-from .patch_editing import LABEL_NAMES, PatchEditor
+from . import panel_undo, view_overlay
+from .patch_editing import LABEL_NAMES, PatchEditor, points_in_polygon
 
 USER_ERRORS = (core.Error, ValueError)
 PICK_MODES = ("facet", "patch", "face", "path")
@@ -72,6 +75,7 @@ class _TaskPanel:
             self._build_scene()
             self.overlay.on_click = self._on_click
             self.overlay.on_box = self._on_box
+            self.overlay.on_lasso = self._on_lasso
             self.overlay.install_mouse()
             # The panel draws the patches itself; hide the object, its surface and what is made
             # from it (a mesh in front of the patches would hide them).
@@ -81,6 +85,8 @@ class _TaskPanel:
                     self._hidden.append(vobj)
                     vobj.Visibility = False
         self.editor.listeners.append(self._on_editor)
+        self.undo_redirect = panel_undo.UndoRedirect(
+            self.undo, self.redo, lambda: self.editor.can_undo, lambda: self.editor.can_redo)
         self._refresh_patches()
         self._refresh_selection()
         _active.append(self)
@@ -157,18 +163,36 @@ class _TaskPanel:
         e.select_facets(group, "remove" if e.selection[triangle] else "add")
         return triangle
 
-    def select_box(self, x0, y0, x1, y1, mode="add", hidden=False):
+    def select_box(self, x0, y0, x1, y1, mode="add", hidden=None):
         """Selects the facets whose centroids lie in the view rectangle [x0, x1] x [y0, y1]
         (pixels, origin lower left) and that face the camera, only the visible ones unless
-        ``hidden``. Returns the number selected."""
+        ``hidden`` (None: the panel's "also take hidden facets" box). Returns the number
+        selected."""
+        return self._select_projected(
+            lambda cxy: ((cxy[:, 0] >= min(x0, x1)) & (cxy[:, 0] <= max(x0, x1))
+                         & (cxy[:, 1] >= min(y0, y1)) & (cxy[:, 1] <= max(y0, y1))),
+            mode, hidden, "box")
+
+    def select_polygon(self, points, mode="add", hidden=None):
+        """Lasso: selects the facets whose centroids lie inside the view polygon ``points``
+        (#P x 2 pixels, origin lower left, closed implicitly; even-odd rule where it crosses
+        itself) and that face the camera, only the visible ones unless ``hidden`` (None: the
+        panel's box). Returns the number selected."""
+        polygon = np.asarray(points, float).reshape(-1, 2)
+        if len(polygon) < 3:
+            raise ValueError("a lasso needs three or more points, got {}".format(len(polygon)))
+        return self._select_projected(
+            lambda cxy: points_in_polygon(cxy, polygon), mode, hidden, "lasso")
+
+    def _select_projected(self, inside_of, mode, hidden, what):
         if self.overlay is None:
-            raise ValueError("box selection needs a 3D view")
+            raise ValueError("{} selection needs a 3D view".format(what))
+        if hidden is None:
+            hidden = self.form.ck_hidden.isChecked()
         e = self.editor
         centroids = e.V[e.F].mean(axis=1)
         cxy, cdepth = self.overlay.project(centroids)
-        inside = ((cxy[:, 0] >= min(x0, x1)) & (cxy[:, 0] <= max(x0, x1))
-                  & (cxy[:, 1] >= min(y0, y1)) & (cxy[:, 1] <= max(y0, y1))
-                  & (np.abs(cdepth) <= 1.0))
+        inside = inside_of(cxy) & (np.abs(cdepth) <= 1.0)
         xy, depth = self.overlay.project(e.V)
         facing = view_overlay.front_facing(xy, e.F)
         chosen = np.flatnonzero(inside & facing)
@@ -182,8 +206,25 @@ class _TaskPanel:
         """Box mode: the next drag in the 3D view selects a rectangle (``on`` False cancels)."""
         if self.overlay is not None:
             self.overlay.set_box_mode(on)
-        if self.form.pb_box.isChecked() != bool(on):
-            self.form.pb_box.setChecked(bool(on))
+        self._set_checked(self.form.pb_box, on)
+        if on:
+            self._set_checked(self.form.pb_lasso, False)
+
+    def start_lasso_selection(self, on=True):
+        """Lasso mode: the next drag in the 3D view draws a polygon and selects the facets
+        inside it (``on`` False cancels)."""
+        if self.overlay is not None:
+            self.overlay.set_lasso_mode(on)
+        self._set_checked(self.form.pb_lasso, on)
+        if on:
+            self._set_checked(self.form.pb_box, False)
+
+    @staticmethod
+    def _set_checked(button, on):
+        if button.isChecked() != bool(on):
+            button.blockSignals(True)
+            button.setChecked(bool(on))
+            button.blockSignals(False)
 
     def add_selected_cad_faces(self):
         """Selects the triangles of the faces selected (FreeCAD selection, "FaceN") on the
@@ -334,6 +375,8 @@ class _TaskPanel:
         f.cb_pick_mode.currentIndexChanged.connect(
             lambda i: self._run("Pick mode", self.set_pick_mode, PICK_MODES[i]))
         f.pb_box.toggled.connect(lambda on: self._run("Box select", self.start_box_selection, on))
+        f.pb_lasso.toggled.connect(lambda on: self._run("Lasso select",
+                                                        self.start_lasso_selection, on))
         f.pb_cad_faces.clicked.connect(lambda: self._run("CAD faces", self.add_selected_cad_faces))
         f.pb_clear.clicked.connect(lambda: self._run("Clear", self.clear_selection))
         f.pb_assign.clicked.connect(lambda: self._run("Assign to patch", self.assign_to_patch))
@@ -371,8 +414,12 @@ class _TaskPanel:
         self._run("Pick", self.click, x, y, ctrl, shift)
 
     def _on_box(self, x0, y0, x1, y1):
-        self.form.pb_box.setChecked(False)
+        self._set_checked(self.form.pb_box, False)
         self._run("Box select", self.select_box, x0, y0, x1, y1)
+
+    def _on_lasso(self, points):
+        self._set_checked(self.form.pb_lasso, False)
+        self._run("Lasso select", self.select_polygon, points)
 
     def _on_editor(self, what):
         if what == "patches":
@@ -412,6 +459,7 @@ class _TaskPanel:
             " (click one to show it)"))
         f.pb_undo.setEnabled(e.can_undo)
         f.pb_redo.setEnabled(e.can_redo)
+        self.undo_redirect.update()
         f.pb_reset.setEnabled(e.is_modified())
         f.pb_cad_faces.setEnabled(getattr(self.obj.Surface, "Source", None) is not None)
         if self.overlay is not None:
@@ -515,6 +563,7 @@ class _TaskPanel:
         self._closed = True
         if self in _active:
             _active.remove(self)
+        self.undo_redirect.remove()
         if self.overlay is not None:
             self.overlay.remove()
             self.overlay = None

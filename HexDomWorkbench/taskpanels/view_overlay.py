@@ -15,6 +15,7 @@ import FreeCAD
 import FreeCADGui
 
 CLICK_TOLERANCE = 4  # pixels a press may move and still count as a click
+LASSO_STEP = 3  # pixels the mouse moves before the lasso takes another point
 
 
 def active_view():
@@ -27,8 +28,9 @@ def active_view():
 
 class ViewOverlay:
     """Owns ``root`` (an SoSeparator added to the view's scene graph) and, once ``install_mouse``
-    ran, turns mouse presses into ``on_click(x, y, ctrl, shift)`` and, in box mode, drags into
-    ``on_box(x0, y0, x1, y1)`` (pixels, origin lower left)."""
+    ran, turns mouse presses into ``on_click(x, y, ctrl, shift)``, in box mode drags into
+    ``on_box(x0, y0, x1, y1)`` and in lasso mode drags into ``on_lasso(points)`` (the polygon the
+    mouse drew, #P x 2; pixels, origin lower left)."""
 
     def __init__(self, view=None):
         self.view = view or active_view()
@@ -36,8 +38,12 @@ class ViewOverlay:
         self.root.setName("HexDomTaskOverlay")
         self.on_click = None
         self.on_box = None
+        self.on_lasso = None
         self.box_mode = False
+        self.lasso_mode = False
         self._press = None
+        self._lasso = []
+        self._redirected = None
         self._callbacks = []
         self._band = _RubberBand()
         self.root.addChild(self._band.root)
@@ -58,6 +64,7 @@ class ViewOverlay:
         """Takes the overlay out of the view and stops listening to the mouse."""
         if self.view is None:
             return
+        self._grab_mouse(False)
         for kind, cb in self._callbacks:
             try:
                 self.view.removeEventCallbackPivy(kind, cb)
@@ -124,8 +131,34 @@ class ViewOverlay:
 
     def set_box_mode(self, on):
         self.box_mode = bool(on)
+        if on:
+            self.lasso_mode = False
         self._press = None
         self._band.hide()
+        self._grab_mouse(self.box_mode or self.lasso_mode)
+
+    def set_lasso_mode(self, on):
+        self.lasso_mode = bool(on)
+        if on:
+            self.box_mode = False
+        self._press = None
+        self._lasso = []
+        self._band.hide()
+        self._grab_mouse(self.box_mode or self.lasso_mode)
+
+    def _grab_mouse(self, on):
+        """While a box or lasso is drawn, the view's navigation style must not take the drag
+        for a rotation (it would swallow the mouse moves, depending on timing): the viewer
+        sends every event to the scene graph, where the overlay's callbacks get them."""
+        viewer = self.view.getViewer() if self.view is not None else None
+        if viewer is None or not hasattr(viewer, "setRedirectToSceneGraph"):
+            return
+        if on and self._redirected is None:
+            self._redirected = bool(viewer.isRedirectedToSceneGraph())
+            viewer.setRedirectToSceneGraph(True)
+        elif not on and self._redirected is not None:
+            viewer.setRedirectToSceneGraph(self._redirected)
+            self._redirected = None
 
     def _mouse_button(self, event_cb):
         event = event_cb.getEvent()
@@ -134,7 +167,8 @@ class ViewOverlay:
         x, y = event.getPosition().getValue()
         if event.getState() == coin.SoButtonEvent.DOWN:
             self._press = (x, y)
-            if self.box_mode:
+            self._lasso = [(x, y)]
+            if self.box_mode or self.lasso_mode:
                 event_cb.setHandled()
             return
         if event.getState() != coin.SoButtonEvent.UP or self._press is None:
@@ -142,10 +176,20 @@ class ViewOverlay:
         x0, y0 = self._press
         self._press = None
         try:
-            if self.box_mode:
+            if self.lasso_mode:
+                event_cb.setHandled()
+                self._band.hide()
+                self.lasso_mode = False
+                self._grab_mouse(False)
+                points = self._lasso + [(x, y)]
+                self._lasso = []
+                if self.on_lasso is not None and len(points) >= 3:
+                    self.on_lasso(np.array(points, float))
+            elif self.box_mode:
                 event_cb.setHandled()
                 self._band.hide()
                 self.box_mode = False
+                self._grab_mouse(False)
                 if self.on_box is not None:
                     self.on_box(min(x0, x), min(y0, y), max(x0, x), max(y0, y))
             elif abs(x - x0) <= CLICK_TOLERANCE and abs(y - y0) <= CLICK_TOLERANCE:
@@ -155,11 +199,17 @@ class ViewOverlay:
             FreeCAD.Console.PrintError("HexDom: {}\n".format(e))
 
     def _mouse_move(self, event_cb):
-        if not self.box_mode or self._press is None:
+        if not (self.box_mode or self.lasso_mode) or self._press is None:
             return
         event_cb.setHandled()
         x, y = event_cb.getEvent().getPosition().getValue()
-        self._band.show(self._press, (x, y), self.size())
+        if self.box_mode:
+            self._band.show(self._press, (x, y), self.size())
+            return
+        last = self._lasso[-1]
+        if abs(x - last[0]) + abs(y - last[1]) >= LASSO_STEP:
+            self._lasso.append((x, y))
+            self._band.show_polygon(self._lasso, self.size())
 
 
 class _RubberBand:
@@ -184,17 +234,23 @@ class _RubberBand:
         style.lineWidth = 1.5
         style.linePattern = 0xF0F0
         self.coords = coin.SoCoordinate3()
-        lines = coin.SoLineSet()
-        for node in (camera, light, color, style, self.coords, lines):
+        self.lines = coin.SoLineSet()
+        for node in (camera, light, color, style, self.coords, self.lines):
             sep.addChild(node)
         self.switch.addChild(sep)
         self.root.addChild(self.switch)
 
     def show(self, a, b, size):
+        """The rectangle with corners ``a`` and ``b`` (pixels)."""
+        self.show_polygon([(a[0], a[1]), (b[0], a[1]), (b[0], b[1]), (a[0], b[1])], size)
+
+    def show_polygon(self, points, size):
+        """The closed polygon through ``points`` (pixels)."""
         w, h = size
-        x0, y0 = 2.0 * a[0] / w - 1.0, 2.0 * a[1] / h - 1.0
-        x1, y1 = 2.0 * b[0] / w - 1.0, 2.0 * b[1] / h - 1.0
-        pts = [(x0, y0, 0.0), (x1, y0, 0.0), (x1, y1, 0.0), (x0, y1, 0.0), (x0, y0, 0.0)]
+        pts = [(2.0 * x / w - 1.0, 2.0 * y / h - 1.0, 0.0) for x, y in points]
+        pts.append(pts[0])
+        self.lines.numVertices.setValue(len(pts))
+        self.coords.point.setNum(0)
         self.coords.point.setValues(0, len(pts), pts)
         self.switch.whichChild = 0
 

@@ -66,6 +66,15 @@ def _viewport_and_scale():
     return widget, w / float(widget.width()), h
 
 
+def _park_cursor():
+    """Puts the (virtual) pointer in the screen's corner, off the 3D view: when widgets change,
+    Qt sends the widget under the pointer a synthetic move with the real (released) buttons,
+    which would end a drag made of sent events half-way."""
+    from PySide import QtGui
+    QtGui.QCursor.setPos(0, 0)
+    process_events()
+
+
 def _send_mouse(kind, x, y, buttons):
     """A Qt mouse event at Coin pixel (x, y) (origin lower left) on the 3D view."""
     from PySide import QtCore, QtGui
@@ -79,6 +88,7 @@ def _send_mouse(kind, x, y, buttons):
 def mouse_click(x, y):
     """Presses and releases the left button at Coin pixel (x, y) of the 3D view, as a user
     would (the event goes through Qt, Quarter and Coin to the event callbacks)."""
+    _park_cursor()
     from PySide import QtCore
     _send_mouse(QtCore.QEvent.MouseButtonPress, x, y, QtCore.Qt.LeftButton)
     _send_mouse(QtCore.QEvent.MouseButtonRelease, x, y, QtCore.Qt.NoButton)
@@ -87,6 +97,7 @@ def mouse_click(x, y):
 
 def mouse_drag(a, b, steps=6):
     """Drags with the left button from Coin pixel ``a`` to ``b`` on the 3D view."""
+    _park_cursor()
     from PySide import QtCore
     _send_mouse(QtCore.QEvent.MouseButtonPress, a[0], a[1], QtCore.Qt.LeftButton)
     for k in range(1, steps + 1):
@@ -95,6 +106,53 @@ def mouse_drag(a, b, steps=6):
         _send_mouse(QtCore.QEvent.MouseMove, x, y, QtCore.Qt.LeftButton)
     _send_mouse(QtCore.QEvent.MouseButtonRelease, b[0], b[1], QtCore.Qt.NoButton)
     process_events()
+
+
+def mouse_path(points, before_release=None):
+    """Presses the left button at the first of ``points`` (Coin pixels), moves through the
+    others and releases at the last: a lasso drawn by hand. ``before_release()`` runs with the
+    button still down (to take a picture of the drawing)."""
+    _park_cursor()
+    from PySide import QtCore
+    _send_mouse(QtCore.QEvent.MouseButtonPress, points[0][0], points[0][1], QtCore.Qt.LeftButton)
+    for x, y in points[1:]:
+        _send_mouse(QtCore.QEvent.MouseMove, x, y, QtCore.Qt.LeftButton)
+    if before_release is not None:
+        before_release()
+    _send_mouse(QtCore.QEvent.MouseButtonRelease, points[-1][0], points[-1][1],
+                QtCore.Qt.NoButton)
+    process_events()
+
+
+def key_click(sequence, widget=None):
+    """Types ``sequence`` ("Ctrl+Z") on ``widget`` (default: the 3D view, focused) as a key press
+    and release. The press goes through Qt's shortcut map first, as a key typed by the user."""
+    from PySide import QtCore, QtGui
+    if widget is None:
+        widget, _, _ = _viewport_and_scale()
+        widget.setFocus()
+    combined = QtGui.QKeySequence(sequence)[0]
+    modifiers = QtCore.Qt.KeyboardModifiers(combined & int(QtCore.Qt.KeyboardModifierMask))
+    key = combined & ~int(QtCore.Qt.KeyboardModifierMask)
+    for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+        QtGui.QApplication.sendEvent(widget, QtGui.QKeyEvent(kind, key, modifiers))
+    process_events()
+
+
+def menu_action(menu_title, object_name):
+    """The action named ``object_name`` in the main window's menu ``menu_title`` ("&Edit"), or
+    None."""
+    import FreeCADGui
+    from PySide import QtGui
+    bar = FreeCADGui.getMainWindow().menuBar()
+    for top in bar.actions():
+        menu = top.menu()
+        if menu is None or top.text().replace("&", "") != menu_title.replace("&", ""):
+            continue
+        for action in menu.actions():
+            if action.objectName() == object_name:
+                return action
+    return None
 
 
 def view_image(name, width=760, height=620):

@@ -169,6 +169,69 @@ def test_selection_modes_faces_and_errors():
         e.merge(1, 17)  # the ramp and the far end share no edge
 
 
+def test_lasso_polygon_test_against_winding_angles():
+    """points_in_polygon (even-odd crossings) against the total angle a polygon turns about each
+    point, on a star and on a polygon with a notch; points near an edge are left out."""
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 2 * np.pi, 14, endpoint=False)
+    star = np.c_[np.cos(t), np.sin(t)] * np.where(np.arange(14) % 2 == 0, 10.0, 4.0)[:, None]
+    notch = np.array([[0, 0], [10, 0], [10, 10], [6, 10], [6, 3], [4, 3], [4, 10], [0, 10]],
+                     float)
+    for polygon in (star, notch):
+        pts = rng.uniform(polygon.min(axis=0) - 1, polygon.max(axis=0) + 1, (4000, 2))
+        d = polygon[None, :, :] - pts[:, None, :]
+        e = np.roll(d, -1, axis=1)
+        turn = np.arctan2(d[..., 0] * e[..., 1] - d[..., 1] * e[..., 0],
+                          (d * e).sum(axis=2)).sum(axis=1)
+        expected = np.abs(turn) > np.pi
+        a, b = polygon, np.roll(polygon, -1, axis=0)
+        ab = b - a
+        u = np.clip(np.einsum("pqk,qk->pq", pts[:, None, :] - a[None], ab)
+                    / np.einsum("qk,qk->q", ab, ab), 0, 1)
+        far = np.linalg.norm(pts[:, None, :] - (a[None] + u[..., None] * ab[None]),
+                             axis=2).min(axis=1) > 1e-6
+        got = patch_editing.points_in_polygon(pts, polygon)
+        assert 500 < expected.sum() < 3500
+        np.testing.assert_array_equal(got[far], expected[far])
+    assert not patch_editing.points_in_polygon([[0, 0]], [[0, 0], [1, 1]]).any()
+
+
+def test_opposite_orientations_touching_are_listed_highlighted_and_cut_apart():
+    """A thin wedge (its long sides' normals 165 degrees apart, +Y and -Y, meet at the apex
+    edge): the editor lists the opposite orientations touching, the problem's facets are the two
+    sides, and a +X strip made at the apex separates them."""
+    h = 10 * np.tan(np.radians(7.5))
+    ring = [(0, -h), (5, -h / 2), (10, 0), (5, h / 2), (0, h), (0, 0)]
+    side = [1, 1, 2, 2, 3, 3]
+    n, layers = len(ring), 3
+    V = [(x, y, 4.0 * k / layers) for k in range(layers + 1) for x, y in ring]
+    V += [(10 / 3, 0, 0), (10 / 3, 0, 4.0)]
+    tris = []
+    for k in range(layers):
+        for i in range(n):
+            j = (i + 1) % n
+            a, b, c, d = k * n + i, k * n + j, (k + 1) * n + j, (k + 1) * n + i
+            tris += [(side[i], (a, b, c)), (side[i], (a, c, d))]
+    bottom, top = len(V) - 2, len(V) - 1
+    for i in range(n):
+        j = (i + 1) % n
+        tris += [(4, (layers * n + i, layers * n + j, top)), (5, (j, i, bottom))]
+    V = np.array(V, float)
+    F = np.array([t for _, t in tris])
+    P = np.array([p for p, _ in tris])
+    e = PatchEditor(V, F, P)
+    problems = e.problems()
+    assert [p.kind for p in problems] == ["opposite_orientations"]
+    assert sorted(e.problem_triangles(problems[0]).tolist()) == np.flatnonzero(
+        np.isin(P, [1, 2])).tolist()
+    apex = np.flatnonzero(np.isclose(V[:, 0], 10.0))
+    strip = [t for t in range(len(F)) if P[t] in (1, 2) and np.isin(F[t], apex).any()]
+    e.select_facets(strip, "replace")
+    new = e.new_patch()
+    assert patch_editing.LABEL_NAMES[e.patch_label(new)] == "+X"
+    assert "opposite_orientations" not in [p.kind for p in e.problems()]
+
+
 def test_changes_name_exactly_the_edited_triangles():
     _, e = bracket_editor()
     planted = island(e)
@@ -286,6 +349,93 @@ def test_inverted_overlapping_and_shared_faces_are_listed():
     assert len(overlap) == 1 and overlap[0].blocks == [0, 1]
     b.undo()
     assert [p.kind for p in b.problems()] == ["no_boundary"] + ["unused_vertex"] * 8
+
+
+def two_hexes(shift):
+    """A builder with the unit cube and a second unit cube moved by ``shift`` (own vertices)."""
+    V, hexa = unit_cube()
+    b = PolycubeBuilder(structure=core.Mesh(V, np.array([hexa], np.int32),
+                                            np.array([core.HEX], np.int32),
+                                            np.ones(1, np.int32)))
+    moved = [b.add_vertex(b.points[v] + np.asarray(shift, float)) for v in hexa]
+    b.add_block(moved)
+    return b
+
+
+@pytest.mark.parametrize("shift", [(0.9, 0.1, 0.1), (0.8, 0.8, 0.8), (-0.85, 0.3, -0.2)])
+def test_a_block_poking_into_another_without_sharing_a_face_is_flagged(shift):
+    b = two_hexes(shift)
+    assert not set(b.blocks[0][1]) & set(b.blocks[1][1])
+    # The poke is shallow: neither cube's centre nor the points half-way from it to its corners
+    # (what a centroid test samples) lies in the other cube (axis-aligned: a box test).
+    for a, o in ((0, 1), (1, 0)):
+        pts = b.points[list(b.blocks[o][1])]
+        centre = pts.mean(axis=0)
+        samples = np.vstack([centre, 0.5 * (pts + centre)])
+        lo = b.points[list(b.blocks[a][1])].min(axis=0)
+        hi = b.points[list(b.blocks[a][1])].max(axis=0)
+        assert not np.any(np.all((samples > lo) & (samples < hi), axis=1))
+    overlap = [p for p in b.problems() if p.kind == "overlap"]
+    assert len(overlap) == 1 and overlap[0].blocks == [0, 1]
+    assert set(overlap[0].vertices) == set(b.blocks[0][1]) | set(b.blocks[1][1])
+
+
+@pytest.mark.parametrize("shift", [(1.0, 0.0, 0.0), (1.0, 0.5, 0.0), (1.0, 1.0, 1.0),
+                                   (0.0, 0.0, -1.0)])
+def test_blocks_that_only_touch_do_not_overlap(shift):
+    assert [p.kind for p in two_hexes(shift).problems()] == ["no_boundary"]
+
+
+def test_inside_block_agrees_with_the_block_map():
+    """Points made by each block's own map from parameters inside / outside its domain are
+    found inside / outside, on a warped hex, a prism and a tet (the tet against a barycentric
+    solve)."""
+    rng = np.random.default_rng(11)
+    V, hexa = unit_cube()
+    warped = V[hexa] + rng.uniform(-0.12, 0.12, (8, 3))
+    params = rng.uniform(0.03, 0.97, (300, 3))
+    N, _ = polycube_building._shape(core.HEX, params)
+    assert polycube_building.inside_block(core.HEX, warped, N @ warped).all()
+    outside = params.copy()
+    outside[:, 0] = rng.choice([-0.3, 1.3], 300) + rng.uniform(-0.1, 0.1, 300)
+    N, _ = polycube_building._shape(core.HEX, outside)
+    assert not polycube_building.inside_block(core.HEX, warped, N @ warped).any()
+    prism = V[[hexa[i] for i in (0, 1, 3, 4, 5, 7)]]
+    tri = rng.dirichlet([1, 1, 1], 200) * 0.94 + 0.02
+    pts = np.hstack([tri[:, 1:], rng.uniform(0.03, 0.97, (200, 1))])
+    N, _ = polycube_building._shape(core.WEDGE, pts)
+    assert polycube_building.inside_block(core.WEDGE, prism, N @ prism).all()
+    tet = np.array([[0, 0, 0], [2, 0.1, 0], [0.3, 1.5, 0.2], [0.1, 0.4, 1.7]])
+    queries = rng.uniform(-0.5, 2.0, (500, 3))
+    bary = np.linalg.solve(np.c_[tet, np.ones(4)].T, np.c_[queries, np.ones(500)].T).T
+    expected = np.all(bary > 1e-3, axis=1)
+    assert 20 < expected.sum() < 480
+    np.testing.assert_array_equal(polycube_building.inside_block(core.TET, tet, queries),
+                                  expected)
+
+
+def test_patches_covered_twice_and_faces_in_three_blocks_are_listed():
+    """The bracket's structure with block 1 twice: its patches are covered twice, its face
+    inside the bracket is in three blocks, and the copy overlaps it; add_block refuses a copy."""
+    b = PolycubeBuilder(core.read_surface(PATCHES))
+    b.import_structure(STRUCTURE)
+    with pytest.raises(ValueError, match="block 1 already uses these vertices"):
+        b.add_block(list(b.blocks[0][1]))
+    shared = [f for f in polycube_building.block_faces(*b.blocks[0])
+              if polycube_building.face_key(f) not in b.patch_faces]
+    b.blocks = b.blocks + [b.blocks[0]]
+    b._problems = None
+    problems = b.problems()
+    kinds = sorted({p.kind for p in problems})
+    assert kinds == ["duplicate_block", "face_shared", "overlap", "patch_covered_twice"]
+    twice = [p for p in problems if p.kind == "patch_covered_twice"]
+    on_patches = [f for f in polycube_building.block_faces(*b.blocks[0])
+                  if polycube_building.face_key(f) in b.patch_faces]
+    assert len(twice) == len(on_patches) and all(p.blocks == [0, 4] for p in twice)
+    in_three = [p for p in problems if p.kind == "face_shared"]
+    assert len(in_three) == len(shared) and all(sorted(p.blocks)[0] == 0 and 4 in p.blocks
+                                                and len(p.blocks) == 3 for p in in_three)
+    assert [p.blocks for p in problems if p.kind == "overlap"] == [[0, 4]]
 
 
 def test_interior_vertices_added_moved_deleted():

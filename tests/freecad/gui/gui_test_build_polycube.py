@@ -7,7 +7,11 @@ built from vertices picked by clicks at their screen positions (in an order the 
 up), an interior vertex comes and goes (centroid, typed coordinates, click on a face), OK makes
 a HexDom Polycube, and its mesh (core.generate + core.improve, and a HexDom Mesh object) has no
 inverted cell. Reopened by double-click, the panel finds the Segmentation through the mesh;
-deleting a block lists the uncovered patches and the open faces, undo clears them. With the
+deleting a block lists the uncovered patches and the open faces, undo clears them; replacing a
+block by a tet on four of its vertices shows as a tet with problems; a hex on typed vertices
+poking into two blocks (no shared face) is listed as two overlaps and clicking one draws both
+blocks red; Ctrl+Z and Edit > Undo take the steps back one by one without touching the
+document. With the
 paper's data: the rocker arm's patch file and rockerarm_polycube_withtet.k load as 60 hex, 11
 prism and 2 tet blocks with no problem listed, and export again. Screenshots of the panel with
 the 3D view go to artifacts/. Prints "GUI TEST PASSED" and exits 0, or lists the failures and
@@ -29,6 +33,11 @@ g.start_watchdog(170.0)
 check = g.check
 
 
+def indices(field):
+    """The values of a Coin multi-field (coordIndex) as a list."""
+    return [int(field[i]) for i in range(field.getNum())]
+
+
 def run():
     import numpy as np
 
@@ -40,7 +49,7 @@ def run():
     import fc_testdata
     from HexDomWorkbench import api, core, make
     from HexDomWorkbench.objects import polycube, segmentation
-    from HexDomWorkbench.taskpanels import task_polycube
+    from HexDomWorkbench.taskpanels import polycube_building, task_polycube
 
     errors = []
     QtGui.QMessageBox.critical = staticmethod(lambda parent, title, text, *a: errors.append(
@@ -82,6 +91,16 @@ def run():
     view.fitAll()
     g.process_events()
     g.compose("build_polycube_start.png", f)
+    # What the view draws: corners as points, curves as lines, patches as quads.
+    curves = indices(panel._curves.coordIndex)
+    patch_faces = indices(panel._patches.faces.coordIndex)
+    sides = np.diff([-1] + [i for i, v in enumerate(patch_faces) if v < 0]) - 1
+    edges = len(b.boundary.edges)
+    check(panel._corner_coords.point.getNum() == 16 and curves.count(-1) == edges
+          and 16 - edges + 14 == 2 and len(sides) == 14 and set(sides.tolist()) == {4},
+          "the view draws 16 corner points, {} curves (Euler: 16 - {} + 14 = 2) and 14 quad "
+          "patches ({} / {} / {})".format(edges, edges, panel._corner_coords.point.getNum(),
+                                          curves.count(-1), len(sides)))
 
     def at(p):
         v, d = b.nearest_vertex(p)
@@ -184,6 +203,64 @@ def run():
     g.compose("build_polycube_problem.png", f)
     f.pb_undo.click()
     check(panel.problems() == [] and len(b.blocks) == 3, "undo brings the block back")
+
+    # 6. Edit a block: block 2 re-picked as a tet on four of its vertices.
+    f.lw_blocks.setCurrentRow(1)
+    old = b.blocks[1]
+    panel.select_vertices(list(old[1][:3]) + [old[1][4]], "replace")
+    check(f.pb_edit_block.isEnabled(), "'Replace block' offered with 4 picks and a block chosen")
+    f.pb_edit_block.click()
+    check(len(b.blocks) == 3 and b.blocks[1][0] == core.TET and "tet" in f.lw_blocks.item(1)
+          .text() and any(p.kind == "uncovered_patch" for p in panel.problems()),
+          "block 2 is now a tet: {}; {} problems".format(f.lw_blocks.item(1).text(),
+                                                          len(panel.problems())))
+    f.pb_undo.click()
+    check(b.blocks[1] == old and panel.problems() == [], "undo gives the hex back")
+
+    # 7. A hex on typed vertices poking into blocks 1 and 2 without sharing a face with them.
+    doc_undos = list(doc.UndoNames)
+    for x in (5.0, 15.0):
+        for y in (2.0, 8.0):
+            for z in (2.0, 8.0):
+                panel.set_coordinates((x, y, z))
+                f.pb_add_xyz.click()
+    panel.select_vertices(list(range(16, 24)), "replace")
+    f.pb_add_block.click()
+    overlaps = [p for p in panel.problems() if p.kind == "overlap"]
+    check(sorted(p.blocks for p in overlaps) == [[0, 3], [1, 3]],
+          "the poking hex overlaps blocks 1 and 2: {}".format([str(p) for p in overlaps]))
+    row = [str(p) for p in panel.problems()].index(str(overlaps[0]))
+    f.lw_problems.setCurrentRow(row)
+    g.process_events()
+    drawn = indices(panel._hl_lines.coordIndex)
+    drawn = {tuple(sorted(drawn[i:i + 2])) for i in range(0, len(drawn), 3)}
+    wanted = set()
+    for k in overlaps[0].blocks:
+        t, verts = b.blocks[k]
+        for face in polycube_building.BLOCK_FACES[t]:
+            ids = [verts[i] for i in face]
+            wanted.update(tuple(sorted(e)) for e in zip(ids, ids[1:] + ids[:1]))
+    check(drawn == wanted and len(wanted) == 24,
+          "clicking the overlap draws the 24 edges of both blocks in red ({})".format(len(drawn)))
+    view.fitAll()
+    g.compose("build_polycube_overlap.png", f)
+    undo = g.menu_action("Edit", "HexDomPanel_Std_Undo")
+    check(undo is not None and g.menu_action("Edit", "Std_Undo") is None,
+          "Edit > Undo is the panel's while it is open")
+    f.sb_x.setFocus()
+    g.key_click("Ctrl+Z", f.sb_x)
+    check(len(b.blocks) == 4 and b.vertex_count == 24,
+          "Ctrl+Z in a coordinate box is the box's own (the blocks stay)")
+    g.key_click("Ctrl+Z")
+    check(len(b.blocks) == 3 and b.vertex_count == 24, "Ctrl+Z takes the poking block away")
+    for _ in range(7):
+        g.key_click("Ctrl+Z")
+    undo.trigger()
+    check(b.vertex_count == 16 and panel.problems() == [] and list(doc.UndoNames) == doc_undos
+          and poly.HexBlocks == 3, "seven Ctrl+Z and Edit > Undo take the 8 vertices back; the "
+          "document is untouched")
+    g.key_click("Ctrl+Y")
+    check(b.vertex_count == 17, "Ctrl+Y redoes one")
     panel.reject()
     g.process_events()
     check(poly.HexBlocks == 3 and not FreeCADGui.Control.activeDialog(), "Cancel changes nothing")
@@ -209,6 +286,12 @@ def run():
         f, b = panel.form, panel.builder
         check(b.corner_count == 141 and len(panel.problems()) == 145,
               "rocker arm: 141 corners, 145 patches to cover")
+        patch_faces = indices(panel._patches.faces.coordIndex)
+        sides = np.diff([-1] + [i for i, v in enumerate(patch_faces) if v < 0]) - 1
+        check(sorted(np.unique(sides, return_counts=True)[1].tolist()) == [8, 137]
+              and set(sides.tolist()) == {3, 4}, "its patches are drawn as 137 quads and 8 "
+              "triangles: {}".format(dict(zip(*[x.tolist() for x in np.unique(
+                  sides, return_counts=True)]))))
         interior = panel.import_structure(structure_k)
         check(panel.counts() == {"hex": 60, "prism": 11, "tet": 2} and interior == 12,
               "withtet structure: {} blocks, {} interior vertices".format(panel.counts(),
