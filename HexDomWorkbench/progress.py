@@ -77,6 +77,7 @@ class Progress:
             self.dialog.hide()
             self.dialog.deleteLater()
             self.dialog = None
+            _reactivate_main_window()
         return False
 
     @property
@@ -146,6 +147,17 @@ class Progress:
             self.dialog = _ProgressDialog(self)
             self.dialog.show()
         return self.dialog
+
+
+def _reactivate_main_window():
+    """Gives the keyboard back to FreeCAD's main window once the modal dialog is gone: without a
+    window manager (or with some) no window is active afterwards, and window shortcuts such as
+    Ctrl+Z would go nowhere."""
+    import FreeCADGui
+    from PySide import QtGui
+    mw = FreeCADGui.getMainWindow()
+    if mw is not None and QtGui.QApplication.activeWindow() is None:
+        mw.activateWindow()
 
 
 def _ProgressDialog(progress):

@@ -5,6 +5,7 @@
 #   HEXDOM_BUILD_DIR=/abs/build tests/freecad/run.sh        (make test-freecad does this)
 #
 # Extra pytest arguments for the App tests: HEXDOM_FC_PYTEST_ARGS="-k fem -x".
+# Only some GUI scripts: HEXDOM_FC_GUI="gui_test_build_polycube" (a glob); HEXDOM_FC_SKIP_APP=1 skips the App tests.
 # Screenshots and logs go to tests/freecad/artifacts/ (ignored by git).
 set -e
 
@@ -41,21 +42,23 @@ record() { NAMES+=("$1"); RESULTS+=("$2"); }
 
 # App tests. freecadcmd's own exit status is 0 after an uncaught exception, so the runner script
 # exits with pytest's code, and a missing pytest summary line counts as a failure too.
-echo "== App tests (freecadcmd + pytest) =="
-set +e
-(cd "$FC_HOME" && timeout 600 freecadcmd "$HERE/run_app_tests.py") 2>&1 | tee "$ARTIFACTS/app.log"
-rc=${PIPESTATUS[0]}
-set -e
-app_summary=$(grep -aE "^=+ .*(passed|failed|error|skipped).* =+$" "$ARTIFACTS/app.log" | tail -1 || true)
-if [ "$rc" -ne 0 ] || [ -z "$app_summary" ]; then
-  record "App tests" "FAILED (exit $rc) ${app_summary//=/}"
-else
-  record "App tests" "passed: ${app_summary//=/}"
+if [ -z "${HEXDOM_FC_SKIP_APP:-}" ]; then
+  echo "== App tests (freecadcmd + pytest) =="
+  set +e
+  (cd "$FC_HOME" && timeout 600 freecadcmd "$HERE/run_app_tests.py") 2>&1 | tee "$ARTIFACTS/app.log"
+  rc=${PIPESTATUS[0]}
+  set -e
+  app_summary=$(grep -aE "^=+ .*(passed|failed|error|skipped).* =+$" "$ARTIFACTS/app.log" | tail -1 || true)
+  if [ "$rc" -ne 0 ] || [ -z "$app_summary" ]; then
+    record "App tests" "FAILED (exit $rc) ${app_summary//=/}"
+  else
+    record "App tests" "passed: ${app_summary//=/}"
+  fi
 fi
 
 # GUI tests: each script ends with os._exit(code) after printing "GUI TEST PASSED".
 shopt -s nullglob
-GUI_SCRIPTS=("$HERE"/gui/gui_test_*.py)
+GUI_SCRIPTS=("$HERE"/gui/${HEXDOM_FC_GUI:-gui_test_*}.py)
 shopt -u nullglob
 if [ ${#GUI_SCRIPTS[@]} -eq 0 ]; then
   record "GUI tests" "FAILED (no tests/freecad/gui/gui_test_*.py found)"
