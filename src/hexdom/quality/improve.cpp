@@ -402,8 +402,8 @@ ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, boo
   mesh::Mesh m = input;
   std::vector<char> sharp;
   if (sharp_in) sharp = *sharp_in;
+  std::vector<int> copy;
   if (with_pillow) {
-    std::vector<int> copy;
     m = pillow(input, opt.pillow_depth, &copy);
     r.pillow_cells = m.num_cells() - input.num_cells();
     if (sharp_in) {
@@ -414,11 +414,12 @@ ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, boo
     }
   }
   // The pillowed boundary has the original geometry, so the angle test finds the same features.
-  const Topology t = topology(m, opt.feature_angle, sharp_in ? &sharp : nullptr);
+  Topology t = topology(m, opt.feature_angle, sharp_in ? &sharp : nullptr);
   for (auto k : t.kind) {
     r.feature_nodes += k == Curve;
     r.corner_nodes += k == Corner;
   }
+  for (int v : opt.fixed_nodes) t.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
   Improver imp(m, t, cons);
   double worst = imp.worst();
   log(std::string(with_pillow ? "pillowed (" + std::to_string(r.pillow_cells) + " cells added)" : "without pillowing") +
@@ -474,6 +475,9 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       sharp[v] = 1;
     }
   }
+  for (int v : opt.fixed_nodes)
+    if (v < 0 || v >= input.num_nodes())
+      throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
   // The surface and feature curves come from the input, before pillowing renumbers nodes.
   const Topology t0 = topology(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
   const Constraints cons = constraints(input, t0, opt.surface);

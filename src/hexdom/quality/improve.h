@@ -23,6 +23,9 @@ struct ImproveOptions {
   std::vector<int> sharp_nodes;
   /// Surface the boundary nodes must stay on; empty: the mesh's own initial boundary.
   mesh::SurfaceMesh surface;
+  /// Nodes that never move (0-based indices into the input mesh), e.g. boundary nodes already put
+  /// on the exact CAD geometry; after pillowing, a fixed boundary node's boundary copy is fixed.
+  std::vector<int> fixed_nodes;
   /// Pillow layer thickness as a fraction of the shortest boundary edge at each node.
   double pillow_depth = 0.2;
   LogCallback log;
