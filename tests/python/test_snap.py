@@ -31,15 +31,13 @@ _NOT_MESHED = {
 }
 # Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
 _SJ_DEFECT = {
-    "s15o_cylinder": "issue 9: worst hex SJ 0.284 after the snap (0.298 before it): the polycube's corners on the "
-                     "round side give cells with a 170-degree boundary angle, and the snap holds the boundary",
-    "n11o_limit_cycle": "issue 9: worst hex SJ 0.123 after the snap (0.139 before it): a polycube edge across a "
+    "n11o_limit_cycle": "issue 9: worst hex SJ 0.159 after the snap (0.139 before it): a polycube edge across a "
                         "smooth blend",
 }
 _VOLUME_DEFECT = {
-    "s15o_cylinder": "issue 9: volume -1.31% with every boundary node on the B-rep: the rim nodes are spaced "
-                     "2.6 to 27 degrees apart (the square-to-disk corners), so the long chords cut off volume",
-    "s12o_cube_rounded_1": "issue 9: volume -1.48% with every boundary node on the B-rep: the rounds are spanned by "
+    "s15o_cylinder": "issue 9: volume -1.44% with every boundary node on the B-rep: the rim nodes are spaced "
+                     "unevenly (2.6 to 27 degrees apart at the square-to-disk corners), so long chords cut off volume",
+    "s12o_cube_rounded_1": "issue 9: volume -1.41% with every boundary node on the B-rep: the rounds are spanned by "
                            "too few cells, whose faces are chords of them",
 }
 

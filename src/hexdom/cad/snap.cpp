@@ -8,11 +8,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
 
+#include "hexdom/cad/face_projector.h"
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/mesh/cell_faces.h"
@@ -258,16 +261,37 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
                 rep.worst_sj_snapped, rep.inverted_snapped);
   say(line);
 
-  // Interior untangling and optimisation, the boundary held where it now is.
+  // Untangling and optimisation: boundary nodes slide on their own CAD face or edge (or stay).
   const auto t1 = Clock::now();
   if (opt.smooth > 0 || opt.optimize > 0) {
     quality::ImproveOptions io;
     io.smooth = opt.smooth;
     io.optimize = opt.optimize;
-    io.fixed_nodes = boundary;
+    std::vector<std::unique_ptr<FaceProjector>> faces(nfaces + 1);
+    std::vector<EdgeCurve> curves(s.edges.Extent() + 1);
+    std::vector<char> have_curve(s.edges.Extent() + 1, 0);
+    for (int v : boundary)
+      if (!opt.slide || r.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
+    if (opt.slide)
+      io.project = [&](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+        const gp_Pnt p(x(0), x(1), x(2));
+        gp_Pnt q;
+        double d = std::numeric_limits<double>::infinity();
+        const int id = r.entity[v];
+        if (r.kind[v] == SnapKind::Face) {
+          if (!faces[id]) faces[id] = std::make_unique<FaceProjector>(TopoDS::Face(s.faces(id)));
+          gp_Pnt2d uv;
+          faces[id]->nearest(p, q, d, uv);
+        } else if (r.kind[v] == SnapKind::Edge) {
+          if (!have_curve[id]) curves[id] = edge_curve(TopoDS::Edge(s.edges(id))), have_curve[id] = 1;
+          double t;
+          if (!nearest_on_edge(curves[id], p, q, t, d)) d = std::numeric_limits<double>::infinity();
+        }
+        if (!std::isfinite(d)) return m.V.row(v).transpose();  // stays where it is
+        return Eigen::Vector3d(q.X(), q.Y(), q.Z());
+      };
     quality::ImproveResult ir = quality::improve(m, io);
     m = std::move(ir.mesh);
-    for (int v : boundary) m.V.row(v) = target.row(v);  // bit for bit where the projection put them
   }
   rep.seconds_restore = since(t1);
   rep.worst_sj = worst_sj(m, &rep.inverted);

@@ -8,7 +8,8 @@
 // goes onto the edge; every other boundary node goes onto the nearest of its CAD faces (trimmed).
 // "Near" is `edge_tolerance` times the node's shortest boundary edge, so a mesh that does not follow
 // a CAD edge (a smooth blend crossed by the polycube) is not pulled onto it. Then the interior nodes
-// are untangled and optimised with every boundary node held fixed (quality::improve, fixed_nodes).
+// are untangled and optimised (quality::improve), the boundary nodes sliding along their own CAD face
+// or edge (`slide`, exact projections) or held fixed, the vertex nodes always fixed.
 //
 // Unlike the rest of hexdom_cad this uses the quality stage of hexdom_core, for the last step.
 #pragma once
@@ -30,6 +31,9 @@ struct SnapOptions {
   /// (quality::improve with the boundary nodes fixed); both 0 skips it.
   int smooth = 3;
   int optimize = 20;
+  /// During the restoration, boundary nodes may slide along their own CAD face or edge (vertex
+  /// nodes stay); false holds every boundary node where the projection put it.
+  bool slide = true;
   LogCallback log;
 };
 

@@ -118,6 +118,7 @@ Topology topology(const mesh::Mesh& m, double feature_angle, const std::vector<c
 // Geometry the boundary must keep: the surface and the feature curves (as degenerate triangles).
 struct Constraints {
   mesh::TriangleProjector surface, curves;
+  std::function<Vec(int, const Vec&)> project;  // ImproveOptions::project, replaces both
 };
 
 Constraints constraints(const mesh::Mesh& m, const Topology& t, const mesh::SurfaceMesh& given) {
@@ -170,6 +171,7 @@ class Improver {
 
   // Projects a candidate position according to the node's kind.
   Vec constrain(int v, const Vec& x) const {
+    if (c_.project && (t_.kind[v] == Surface || t_.kind[v] == Curve)) return c_.project(v, x);
     switch (t_.kind[v]) {
       case Surface: return c_.surface.project(x);
       // On the feature curve (chords of the boundary), then back onto the surface it bounds.
@@ -420,7 +422,12 @@ ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, boo
     r.corner_nodes += k == Corner;
   }
   for (int v : opt.fixed_nodes) t.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
-  Improver imp(m, t, cons);
+  Constraints pillowed_cons;
+  if (with_pillow && cons.project) {  // node numbers changed: the projection hook no longer applies
+    pillowed_cons = cons;
+    pillowed_cons.project = nullptr;
+  }
+  Improver imp(m, t, with_pillow && cons.project ? pillowed_cons : cons);
   double worst = imp.worst();
   log(std::string(with_pillow ? "pillowed (" + std::to_string(r.pillow_cells) + " cells added)" : "without pillowing") +
       ": worst scaled Jacobian " + std::to_string(worst) + "; " + std::to_string(r.feature_nodes) +
@@ -480,7 +487,8 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
   // The surface and feature curves come from the input, before pillowing renumbers nodes.
   const Topology t0 = topology(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
-  const Constraints cons = constraints(input, t0, opt.surface);
+  Constraints cons = constraints(input, t0, opt.surface);
+  cons.project = opt.project;
   const QualityReport before = quality_report(input);
   const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
 

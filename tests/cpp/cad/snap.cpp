@@ -144,4 +144,26 @@ TEST(ImproveFixedNodes, FixedNodesNeverMove) {
   EXPECT_THROW(quality::improve(m, io), GeometryError);
 }
 
+TEST(ImproveProjectHook, DecidesWhereMovingBoundaryNodesGo) {
+  // A hook that sends every boundary node back to where it was: only interior nodes move.
+  const mesh::Mesh m = grid(3, 3, 3, [](double u, double v, double w) {
+    return Eigen::Vector3d(u + 0.15 * std::sin(7 * v + 3 * w), v + 0.1 * std::cos(5 * u), w + 0.1 * u * v);
+  });
+  quality::ImproveOptions io;
+  io.smooth = 2;
+  io.optimize = 5;
+  int calls = 0;
+  io.project = [&](int v, const Eigen::Vector3d&) -> Eigen::Vector3d {
+    ++calls;
+    return m.V.row(v).transpose();
+  };
+  const quality::ImproveResult r = quality::improve(m, io);
+  EXPECT_GT(calls, 0);
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    const int i = v % 4, j = (v / 4) % 4, k = v / 16;
+    const bool inside = i > 0 && i < 3 && j > 0 && j < 3 && k > 0 && k < 3;
+    if (!inside) EXPECT_EQ(r.mesh.V.row(v), m.V.row(v)) << v;
+  }
+}
+
 #endif
