@@ -162,7 +162,9 @@ TEST(ImproveProjectHook, DecidesWhereMovingBoundaryNodesGo) {
   for (int v = 0; v < m.num_nodes(); ++v) {
     const int i = v % 4, j = (v / 4) % 4, k = v / 16;
     const bool inside = i > 0 && i < 3 && j > 0 && j < 3 && k > 0 && k < 3;
-    if (!inside) EXPECT_EQ(r.mesh.V.row(v), m.V.row(v)) << v;
+    if (!inside) {
+      EXPECT_EQ(r.mesh.V.row(v), m.V.row(v)) << v;
+    }
   }
 }
 
