@@ -276,6 +276,29 @@ if has_opencascade():
     project_to_shape = _hexdom.project_to_shape
 
 
+SNAP_KINDS = {0: "interior", 1: "face", 2: "edge", 3: "vertex"}
+
+
+def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, optimize=20):
+    """Puts the boundary nodes of ``mesh`` (a Mesh of hex / prism / tet cells) exactly on the B-rep of
+    ``source`` (a .step/.iges/.brep path or BREP text), using the CAD face ids of ``surface`` (its
+    tessellation, e.g. Surface(*tessellate_file(...)), patch = 1-based CAD face) to decide which node
+    goes onto a CAD face, edge (within edge_tolerance x its shortest boundary edge) or vertex; then
+    untangles and optimises the interior with the boundary held. Returns (Mesh, report dict:
+    boundary_nodes, face_nodes, edge_nodes, vertex_nodes, max_before / mean_before / max_after /
+    mean_after B-rep distances, max_move, diagonal, inverted_snapped, inverted, worst_sj_before,
+    worst_sj_snapped, worst_sj, seconds_project, seconds_restore, quality, kind and entity per node
+    (see SNAP_KINDS)). Inverted cells are reported, not raised."""
+    if not has_opencascade():
+        raise Error("built without OpenCASCADE: cannot snap a mesh to the B-rep")
+    text = os.fspath(source) if isinstance(source, os.PathLike) else source
+    m, report = _hexdom.snap_to_brep(text, mesh.V, mesh.cells, mesh.types, mesh.region, surface.V,
+                                     surface.F, surface.patch, solid=int(solid),
+                                     edge_tolerance=float(edge_tolerance), smooth=int(smooth),
+                                     optimize=int(optimize))
+    return Mesh(*m), report
+
+
 # ------------------------------------------------------------------------------------------------
 # Automatic path (issue 9): autopolycube builds a polycube structure and the patch surface that goes
 # with it from a labelled surface; mesh_surface runs segment -> autopolycube -> generate -> improve.
@@ -323,7 +346,8 @@ class MeshRun:
     """Result of mesh_surface / mesh_part: the final ``mesh``, the ``generated`` one before
     improvement, the segmentation ``labels``, the ``polycube`` (an AutoPolycube), the quality reports
     (dicts as quality_report gives) and ``seconds`` per stage (segment, autopolycube, generate,
-    improve; tessellate too for mesh_part)."""
+    improve; tessellate and snap too for mesh_part). ``snap`` holds snap_to_brep's report for
+    mesh_part (None otherwise)."""
 
     mesh: Mesh
     generated: Mesh
@@ -332,6 +356,7 @@ class MeshRun:
     quality: dict
     generated_quality: dict
     seconds: dict
+    snap: dict = None
 
     @property
     def inverted(self):
@@ -355,11 +380,13 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
     return run
 
 
-def mesh_part(source, size=0.0, level=1, solid=0, **kwargs):
+def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=False, **kwargs):
     """mesh_surface of a CAD part: a .step/.stp, .iges/.igs or .brep/.brp path or BREP text
     (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD faces kept
-    for the segmentation), then meshed. Needs _hexdom built with OpenCASCADE. Keyword arguments go
-    to mesh_surface. Returns a MeshRun whose seconds include "tessellate"."""
+    for the segmentation), then meshed, then (``snap``) its boundary nodes are put exactly on the
+    B-rep with snap_to_brep. Needs _hexdom built with OpenCASCADE. Keyword arguments go to
+    mesh_surface. Raises MeshingError when inverted cells remain, unless allow_inverted. Returns a
+    MeshRun whose seconds include "tessellate" and "snap", and whose ``snap`` is the snap report."""
     import time
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
@@ -370,6 +397,15 @@ def mesh_part(source, size=0.0, level=1, solid=0, **kwargs):
     else:
         V, F, face = _hexdom.tessellate_file(text, size=float(size), solid=int(solid))
     seconds = time.perf_counter() - t0
-    run = mesh_surface(Surface(V, F, face), size=size, level=level, **kwargs)
+    surface = Surface(V, F, face)
+    run = mesh_surface(surface, size=size, level=level, allow_inverted=True, **kwargs)
     run.seconds = {"tessellate": seconds, **run.seconds}
+    if snap:
+        t0 = time.perf_counter()
+        run.mesh, run.snap = snap_to_brep(run.mesh, text, surface, solid=solid)
+        run.quality = run.snap["quality"]
+        run.seconds["snap"] = time.perf_counter() - t0
+    if run.inverted and not allow_inverted:
+        raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
+                           "(allow_inverted=True returns the mesh anyway)")
     return run

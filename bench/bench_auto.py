@@ -1,5 +1,5 @@
 """The automatic path, stage by stage: time per stage (tessellate, segment, autopolycube, generate,
-improve), blocks, cells and quality for the paper's raw surfaces and the shared CAD parts, next to
+improve, and snap for CAD parts, with the boundary nodes' B-rep distance before / after it), blocks, cells and quality for the paper's raw surfaces and the shared CAD parts, next to
 the hand-built structures of the paper models (generate at level 2 + improve).
 
 Run: HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_auto.py [names...]
@@ -40,7 +40,9 @@ def line(name, run, reference):
     err = 100.0 * (q["total_volume"] - reference) / reference
     print(f"{name:28s} {stages} | {info['charts']:3d} charts ({info['relabelled']:3d} relabelled) "
           f"{info['blocks']:5d} blocks | cells {counts:>14s} | hex SJ min {q['hex']['sj_min']:6.3f} "
-          f"mean {q['hex']['sj_mean']:5.3f} | inverted {run.inverted} | volume {err:+6.2f}%", flush=True)
+          f"mean {q['hex']['sj_mean']:5.3f} | inverted {run.inverted} | volume {err:+6.2f}%"
+          + (f" | B-rep distance {run.snap['max_before'] / run.snap['diagonal']:.1e} -> "
+             f"{run.snap['max_after'] / run.snap['diagonal']:.1e} x diagonal" if run.snap else ""), flush=True)
 
 
 def paper(model):

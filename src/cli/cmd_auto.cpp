@@ -9,6 +9,7 @@
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/autopolycube/mesh_surface.h"
 #include "hexdom/cad/read_shape.h"
+#include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/text.h"
@@ -98,10 +99,12 @@ void add_mesh(CLI::App& app) {
       "mesh",
       "Hex mesh of a closed surface or a CAD part with no manual step: segment -> autopolycube -> generate ->\n"
       "improve, one progress line per stage, then the quality summary. CAD files (.step/.stp, .iges/.igs,\n"
-      ".brep/.brp) are tessellated first (hexdom tessellate, CAD faces kept for the segmentation).");
+      ".brep/.brp) are tessellated first (hexdom tessellate, CAD faces kept for the segmentation), and the\n"
+      "final boundary nodes are put exactly on the B-rep (stage snap: faces, edges, vertices; interior\n"
+      "untangled and optimised with the boundary held).");
   struct Args {
     std::string in, out, report;
-    bool keep = false, allow_inverted = false, no_improve = false;
+    bool keep = false, allow_inverted = false, no_improve = false, no_snap = false;
     int solid = 0;
     autopolycube::MeshSurfaceOptions opt;
   };
@@ -116,6 +119,7 @@ void add_mesh(CLI::App& app) {
   cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
   cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
   cmd->add_flag("--no-improve", a->no_improve, "skip the improvement stage");
+  cmd->add_flag("--no-snap", a->no_snap, "CAD files: leave the boundary nodes on the tessellation instead of the B-rep");
   cmd->add_option("--solid", a->solid, "CAD files: which solid (1-based); default: the first")->check(CLI::PositiveNumber);
   cmd->add_flag("--keep", a->keep,
                 "also write <output stem>_labels.k, _structure.k, _patches.k and _polycube.vtk (on failure the labels "
@@ -129,6 +133,7 @@ void add_mesh(CLI::App& app) {
     a->opt.improve = !a->no_improve;
     const std::string stem = stem_of(a->out);
     mesh::SurfaceMesh surface;
+    cad::Shape shape;
     double reference_volume = 0;
     const char* reference = "surface";
     if (is_cad_file(a->in)) {
@@ -136,7 +141,7 @@ void add_mesh(CLI::App& app) {
       cad::ReadOptions ro;
       ro.solid = a->solid;
       ro.log = print_log;
-      const cad::Shape shape = cad::read_shape(a->in, ro);
+      shape = cad::read_shape(a->in, ro);
       cad::TessellateOptions to;
       to.size = a->opt.size;
       cad::TessellateStats st;
@@ -171,6 +176,23 @@ void add_mesh(CLI::App& app) {
       print_log(1, "stage " + run.stage + " failed; wrote " + stem + "_labels.k" +
                        (run.polycube.polycube.F.rows() ? " and " + stem + "_polycube.vtk" : std::string()) + " for inspection");
       throw;
+    }
+    if (!shape.is_empty() && !a->no_snap) {
+      const auto t0 = std::chrono::steady_clock::now();
+      cad::SnapOptions so;
+      if (a->opt.verbose) so.log = print_log;
+      cad::SnapResult sr = cad::snap_to_brep(shape, run.mesh, surface, so);
+      run.mesh = std::move(sr.mesh);
+      run.quality = sr.quality;
+      const cad::SnapReport& q = sr.report;
+      char line[400];
+      std::snprintf(line, sizeof line,
+                    "snap: %d boundary nodes onto %d faces, %d edges, %d vertices; B-rep distance max %.3g -> %.3g "
+                    "(%.2e of the diagonal); worst SJ %.3f -> %.3f, %d inverted, in %.2f s",
+                    q.boundary_nodes, q.face_nodes, q.edge_nodes, q.vertex_nodes, q.max_before, q.max_after,
+                    q.diagonal > 0 ? q.max_after / q.diagonal : 0.0, q.worst_sj_before, q.worst_sj, q.inverted,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      print_log(0, line);
     }
     if (a->keep) write_intermediate(true);
     io::write_mesh(a->out, run.mesh);

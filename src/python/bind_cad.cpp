@@ -6,8 +6,10 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "convert.h"
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
+#include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
 
 namespace py = pybind11;
@@ -50,6 +52,19 @@ const char* kTessellateDoc =
     "Returns (V #V x 3 float64, F #F x 3 int32, face_id #F int32), face_id being the 1-based CAD face\n"
     "(FreeCAD's Face{face_id}). Raises InputError for unreadable input, GeometryError for a source that\n"
     "holds no closed solid.";
+
+const char* kSnapDoc =
+    "Puts the boundary nodes of a volume mesh (V, cells #C x 8 -1 padded, VTK types, region) exactly on the\n"
+    "B-rep of `source` (CAD file path or BREP text; `solid` 1-based, 0: the first), classified with the CAD\n"
+    "face ids of its tessellation (surface V, F, face_id as tessellate_* return them): a node among three\n"
+    "CAD faces meeting at a vertex and within edge_tolerance x its shortest boundary edge of it goes onto\n"
+    "the vertex, a node among faces sharing a CAD edge and that near it onto the edge, every other one onto\n"
+    "the nearest of its faces (trimmed). Then the interior is smoothed (`smooth` passes) and optimised\n"
+    "(`optimize` rounds) with the boundary held. Returns (mesh tuple, report dict): boundary_nodes,\n"
+    "face_nodes, edge_nodes, vertex_nodes, max_before, mean_before, max_after, mean_after (B-rep\n"
+    "distances), max_move, diagonal, inverted_snapped, inverted, worst_sj_before, worst_sj_snapped,\n"
+    "worst_sj, seconds_project, seconds_restore, quality (as quality_report), kind (#V: 0 interior, 1 face,\n"
+    "2 edge, 3 vertex) and entity (#V: 1-based face / edge / vertex id, 0 inside).";
 
 }  // namespace
 
@@ -144,6 +159,51 @@ void bind_cad(py::module_& m) {
         py::arg("source"), py::arg("points"), py::arg("solid") = 0,
         "Nearest points of the solid's boundary to `points` (N x 3). Returns (points N x 3, distance N,\n"
         "face_id N), face_id the 1-based face each lies on.");
+
+  m.def("snap_to_brep",
+        [](const std::string& source, const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
+           const std::optional<Eigen::VectorXi>& region, const RefV& sV, const RefF& sF, const RefI& face_id, int solid,
+           double edge_tolerance, int smooth, int optimize) {
+          mesh::Mesh mesh = make_mesh(V, cells, types, region);
+          const mesh::SurfaceMesh surface = surface_of(sV, sF, face_id);
+          cad::SnapOptions opt;
+          opt.edge_tolerance = edge_tolerance;
+          opt.smooth = smooth;
+          opt.optimize = optimize;
+          cad::SnapResult r;
+          {
+            py::gil_scoped_release nogil;
+            r = cad::snap_to_brep(read_source(source, solid), mesh, surface, opt);
+          }
+          const cad::SnapReport& q = r.report;
+          py::dict d;
+          d["boundary_nodes"] = q.boundary_nodes;
+          d["face_nodes"] = q.face_nodes;
+          d["edge_nodes"] = q.edge_nodes;
+          d["vertex_nodes"] = q.vertex_nodes;
+          d["max_before"] = q.max_before;
+          d["mean_before"] = q.mean_before;
+          d["max_after"] = q.max_after;
+          d["mean_after"] = q.mean_after;
+          d["max_move"] = q.max_move;
+          d["diagonal"] = q.diagonal;
+          d["inverted_snapped"] = q.inverted_snapped;
+          d["inverted"] = q.inverted;
+          d["worst_sj_before"] = q.worst_sj_before;
+          d["worst_sj_snapped"] = q.worst_sj_snapped;
+          d["worst_sj"] = q.worst_sj;
+          d["seconds_project"] = q.seconds_project;
+          d["seconds_restore"] = q.seconds_restore;
+          d["quality"] = report_dict(r.quality);
+          Eigen::VectorXi kind(r.kind.size()), entity(r.entity.size());
+          for (size_t i = 0; i < r.kind.size(); ++i) kind(i) = static_cast<int>(r.kind[i]), entity(i) = r.entity[i];
+          d["kind"] = kind;
+          d["entity"] = entity;
+          return py::make_tuple(mesh_tuple(r.mesh), d);
+        },
+        py::arg("source"), py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region"), py::arg("surface_V"),
+        py::arg("surface_F"), py::arg("face_id"), py::arg("solid") = 0, py::arg("edge_tolerance") = 0.25,
+        py::arg("smooth") = 3, py::arg("optimize") = 20, kSnapDoc);
 }
 
 }  // namespace hexdom::python

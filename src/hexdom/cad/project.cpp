@@ -16,75 +16,13 @@
 #include <limits>
 #include <memory>
 
+#include "hexdom/cad/face_projector.h"
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/common/error.h"
 
 namespace hexdom::cad {
 
 namespace {
-
-struct EdgeCurve {
-  Handle(Geom_Curve) curve;
-  double first = 0, last = 0;
-};
-
-/// Nearest point of one edge's 3D curve within its range (ends included).
-bool nearest_on_edge(const EdgeCurve& e, const gp_Pnt& p, gp_Pnt& q, double& t, double& d) {
-  return nearest_on_curve(e.curve, e.first, e.last, p, q, t, d);
-}
-
-EdgeCurve edge_curve(const TopoDS_Edge& edge) {
-  EdgeCurve e;
-  if (!BRep_Tool::Degenerated(edge)) e.curve = BRep_Tool::Curve(edge, e.first, e.last);
-  return e;
-}
-
-/// Nearest point of one trimmed face: the nearest of the surface's extrema that lie inside the
-/// face and of the nearest points of its boundary edges.
-class FaceProjector {
- public:
-  explicit FaceProjector(const TopoDS_Face& face) : face_(face) {
-    surface_ = BRep_Tool::Surface(face);
-    analysis_ = new ShapeAnalysis_Surface(surface_);
-    BRepTools::UVBounds(face, u0_, u1_, v0_, v1_);
-    tol_ = std::max(BRep_Tool::Tolerance(face), 1e-9);
-    classifier_ = std::make_unique<BRepTopAdaptor_FClass2d>(face, tol_);
-    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) edges_.push_back(edge_curve(TopoDS::Edge(ex.Current())));
-    BRepBndLib::Add(face, box_);
-  }
-
-  /// Lower bound of the distance from p to the face.
-  double lower_bound(const gp_Pnt& p) const { return box_.IsVoid() ? 0.0 : box_.Distance(Bnd_Box(p.XYZ(), p.XYZ())); }
-
-  void nearest(const gp_Pnt& p, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
-    best_d = std::numeric_limits<double>::infinity();
-    GeomAPI_ProjectPointOnSurf proj;
-    proj.Init(p, surface_, u0_, u1_, v0_, v1_);
-    for (int i = 1; i <= proj.NbPoints(); ++i) {
-      double u, v;
-      proj.Parameters(i, u, v);
-      if (classifier_->Perform(gp_Pnt2d(u, v)) == TopAbs_OUT) continue;
-      const double d = proj.Distance(i);
-      if (d < best_d) best_d = d, best = proj.Point(i), best_uv = gp_Pnt2d(u, v);
-    }
-    bool on_edge = false;
-    for (const EdgeCurve& e : edges_) {
-      gp_Pnt q;
-      double t, d;
-      if (nearest_on_edge(e, p, q, t, d) && d < best_d) best_d = d, best = q, on_edge = true;
-    }
-    if (on_edge) best_uv = analysis_->ValueOfUV(best, tol_);
-  }
-
- private:
-  TopoDS_Face face_;
-  Handle(Geom_Surface) surface_;
-  Handle(ShapeAnalysis_Surface) analysis_;
-  std::unique_ptr<BRepTopAdaptor_FClass2d> classifier_;
-  std::vector<EdgeCurve> edges_;
-  Bnd_Box box_;
-  double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, tol_ = 1e-7;
-};
 
 Projection make_result(Eigen::Index n) {
   Projection r;

@@ -118,6 +118,7 @@ Topology topology(const mesh::Mesh& m, double feature_angle, const std::vector<c
 // Geometry the boundary must keep: the surface and the feature curves (as degenerate triangles).
 struct Constraints {
   mesh::TriangleProjector surface, curves;
+  std::function<Vec(int, const Vec&)> project;  // ImproveOptions::project, replaces both
 };
 
 Constraints constraints(const mesh::Mesh& m, const Topology& t, const mesh::SurfaceMesh& given) {
@@ -170,6 +171,7 @@ class Improver {
 
   // Projects a candidate position according to the node's kind.
   Vec constrain(int v, const Vec& x) const {
+    if (c_.project && (t_.kind[v] == Surface || t_.kind[v] == Curve)) return c_.project(v, x);
     switch (t_.kind[v]) {
       case Surface: return c_.surface.project(x);
       // On the feature curve (chords of the boundary), then back onto the surface it bounds.
@@ -402,8 +404,8 @@ ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, boo
   mesh::Mesh m = input;
   std::vector<char> sharp;
   if (sharp_in) sharp = *sharp_in;
+  std::vector<int> copy;
   if (with_pillow) {
-    std::vector<int> copy;
     m = pillow(input, opt.pillow_depth, &copy);
     r.pillow_cells = m.num_cells() - input.num_cells();
     if (sharp_in) {
@@ -414,12 +416,18 @@ ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, boo
     }
   }
   // The pillowed boundary has the original geometry, so the angle test finds the same features.
-  const Topology t = topology(m, opt.feature_angle, sharp_in ? &sharp : nullptr);
+  Topology t = topology(m, opt.feature_angle, sharp_in ? &sharp : nullptr);
   for (auto k : t.kind) {
     r.feature_nodes += k == Curve;
     r.corner_nodes += k == Corner;
   }
-  Improver imp(m, t, cons);
+  for (int v : opt.fixed_nodes) t.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
+  Constraints pillowed_cons;
+  if (with_pillow && cons.project) {  // node numbers changed: the projection hook no longer applies
+    pillowed_cons = cons;
+    pillowed_cons.project = nullptr;
+  }
+  Improver imp(m, t, with_pillow && cons.project ? pillowed_cons : cons);
   double worst = imp.worst();
   log(std::string(with_pillow ? "pillowed (" + std::to_string(r.pillow_cells) + " cells added)" : "without pillowing") +
       ": worst scaled Jacobian " + std::to_string(worst) + "; " + std::to_string(r.feature_nodes) +
@@ -474,9 +482,13 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       sharp[v] = 1;
     }
   }
+  for (int v : opt.fixed_nodes)
+    if (v < 0 || v >= input.num_nodes())
+      throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
   // The surface and feature curves come from the input, before pillowing renumbers nodes.
   const Topology t0 = topology(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
-  const Constraints cons = constraints(input, t0, opt.surface);
+  Constraints cons = constraints(input, t0, opt.surface);
+  cons.project = opt.project;
   const QualityReport before = quality_report(input);
   const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
 

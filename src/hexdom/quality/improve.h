@@ -1,6 +1,8 @@
 // Mesh quality improvement: pillowing, smoothing by vertex kind, and Jacobian optimisation.
 #pragma once
 
+#include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "hexdom/common/error.h"
@@ -23,6 +25,13 @@ struct ImproveOptions {
   std::vector<int> sharp_nodes;
   /// Surface the boundary nodes must stay on; empty: the mesh's own initial boundary.
   mesh::SurfaceMesh surface;
+  /// Nodes that never move (0-based indices into the input mesh), e.g. boundary nodes already put
+  /// on the exact CAD geometry; after pillowing, a fixed boundary node's boundary copy is fixed.
+  std::vector<int> fixed_nodes;
+  /// Where set, replaces the projection of the boundary nodes that move (onto `surface` and the
+  /// feature curves): returns where node `node` (0-based, input numbering) goes for a candidate
+  /// position x, e.g. onto its exact CAD face or edge. Not used on a pillowed mesh.
+  std::function<Eigen::Vector3d(int node, const Eigen::Vector3d& x)> project;
   /// Pillow layer thickness as a fraction of the shortest boundary edge at each node.
   double pillow_depth = 0.2;
   LogCallback log;

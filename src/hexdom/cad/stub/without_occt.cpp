@@ -3,6 +3,7 @@
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
 #include "hexdom/cad/shape.h"
+#include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
 #include "hexdom/common/error.h"
 
@@ -47,5 +48,9 @@ TessellateStats tessellation_stats(const Shape&, const mesh::SurfaceMesh&) { no_
 Projection project_to_face(const Shape&, int, const Eigen::MatrixXd&) { no_occt("project onto CAD faces"); }
 Projection project_to_edge(const Shape&, int, const Eigen::MatrixXd&) { no_occt("project onto CAD edges"); }
 Projection project_to_shape(const Shape&, const Eigen::MatrixXd&) { no_occt("project onto CAD shapes"); }
+
+SnapResult snap_to_brep(const Shape&, const mesh::Mesh&, const mesh::SurfaceMesh&, const SnapOptions&) {
+  no_occt("snap a mesh to the B-rep");
+}
 
 }  // namespace hexdom::cad

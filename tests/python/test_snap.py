@@ -1,0 +1,237 @@
+"""Boundary nodes on the B-rep (issues 7 and 9): `hexdom mesh PART` puts the final mesh's boundary
+nodes exactly on the CAD faces, edges and vertices, and core.snap_to_brep / core.mesh_part do the same.
+
+Oracles nobody here wrote: FreeCAD's Part (Part.read, shape.distToShape, shape.Volume) for the
+distance of every boundary node to the B-rep and the volume; VTK (vtkDataSetSurfaceFilter for the
+boundary nodes, Verdict through vtkMeshQuality for the scaled Jacobians)."""
+
+import glob
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+import hexdom_oracles as oracle
+import hexdom_test_support as support
+
+DATA = support.DATA_ROOT
+FREECAD_PATHS = ["/usr/lib/freecad-python3/lib", "/usr/share/freecad/Mod", "/usr/share/freecad/Ext"]
+
+CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
+             "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
+# Parts the automatic polycube stage cannot mesh yet (another engineer's stage; see test_auto.py).
+_NOT_MESHED = {
+    "i10o_simp": "issue 9: autopolycube: the labelling cannot be repaired (relabelling cascades to one chart)",
+    "i11o_s1": "issue 9: autopolycube: the polycube map folds four charts",
+    "i01o_m1": "issue 9: autopolycube: the polycube map folds 267 triangles (charts 5 and 6, -Z / +Z)",
+}
+# Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
+_SJ_DEFECT = {
+    "n11o_limit_cycle": "issue 9: worst hex SJ 0.159 after the snap (0.139 before it): a polycube edge across a "
+                        "smooth blend",
+}
+_VOLUME_DEFECT = {
+    "s15o_cylinder": "issue 9: volume -1.44% with every boundary node on the B-rep: the rim nodes are spaced "
+                     "unevenly (2.6 to 27 degrees apart at the square-to-disk corners), so long chords cut off volume",
+    "s12o_cube_rounded_1": "issue 9: volume -1.41% with every boundary node on the B-rep: the rounds are spanned by "
+                           "too few cells, whose faces are chords of them",
+}
+
+
+def _marks(stem, extra):
+    if stem in _NOT_MESHED:
+        return pytest.param(stem, marks=pytest.mark.xfail(strict=True, reason=_NOT_MESHED[stem]))
+    if stem in extra:
+        return pytest.param(stem, marks=pytest.mark.xfail(strict=True, reason=extra[stem]))
+    return stem
+
+
+@pytest.fixture(scope="module")
+def Part():
+    for p in FREECAD_PATHS:
+        if p not in sys.path:
+            sys.path.append(p)
+    try:
+        import FreeCAD  # noqa: F401
+        import Part
+    except ImportError as e:
+        pytest.skip(f"FreeCAD not importable from {FREECAD_PATHS}: {e}")
+    return Part
+
+
+def _cad(stem):
+    paths = glob.glob(str(DATA / "cad" / f"{stem}.*"))
+    if not paths:
+        pytest.skip(support.missing(DATA / "cad" / f"{stem}.*"))
+    return paths[0]
+
+
+_MESHED = {}
+
+
+@pytest.fixture(scope="module")
+def meshed(tmp_path_factory, core):
+    """meshed(stem) -> (part path, vtkUnstructuredGrid, stdout+stderr of `hexdom mesh`), once per part."""
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+
+    def get(stem):
+        if stem not in _MESHED:
+            part = _cad(stem)
+            out = tmp_path_factory.mktemp(stem) / f"{stem}.vtk"
+            r = subprocess.run([str(support.hexdom_bin()), "mesh", part, "-o", str(out), "--allow-inverted"],
+                               capture_output=True, text=True)
+            _MESHED[stem] = (part, r, out)
+        part, r, out = _MESHED[stem]
+        if r.returncode != 0:
+            pytest.fail(f"hexdom mesh {stem} exited {r.returncode}: {r.stderr.strip().splitlines()[-1]}")
+        g, _ = oracle.read_legacy_vtk(out)
+        return part, g, r.stdout + r.stderr
+    return get
+
+
+def _boundary_points(g):
+    """Coordinates of the nodes on the boundary of the grid (VTK's surface filter)."""
+    f = vtk.vtkDataSetSurfaceFilter()
+    f.SetInputData(g)
+    f.PassThroughPointIdsOn()
+    f.Update()
+    ids = vtk_to_numpy(f.GetOutput().GetPointData().GetArray(f.GetOriginalPointIdsName()))
+    P, _, _ = oracle.grid_arrays(g)
+    return P[np.unique(ids)]
+
+
+def _solid(Part, path):
+    shape = Part.read(path)
+    return shape.Solids[0] if shape.Solids else shape
+
+
+def _brep_distances(Part, shape, P):
+    """Distances of the points to the boundary of the solid: to its faces, since distToShape to the
+    solid itself is 0 for a point inside (OCCT's inner solution)."""
+    import FreeCAD
+    faces = Part.Compound(shape.Faces)
+    return np.array([faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in P])
+
+
+@pytest.mark.parametrize("stem", [_marks(s, {}) for s in CAD_PARTS])
+def test_boundary_nodes_lie_on_the_brep(stem, meshed, Part):
+    part, g, log = meshed(stem)
+    # The progress line gives hexdom's own figure relative to the diagonal.
+    m = re.search(r"^hexdom: snap: .* -> \S+ \((\S+) of the diagonal\)", log, re.M)
+    assert m, log
+    assert float(m.group(1)) <= 1e-7
+    shape = _solid(Part, part)
+    diag = shape.BoundBox.DiagonalLength
+    P = _boundary_points(g)
+    d = _brep_distances(Part, shape, P)
+    print(f"{stem}: {len(P)} boundary nodes, B-rep distance max {d.max():.3g} = {d.max() / diag:.2e} x diagonal")
+    assert d.max() <= 1e-7 * diag, f"{stem}: a boundary node is {d.max() / diag:.2e} x diagonal off the B-rep"
+
+
+@pytest.mark.parametrize("stem", [_marks(s, {}) for s in CAD_PARTS])
+def test_snapped_mesh_has_no_inverted_cell(stem, meshed):
+    _, g, _ = meshed(stem)
+    sj, _ = oracle.verdict_metrics(g)
+    assert np.all(sj > 0), f"{stem}: {int(np.sum(sj <= 0))} inverted cells (worst SJ {sj.min():.3f})"
+
+
+@pytest.mark.parametrize("stem", [_marks(s, _SJ_DEFECT) for s in CAD_PARTS])
+def test_snapped_worst_hex_sj_at_least_0_3(stem, meshed):
+    _, g, _ = meshed(stem)
+    sj, _ = oracle.verdict_metrics(g)
+    types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+    hex_sj = sj[types == oracle.HEX]
+    print(f"{stem}: hex SJ min {hex_sj.min():.3f} mean {hex_sj.mean():.3f} over {len(hex_sj)} hexes")
+    assert hex_sj.min() >= 0.3
+
+
+@pytest.mark.parametrize("stem", [_marks(s, _VOLUME_DEFECT) for s in CAD_PARTS])
+def test_snapped_volume_within_1_percent_of_the_brep(stem, meshed, Part):
+    part, g, _ = meshed(stem)
+    volume = float(oracle.signed_volumes(g).sum())
+    brep = _solid(Part, part).Volume
+    print(f"{stem}: mesh volume {volume:.6g}, B-rep {brep:.6g}, error {100 * (volume - brep) / brep:+.3f}%")
+    assert volume == pytest.approx(brep, rel=0.01)
+
+
+def test_snap_moves_nodes_off_the_tessellation_onto_the_brep(core, Part):
+    """core.snap_to_brep on a mesh that core.mesh_part left on the tessellation (snap=False)."""
+    if not core.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    part = _cad("s15o_cylinder")
+    surface = core.Surface(*core.tessellate_file(part))
+    run = core.mesh_part(part, snap=False, allow_inverted=True)
+    assert run.snap is None and "snap" not in run.seconds
+    shape = _solid(Part, part)
+    diag = shape.BoundBox.DiagonalLength
+    mesh, rep = core.snap_to_brep(run.mesh, part, surface)
+    kinds = rep["kind"][rep["kind"] > 0]
+    assert len(kinds) == rep["boundary_nodes"] == rep["face_nodes"] + rep["edge_nodes"] + rep["vertex_nodes"]
+    assert rep["edge_nodes"] > 0 and rep["face_nodes"] > 0
+    assert core.SNAP_KINDS[int(kinds.max())] in ("edge", "vertex")
+    # Independent distances before and after, at the same nodes.
+    idx = np.flatnonzero(rep["kind"] > 0)
+    before = _brep_distances(Part, shape, run.mesh.V[idx])
+    after = _brep_distances(Part, shape, mesh.V[idx])
+    print(f"s15o_cylinder: B-rep distance max {before.max():.3g} -> {after.max():.3g}, "
+          f"OCCT's own figures {rep['max_before']:.3g} -> {rep['max_after']:.3g}")
+    assert before.max() > 1e-5 * diag  # the tessellation's chords are measurably off the B-rep
+    assert after.max() <= 1e-7 * diag
+    assert rep["max_before"] == pytest.approx(before.max(), rel=1e-3)
+    # Interior nodes stay inside: the interior moved only to restore quality.
+    assert np.array_equal(mesh.cells, run.mesh.cells)
+    sj, _ = oracle.verdict_metrics(oracle.vtk_grid(mesh.V, mesh.cells, mesh.types))
+    assert sj.min() == pytest.approx(rep["worst_sj"], abs=1e-9)
+    assert rep["inverted"] == int(np.sum(sj <= 0)) == 0
+    # Face ids of edge nodes name real edges of the part.
+    edge_ids = rep["entity"][rep["kind"] == 2]
+    assert edge_ids.min() >= 1 and edge_ids.max() <= len(shape.Edges)
+
+
+def test_mesh_part_snaps_and_reports(core, Part):
+    if not core.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    part = _cad("s11o_cube_cyl")
+    run = core.mesh_part(part)
+    assert list(run.seconds) == ["tessellate", *core.MESH_STAGES, "snap"]
+    assert run.snap["max_after"] <= 1e-7 * run.snap["diagonal"]
+    assert run.quality == run.snap["quality"] and run.inverted == 0
+    shape = _solid(Part, part)
+    idx = np.flatnonzero(run.snap["kind"] > 0)
+    d = _brep_distances(Part, shape, run.mesh.V[idx])
+    assert d.max() <= 1e-7 * shape.BoundBox.DiagonalLength
+
+
+def test_snap_rejects_a_tessellation_of_another_part(core):
+    if not core.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    part = _cad("s15o_cylinder")
+    surface = core.Surface(*core.tessellate_file(_cad("s09o_bridge")))
+    n_faces = core.cad_info(part)["faces"]
+    if surface.patch.max() <= n_faces:
+        pytest.skip("the bridge has no more faces than the cylinder")
+    mesh = core.Mesh(np.eye(4, 3), np.array([[0, 1, 2, 3, -1, -1, -1, -1]], np.int32), np.array([core.TET], np.int32),
+                     np.zeros(1, np.int32))
+    with pytest.raises(core.InputError, match=rf"s15o_cylinder.stp: tessellation triangle \d+ names Face\d+, "
+                                               rf"but the solid has {n_faces} faces"):
+        core.snap_to_brep(mesh, part, surface)
+
+
+def test_cli_no_snap_leaves_the_tessellation(tmp_path, Part):
+    part = _cad("s15o_cylinder")
+    out = tmp_path / "plain.vtk"
+    r = subprocess.run([str(support.hexdom_bin()), "mesh", part, "-o", str(out), "--no-snap", "--allow-inverted"],
+                       capture_output=True, text=True)
+    if "built without OpenCASCADE" in r.stderr:
+        pytest.skip("hexdom built without OpenCASCADE")
+    assert r.returncode == 0, r.stderr
+    assert "snap:" not in r.stderr + r.stdout
+    g, _ = oracle.read_legacy_vtk(out)
+    shape = _solid(Part, part)
+    d = _brep_distances(Part, shape, _boundary_points(g))
+    assert d.max() > 1e-5 * shape.BoundBox.DiagonalLength
