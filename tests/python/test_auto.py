@@ -231,6 +231,15 @@ def test_mesh_refines_the_grid_when_inverted_cells_remain(paper_mesh):
     assert g.GetNumberOfCells() == report["hex"]["count"]
 
 
+def test_mesh_segments_again_when_the_labelling_defeats_autopolycube(paper_mesh):
+    # mount1's ears at lambda 0.1: the relabelling cascades to one chart; lambda 1 needs no relabel.
+    _, _, report, stderr = paper_mesh("mount1")
+    segments = [line for line in stderr.splitlines() if line.startswith("hexdom: segment:") and "labelled" in line]
+    assert "(lambda 0.1)" in segments[0] and "(lambda 1)" in segments[-1]
+    assert "segmenting again with lambda 1" in stderr
+    assert report["hex"]["inverted"] == 0
+
+
 def test_mesh_failure_leaves_the_intermediate_files(tmp_path):
     raw = _raw("rockerarm")
     out = tmp_path / "r.vtk"
@@ -338,6 +347,7 @@ def test_core_mesh_surface_runs_every_stage(core):
     run = core.mesh_surface(s)
     assert list(run.seconds) == list(core.MESH_STAGES)
     assert run.inverted == 0 and run.quality["hex"]["count"] == run.mesh.count(core.HEX)
+    assert run.level == 1 and run.edge_weight == pytest.approx(0.1)  # hepta needs no fallback
     assert run.generated.count(core.HEX) == 8 * run.polycube.info["blocks"]
     sj, _ = oracle.verdict_metrics(oracle.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types))
     assert sj.min() == pytest.approx(run.quality["hex"]["sj_min"], abs=1e-9)
