@@ -267,8 +267,10 @@ _CAD_DEFECT = {
                      "feature nodes along chords) and worst hex SJ 0.298",
     "s12o_cube_rounded_1": "issue 9: volume -1.56% at size = diagonal / 30 (chords of the rounds)",
     "n11o_limit_cycle": "issue 9: worst hex SJ 0.139 (a polycube edge across a smooth blend)",
-    "i10o_simp": "issue 9: the labelling cannot be repaired (relabelling cascades to one chart)",
-    "i11o_s1": "issue 9: the polycube map folds four charts (1332 triangles)",
+    "i10o_simp": "issue 9: the labelling cannot be repaired at lambda 0.1, 1, 0.3 or 3 (relabelling cascades "
+                 "to one chart)",
+    "i11o_s1": "issue 9: after untangling, the polycube map still folds 9 triangles of two large charts (+X 268 "
+               "and -X 670 triangles, too large to relabel) at every lambda (1332 folded before the untangler)",
 }
 
 
