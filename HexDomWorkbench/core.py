@@ -346,8 +346,10 @@ class MeshRun:
     """Result of mesh_surface / mesh_part: the final ``mesh``, the ``generated`` one before
     improvement, the segmentation ``labels``, the ``polycube`` (an AutoPolycube), the quality reports
     (dicts as quality_report gives) and ``seconds`` per stage (segment, autopolycube, generate,
-    improve; tessellate and snap too for mesh_part). ``snap`` holds snap_to_brep's report for
-    mesh_part (None otherwise)."""
+    improve; tessellate and snap too for mesh_part), the ``level`` of the result (one less than
+    asked when inverted cells remained and the finer grid did better) and the segmentation's
+    ``edge_weight`` that autopolycube took (the next of 1, 0.3, 3 when the asked one defeated
+    it). ``snap`` holds snap_to_brep's report for mesh_part (None otherwise)."""
 
     mesh: Mesh
     generated: Mesh
@@ -356,6 +358,8 @@ class MeshRun:
     quality: dict
     generated_quality: dict
     seconds: dict
+    level: int = 1
+    edge_weight: float = 0.1
     snap: dict = None
 
     @property
@@ -373,7 +377,7 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
                              float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve))
     run = MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
                   _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
-                  dict(zip(MESH_STAGES, r["seconds"])))
+                  dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]))
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
                            "(allow_inverted=True returns the mesh anyway)")

@@ -39,8 +39,9 @@ def line(name, run, reference):
     stages = " ".join(f"{k} {v:6.2f}s" for k, v in run.seconds.items())
     err = 100.0 * (q["total_volume"] - reference) / reference
     print(f"{name:28s} {stages} | {info['charts']:3d} charts ({info['relabelled']:3d} relabelled) "
-          f"{info['blocks']:5d} blocks | cells {counts:>14s} | hex SJ min {q['hex']['sj_min']:6.3f} "
-          f"mean {q['hex']['sj_mean']:5.3f} | inverted {run.inverted} | volume {err:+6.2f}%"
+          f"{info['blocks']:5d} blocks (level {run.level}, lambda {run.edge_weight:g}) | cells {counts:>14s} "
+          f"| hex SJ min {q['hex']['sj_min']:6.3f} mean {q['hex']['sj_mean']:5.3f} | inverted {run.inverted} "
+          f"| volume {err:+6.2f}%"
           + (f" | B-rep distance {run.snap['max_before'] / run.snap['diagonal']:.1e} -> "
              f"{run.snap['max_after'] / run.snap['diagonal']:.1e} x diagonal" if run.snap else ""), flush=True)
 

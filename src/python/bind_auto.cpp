@@ -107,6 +107,8 @@ void bind_auto(py::module_& m) {
           d["quality"] = report_dict(r.quality);
           d["generated_quality"] = report_dict(r.generated_quality);
           d["seconds"] = std::vector<double>(r.seconds, r.seconds + 4);
+          d["level"] = r.level;
+          d["edge_weight"] = r.edge_weight;
           return d;
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,

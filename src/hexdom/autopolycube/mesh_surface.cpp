@@ -1,7 +1,9 @@
 #include "hexdom/autopolycube/mesh_surface.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 
 #include "hexdom/generation/generate.h"
 
@@ -26,29 +28,61 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   const double diag = surface.V.rows() ? (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() : 0.0;
   const double size = opt.size > 0 ? opt.size : diag / 30.0;
 
-  r.stage = "segment";
-  auto t = Clock::now();
-  segmentation::CvtOptions so = opt.segment;
-  so.log = inner;
-  r.labels = surface;
-  r.labels.patch = segmentation::segment_cvt(surface, so).label;
-  r.seconds[0] = since(t);
-  say(fmt("segment: %.0f triangles labelled in %.2f s", static_cast<double>(surface.F.rows()), r.seconds[0]));
-
-  r.stage = "autopolycube";
-  t = Clock::now();
+  // Segment, then build the polycube; when the labelling defeats autopolycube, segment again with
+  // the next edge weight. The first failure is the one reported when none succeeds.
+  std::vector<double> weights{opt.segment.edge_weight};
+  for (double w : opt.retry_edge_weights)
+    if (std::find(weights.begin(), weights.end(), w) == weights.end()) weights.push_back(w);
   AutoPolycubeOptions ao = opt.polycube;
   ao.size = size;
   ao.level = opt.level;
   ao.log = inner;
-  autopolycube(r.labels, ao, &r.polycube);
-  r.seconds[1] = since(t);
+  std::exception_ptr first_error;
+  mesh::SurfaceMesh first_labels;
+  AutoPolycube first_polycube;
+  for (size_t attempt = 0; attempt < weights.size(); ++attempt) {
+    r.stage = "segment";
+    auto t = Clock::now();
+    segmentation::CvtOptions so = opt.segment;
+    so.edge_weight = weights[attempt];
+    so.log = inner;
+    r.labels = surface;
+    r.labels.patch = segmentation::segment_cvt(surface, so).label;
+    r.seconds[0] += since(t);
+    ++r.segmentations;
+    r.edge_weight = weights[attempt];
+    say(fmt("segment: %.0f triangles labelled (lambda %g) in %.2f s", static_cast<double>(surface.F.rows()), weights[attempt],
+            since(t)));
+
+    r.stage = "autopolycube";
+    t = Clock::now();
+    try {
+      autopolycube(r.labels, ao, &r.polycube);
+    } catch (const Error& e) {  // GeometryError (labelling) or MeshingError (cutting)
+      r.seconds[1] += since(t);
+      if (!first_error) {
+        first_error = std::current_exception();
+        first_labels = r.labels;
+        first_polycube = r.polycube;
+      }
+      if (attempt + 1 == weights.size()) {
+        r.labels = std::move(first_labels);
+        r.polycube = std::move(first_polycube);
+        r.stage = "autopolycube";
+        std::rethrow_exception(first_error);
+      }
+      say(std::string("autopolycube: ") + e.what() + "; segmenting again with lambda " + fmt("%g", weights[attempt + 1]));
+      continue;
+    }
+    r.seconds[1] += since(t);
+    break;
+  }
   say(fmt("autopolycube: %.0f charts (%.0f relabelled), %.0f blocks of %g", r.polycube.charts, r.polycube.relabelled,
           r.polycube.blocks, r.polycube.cell) +
       fmt(", worst block SJ %.3f, in %.2f s", r.polycube.min_block_quality, r.seconds[1]));
 
   r.stage = "generate";
-  t = Clock::now();
+  auto t = Clock::now();
   generation::GenerateOptions go;
   go.level = opt.level;
   go.relax_sweeps = opt.relax_sweeps;
@@ -77,7 +111,29 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   say(fmt("improve: %.0f cells, worst hex SJ %.3f, mean %.3f, %.0f inverted", r.mesh.num_cells(), r.quality.hex.sj_min,
           r.quality.hex.sj_mean, inverted) +
       fmt(", in %.2f s", r.seconds[3]));
+  r.level = opt.level;
   r.stage = "done";
+  if (inverted > 0 && opt.level > 0 && opt.refine_when_inverted) {
+    say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
+            opt.level - 1));
+    MeshSurfaceOptions finer = opt;
+    finer.level = opt.level - 1;
+    finer.segment.edge_weight = r.edge_weight;
+    MeshSurfaceRun again;
+    try {
+      mesh_surface(surface, finer, &again);
+    } catch (const Error& e) {
+      say(std::string("level ") + std::to_string(finer.level) + ": " + e.what() + "; keeping level " + std::to_string(opt.level));
+      return progress ? *progress : local;
+    }
+    const int inverted2 = again.quality.hex.inverted + again.quality.prism.inverted + again.quality.tet.inverted;
+    if (inverted2 < inverted) {
+      for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
+      r = std::move(again);
+    } else {
+      say(fmt("level %.0f is no better (%.0f inverted); keeping level %.0f", finer.level, inverted2, opt.level));
+    }
+  }
   return progress ? *progress : local;
 }
 

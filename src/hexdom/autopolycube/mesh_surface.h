@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/common/error.h"
@@ -18,9 +19,17 @@ struct MeshSurfaceOptions {
   int level = 1;    ///< subdivision level s: blocks are grid cells of h = H * 2^s, 2^s cells per block edge
   segmentation::CvtOptions segment;   ///< segmentation (its log is replaced by `log` when `verbose`)
   AutoPolycubeOptions polycube;       ///< its size and level are taken from above
+  /// When autopolycube cannot use the segmentation, segment again with these edge weights (lambda)
+  /// in turn, then give up with the first attempt's error. Smoother labellings have fewer small
+  /// charts for the label repair to merge (mount1's ears need lambda 1).
+  std::vector<double> retry_edge_weights = {1.0, 0.3, 3.0};
   int relax_sweeps = 10;              ///< generation's relaxation sweeps
   bool improve = true;                ///< run the improvement stage (recommended sequence)
   quality::ImproveOptions improvement;  ///< its surface is the patch surface
+  /// When inverted cells remain after improvement at level s > 0, run again from the polycube on
+  /// with level s - 1 (the same element size, a grid of half the spacing, so thin features such as
+  /// rockerarm's bore wall get their own cells) and keep the better result.
+  bool refine_when_inverted = true;
   /// One line per stage (level 0); with `verbose` also the stages' own messages.
   LogCallback log;
   bool verbose = false;
@@ -33,6 +42,9 @@ struct MeshSurfaceRun {
   mesh::Mesh mesh;            ///< the final mesh (improved, unless improve is off)
   quality::QualityReport generated_quality, quality;
   double seconds[4] = {0, 0, 0, 0};  ///< segment, autopolycube, generate, improve
+  double edge_weight = 0;     ///< the segmentation's lambda that autopolycube took
+  int level = 0;              ///< the subdivision level of the result (see refine_when_inverted)
+  int segmentations = 0;      ///< segmentations tried
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
 };
 

@@ -9,6 +9,7 @@
 #include <queue>
 #include <set>
 
+#include "hexdom/autopolycube/untangle_plane_map.h"
 #include "hexdom/parametrization/harmonic_map.h"
 #include "hexdom/segmentation/axis_labels.h"
 
@@ -435,7 +436,21 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
           m.D(inner[i], ax[q]) = u;
         }
       if (best_flips > 0) {
-        untangle_chart(m.D, s.F, chart_tris[c], slot, a, sg, 60);
+        if (opt.untangle) {
+          std::vector<char> free_vertex(nv, 0);
+          for (int v : inner) free_vertex[v] = 1;
+          const UntangleResult u = untangle_plane_map(s.V, s.F, chart_tris[c], free_vertex, a, sg, m.D);
+          if (opt.log)
+            opt.log(0, chart_name(g, c) + ": untangled " + std::to_string(u.folded_before) + " folded triangles to " +
+                           std::to_string(u.folded_after) + " (" + std::to_string(u.folded_fixed) + " with no free vertex) in " +
+                           std::to_string(u.rounds) + " rounds");
+        }
+        const int left = count_flips();
+        if (left > 0) {  // local moves as a last resort, kept only when they help
+          const Eigen::MatrixXd before = m.D;
+          untangle_chart(m.D, s.F, chart_tris[c], slot, a, sg, 60);
+          if (count_flips() >= left) m.D = before;
+        }
         for (int v : inner)
           for (int q = 0; q < 2; ++q) {
             double& u = m.D(v, ax[q]);

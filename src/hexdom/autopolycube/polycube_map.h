@@ -18,6 +18,8 @@ struct PolycubeMapOptions {
   double cell = 0;  ///< grid spacing h (model units); must be positive
   /// Extra orders: plane group `second` must lie at least one cell above plane group `first` (same axis).
   std::vector<std::pair<int, int>> separate;
+  /// Untangle folded charts by the barrier energy of untangle_plane_map (otherwise only local moves).
+  bool untangle = true;
   LogCallback log;
 };
 
