@@ -115,7 +115,8 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4):
 def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angle=35.0,
             sharp_nodes=()):
     """Pillowing, smoothing and Jacobian optimisation of a Mesh. With no stage set, runs the
-    recommended sequence until the worst cell stops improving. Boundary nodes stay on `surface`
+    recommended sequence until the worst cell stops improving, then raises the mean scaled Jacobian
+    without lowering the worst hex, prism or tet. Boundary nodes stay on `surface`
     (a Surface) or on the mesh's own boundary."""
     sv, sf = (surface.V, surface.F) if surface is not None else (None, None)
     return Mesh(*_hexdom.improve(mesh.V, mesh.cells, mesh.types, mesh.region, pillow, smooth,

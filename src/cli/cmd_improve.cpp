@@ -27,7 +27,8 @@ void add_improve(CLI::App& app) {
       ->capture_default_str()->excludes(sharp);
   cmd->add_option("--report", a->report, "also write the quality report after improvement as JSON to this file");
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
-  cmd->footer("With no stage flags, runs the recommended sequence: pillow, then smoothing and optimisation until the worst cell stops improving.");
+  cmd->footer("With no stage flags, runs the recommended sequence: pillow, then smoothing and optimisation until the worst cell stops "
+              "improving, then passes that raise the mean scaled Jacobian without lowering the worst hex, prism or tet.");
   cmd->callback([=] {
     io::format_of(a->out);
     mesh::Mesh m = io::read_mesh(a->in);

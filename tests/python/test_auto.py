@@ -265,7 +265,6 @@ CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded
 _CAD_DEFECT = {
     "s15o_cylinder": "issue 9: volume -1.49% (chords of the 4 polycube edges on the round side; improve slides "
                      "feature nodes along chords) and worst hex SJ 0.298",
-    "s12o_cube_rounded_1": "issue 9: volume -1.56% at size = diagonal / 30 (chords of the rounds)",
     "n11o_limit_cycle": "issue 9: worst hex SJ 0.139 (a polycube edge across a smooth blend)",
     "i10o_simp": "issue 9: the labelling cannot be repaired at lambda 0.1, 1, 0.3 or 3 (relabelling cascades "
                  "to one chart)",

@@ -81,7 +81,11 @@ Vec TriangleProjector::project(const Vec& p, int* triangle) const {
   Vec result = p;
   int best_tri = -1;
   auto box_dist = [&](const Node& n) { return (p - p.cwiseMax(n.lo).cwiseMin(n.hi)).squaredNorm(); };
-  std::vector<int> stack{0};
+  // The tree is balanced (median splits), so the stack stays shallow; reusing one per thread
+  // saves an allocation per query, which shows when improvement projects every surface move.
+  thread_local std::vector<int> stack;
+  stack.clear();
+  stack.push_back(0);
   while (!stack.empty()) {
     const Node& n = nodes_[stack.back()];
     stack.pop_back();

@@ -2,10 +2,12 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <unordered_map>
 
@@ -34,8 +36,43 @@ Vec face_normal(const mesh::Mesh& m, const mesh::BoundaryFace& f) {  // area-wei
   return 0.5 * n;
 }
 
+// Corner coordinates of cell c (rows past its node count left unset).
+inline CellPoints gather(const mesh::Mesh& m, int c) {
+  CellPoints P;
+  const int n = mesh::node_count(m.type(c));
+  const double* x = m.V.data();
+  const Eigen::Index rows = m.V.rows();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Index v = m.cells(c, i);
+    P(i, 0) = x[v];
+    P(i, 1) = x[v + rows];
+    P(i, 2) = x[v + 2 * rows];
+  }
+  for (int i = n; i < 8; ++i) P.row(i).setZero();
+  return P;
+}
+
+// Weight of a cell in the volume-weighted centre: its volume, for hexes and prisms taken from the
+// Jacobian at the centre (exact for parallelepipeds and straight prisms, and far cheaper than
+// quadrature, which matters in a loop over every node's cells).
+double centre_volume(CellType t, const CellPoints& P) {
+  auto r = [&](int i) { return Vec(P.row(i).transpose()); };
+  if (t == CellType::Hex) {
+    const Vec a = r(1) - r(0) + r(2) - r(3) + r(5) - r(4) + r(6) - r(7);
+    const Vec b = r(3) - r(0) + r(2) - r(1) + r(7) - r(4) + r(6) - r(5);
+    const Vec c = r(4) - r(0) + r(5) - r(1) + r(6) - r(2) + r(7) - r(3);
+    return a.dot(b.cross(c)) / 64.0;
+  }
+  if (t == CellType::Wedge) {
+    const Vec a = r(1) - r(0) + r(4) - r(3), b = r(2) - r(0) + r(5) - r(3);
+    const Vec c = r(3) - r(0) + r(4) - r(1) + r(5) - r(2);
+    return -a.dot(b.cross(c)) / 24.0;  // VTK wedges: first triangle's normal points away from the second
+  }
+  return volume(t, P);
+}
+
 double cell_sj(const mesh::Mesh& m, int c) {
-  const double sj = scaled_jacobian(m.type(c), cell_points(m, c));
+  const double sj = scaled_jacobian(m.type(c), gather(m, c));
   return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj;
 }
 
@@ -149,6 +186,8 @@ class Improver {
   Improver(mesh::Mesh& m, const Topology& t, const Constraints& c) : m_(m), t_(t), c_(c) {
     sj_.resize(m.num_cells());
     for (int q = 0; q < m.num_cells(); ++q) sj_[q] = cell_sj(m, q);
+    dirty_.assign(m.num_nodes(), 1);
+    climb_.assign(m.num_nodes(), 1);
     edge_.assign(m.num_nodes(), 0.0);
     for (int v = 0; v < m.num_nodes(); ++v) {
       double s = 0;
@@ -162,6 +201,18 @@ class Improver {
     }
   }
 
+  // Worst hex when there are hexes (the figure the paper reports), else the worst cell.
+  double worst_hex() const {
+    double w = 2;
+    for (int q = 0; q < m_.num_cells(); ++q)
+      if (m_.type(q) == CellType::Hex) w = std::min(w, sj_[q]);
+    return w < 2 ? w : worst();
+  }
+  int inverted() const {
+    int n = 0;
+    for (double x : sj_) n += x <= 0;
+    return n;
+  }
   double worst() const { return sj_.empty() ? 1.0 : *std::min_element(sj_.begin(), sj_.end()); }
   double local_min(int v) const {
     double w = 2;
@@ -187,10 +238,25 @@ class Improver {
     return s;
   }
 
-  // Moves v to x if that raises (or, with allow_equal, keeps) the worst SJ of its cells. A move
+  // Moves v to x if that raises (or, with allow_equal, keeps) the worst SJ of its cells, and no
+  // cell that gets worse ends below the floor of its type (set_floors; by default the type's
+  // worst, so that raising a prism never costs the worst hex). A move
   // may not shorten the node's shortest edge below a quarter of its typical edge: scaled Jacobians
   // ignore size, and collapsing an edge would buy angles with a useless element.
+  // Nodes whose neighbourhood changed since they were last visited by a pass: only they can move.
+  void mark_around(int v) {
+    for (int q : t_.node_cells[v])
+      for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) {
+        dirty_[m_.cells(q, i)] = 1;
+        climb_[m_.cells(q, i)] = 1;
+      }
+  }
+  void mark_all() { std::fill(dirty_.begin(), dirty_.end(), 1); }
+  // Moves shorter than this are not worth an evaluation (and would keep converged nodes busy).
+  bool negligible(int v, const Vec& x) const { return (x - m_.V.row(v).transpose()).squaredNorm() < 1e-8 * edge_[v] * edge_[v]; }
+
   bool try_move(int v, const Vec& x, bool allow_equal) {
+    if (negligible(v, x)) return false;
     const double before = local_min(v);
     const Vec old = m_.V.row(v).transpose();
     const double s_old = shortest_edge(v, old), s_new = shortest_edge(v, x);
@@ -198,56 +264,154 @@ class Improver {
     m_.V.row(v) = x.transpose();
     double after = 2;
     trial_.clear();
+    bool below_floor = false;
     for (int q : t_.node_cells[v]) {
-      trial_.push_back(cell_sj(m_, q));
-      after = std::min(after, trial_.back());
+      const double sj = cell_sj(m_, q);
+      trial_.push_back(sj);
+      after = std::min(after, sj);
+      below_floor |= sj < sj_[q] && sj < floor_[type_slot(q)];
     }
+    if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
     if (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0)) {
       for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
+      mark_around(v);
       return true;
     }
     m_.V.row(v) = old.transpose();
     return false;
   }
 
-  // One smoothing pass: interior nodes toward the volume-weighted centre of their cells, surface
-  // nodes toward the area-weighted centre of their boundary faces, curve nodes toward the midpoint
-  // of their curve neighbours; projected, and accepted only if the local worst SJ does not drop.
+  // Smoothing target by kind: interior nodes toward the volume-weighted centre of their cells,
+  // surface nodes toward the area-weighted centre of their boundary faces, curve nodes toward the
+  // midpoint of their curve neighbours. False for corners and nodes without a target.
+  bool smoothing_target(int v, Vec* out) const {
+    if (t_.kind[v] == Corner || t_.node_cells[v].empty()) return false;
+    Vec target = Vec::Zero();
+    double wsum = 0;
+    if (t_.kind[v] == Interior) {
+      for (int q : t_.node_cells[v]) {
+        const CellPoints P = gather(m_, q);
+        const int n = mesh::node_count(m_.type(q));
+        const double w = std::max(std::fabs(centre_volume(m_.type(q), P)), 1e-300);
+        target += w * P.topRows(n).colwise().mean().transpose();
+        wsum += w;
+      }
+    } else if (t_.kind[v] == Surface) {
+      for (int f : t_.node_faces[v]) {
+        const auto& bf = t_.faces[f];
+        Vec c = Vec::Zero();
+        for (int i = 0; i < bf.n; ++i) c += m_.V.row(bf.v[i]).transpose();
+        const double w = face_normal(m_, bf).norm();
+        target += w * c / bf.n;
+        wsum += w;
+      }
+    } else {
+      for (int u : t_.curve_nbrs[v]) target += m_.V.row(u).transpose();
+      wsum = static_cast<double>(t_.curve_nbrs[v].size());
+    }
+    if (!(wsum > 0)) return false;
+    *out = target / wsum;
+    return true;
+  }
+
+  // One smoothing pass: every node toward its smoothing target, projected, and accepted only if
+  // the local worst SJ does not drop.
   int smooth_pass() {
     int moved = 0;
     for (int v = 0; v < m_.num_nodes(); ++v) {
-      if (t_.kind[v] == Corner || t_.node_cells[v].empty()) continue;
-      Vec target = Vec::Zero();
-      double wsum = 0;
-      if (t_.kind[v] == Interior) {
-        for (int q : t_.node_cells[v]) {
-          auto P = cell_points(m_, q);
-          const int n = mesh::node_count(m_.type(q));
-          const double w = std::max(std::fabs(volume(m_.type(q), P)), 1e-300);
-          target += w * P.topRows(n).colwise().mean().transpose();
-          wsum += w;
-        }
-      } else if (t_.kind[v] == Surface) {
-        for (int f : t_.node_faces[v]) {
-          const auto& bf = t_.faces[f];
-          Vec c = Vec::Zero();
-          for (int i = 0; i < bf.n; ++i) c += m_.V.row(bf.v[i]).transpose();
-          const double w = face_normal(m_, bf).norm();
-          target += w * c / bf.n;
-          wsum += w;
-        }
-      } else {
-        for (int u : t_.curve_nbrs[v]) target += m_.V.row(u).transpose();
-        wsum = static_cast<double>(t_.curve_nbrs[v].size());
-      }
-      if (!(wsum > 0)) continue;
-      target /= wsum;
+      if (!dirty_[v]) continue;
+      dirty_[v] = 0;
+      Vec target;
+      if (!smoothing_target(v, &target)) continue;
       const Vec old = m_.V.row(v).transpose();
       for (double step : {1.0, 0.5, 0.25}) {
         if (try_move(v, constrain(v, old + step * (target - old)), true)) { ++moved; break; }
       }
     }
     return moved;
+  }
+
+  // Mean stage: moves that raise the sum of scaled Jacobians of a node's cells, where no cell that
+  // gets worse ends below the floor of its type (hex, prism, tet). With each floor at least the
+  // worst cell of its type, no type's worst cell drops; cells well above it may give a little to
+  // raise their neighbours.
+  double local_sum(int v) const {
+    double s = 0;
+    for (int q : t_.node_cells[v]) s += sj_[q];
+    return s;
+  }
+  // Floors: each type's worst cell, raised to `extra`. With `only_above` > 0, a type whose worst is
+  // within only_above of the worst cell of the mesh gets no floor: it is what the worst stage
+  // raises, and holding it back there costs more than it saves.
+  void set_floors(double extra, double only_above = 0) {
+    for (double& f : floor_) f = 2;
+    for (int q = 0; q < m_.num_cells(); ++q) floor_[type_slot(q)] = std::min(floor_[type_slot(q)], sj_[q]);
+    const double w = std::min({floor_[0], floor_[1], floor_[2]});
+    for (double& f : floor_) f = only_above > 0 && f < w + only_above ? -2 : std::max(f, extra);
+  }
+  void clear_floors() { floor_[0] = floor_[1] = floor_[2] = -2; }
+  int type_slot(int q) const { return m_.type(q) == CellType::Hex ? 0 : m_.type(q) == CellType::Wedge ? 1 : 2; }
+  bool try_move_mean(int v, const Vec& x) {
+    if (negligible(v, x)) return false;
+    const Vec old = m_.V.row(v).transpose();
+    const double s_old = shortest_edge(v, old), s_new = shortest_edge(v, x);
+    if (s_new < s_old && s_new < 0.2 * edge_[v]) return false;
+    m_.V.row(v) = x.transpose();
+    double before_sum = 0, after_sum = 0;
+    bool ok = true;
+    trial_.clear();
+    for (int q : t_.node_cells[v]) {
+      const double sj = cell_sj(m_, q);
+      trial_.push_back(sj);
+      before_sum += sj_[q];
+      after_sum += sj;
+      if (sj < sj_[q] && (sj < floor_[type_slot(q)] || sj <= 0)) { ok = false; break; }
+    }
+    if (ok && after_sum > before_sum + 1e-7) {
+      for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
+      mark_around(v);
+      return true;
+    }
+    m_.V.row(v) = old.transpose();
+    return false;
+  }
+
+  // One pass of the mean stage over the nodes whose neighbourhood changed: each takes a step up
+  // the numerical gradient of the sum of its cells' scaled Jacobians. (The smoothing targets were
+  // tried here too and measured: they rarely raise the sum and cost evaluations; the worst stage
+  // smooths.) Returns the number of nodes moved.
+  int mean_pass() {
+    int moved = 0;
+    for (int v = 0; v < m_.num_nodes(); ++v) {
+      if (!dirty_[v]) continue;
+      dirty_[v] = 0;
+      if (t_.kind[v] == Corner || t_.node_cells[v].empty()) continue;
+      const Vec x0 = m_.V.row(v).transpose();
+      const double h = 1e-4 * edge_[v];
+      if (!(h > 0)) continue;
+      const double f0 = local_sum(v);
+      Vec g;
+      for (int k = 0; k < 3; ++k) {
+        Vec x = x0;
+        x(k) += h;
+        m_.V.row(v) = x.transpose();
+        double f = 0;
+        for (int q : t_.node_cells[v]) f += cell_sj(m_, q);
+        g(k) = (f - f0) / h;
+      }
+      m_.V.row(v) = x0.transpose();
+      if (!(g.norm() > 0)) continue;
+      const Vec d = g.normalized();
+      for (double a : {0.1, 0.02})
+        if (try_move_mean(v, constrain(v, x0 + a * edge_[v] * d))) { ++moved; break; }
+    }
+    return moved;
+  }
+
+  double mean() const {
+    double s = 0;
+    for (double x : sj_) s += x;
+    return sj_.empty() ? 1.0 : s / static_cast<double>(sj_.size());
   }
 
   // One optimisation round: nodes of the worst cells climb the local worst scaled Jacobian along
@@ -264,6 +428,9 @@ class Improver {
     }
     int moved = 0;
     for (int v : nodes) {
+      // A node that found no better place stays put until its neighbourhood changes.
+      if (!climb_[v]) continue;
+      climb_[v] = 0;
       const Vec x0 = m_.V.row(v).transpose();
       const double h = 1e-4 * edge_[v];
       if (!(h > 0)) continue;
@@ -292,6 +459,9 @@ class Improver {
   const Topology& t_;
   const Constraints& c_;
   std::vector<double> sj_, edge_, trial_;
+  std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
+  std::vector<char> climb_;  // nodes worth another optimisation step
+  double floor_[3] = {-2, -2, -2};  // lowest scaled Jacobian a worsened hex, prism, tet may reach
 };
 
 }  // namespace
@@ -395,67 +565,133 @@ mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_ne
 
 namespace {
 
-// One run of the stages on `input`; `with_pillow` adds the boundary layer first.
-ImproveResult run_stages(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow,
-                         const std::vector<char>* sharp_in, const Constraints& cons,
-                         const std::function<void(const std::string&)>& log) {
-  ImproveResult r;
-  const bool recommended = !opt.pillow && opt.smooth == 0 && opt.optimize == 0;
-  mesh::Mesh m = input;
-  std::vector<char> sharp;
-  if (sharp_in) sharp = *sharp_in;
-  std::vector<int> copy;
-  if (with_pillow) {
-    m = pillow(input, opt.pillow_depth, &copy);
-    r.pillow_cells = m.num_cells() - input.num_cells();
-    if (sharp_in) {
-      std::vector<char> s2(m.num_nodes(), 0);
-      for (int v = 0; v < input.num_nodes(); ++v)
-        if (sharp[v] && copy[v] >= 0) s2[copy[v]] = 1;
-      sharp = std::move(s2);
-    }
-  }
-  // The pillowed boundary has the original geometry, so the angle test finds the same features.
-  Topology t = topology(m, opt.feature_angle, sharp_in ? &sharp : nullptr);
-  for (auto k : t.kind) {
-    r.feature_nodes += k == Curve;
-    r.corner_nodes += k == Corner;
-  }
-  for (int v : opt.fixed_nodes) t.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
-  Constraints pillowed_cons;
-  if (with_pillow && cons.project) {  // node numbers changed: the projection hook no longer applies
-    pillowed_cons = cons;
-    pillowed_cons.project = nullptr;
-  }
-  Improver imp(m, t, with_pillow && cons.project ? pillowed_cons : cons);
-  double worst = imp.worst();
-  log(std::string(with_pillow ? "pillowed (" + std::to_string(r.pillow_cells) + " cells added)" : "without pillowing") +
-      ": worst scaled Jacobian " + std::to_string(worst) + "; " + std::to_string(r.feature_nodes) +
-      " feature-curve nodes, " + std::to_string(r.corner_nodes) + " corners");
-  if (recommended) {
-    int stale = 0;
-    for (int round = 0; round < opt.max_rounds && stale < 3; ++round) {
-      imp.smooth_pass();
-      const double thr = std::max(worst + 0.2, 0.3);
-      for (int k = 0; k < 4; ++k) imp.optimize_round(thr);
-      const double w = imp.worst();
-      stale = w > worst + 1e-4 ? 0 : stale + 1;
-      worst = std::max(worst, w);
-      r.rounds = round + 1;
-    }
-  } else {
-    for (int i = 0; i < opt.smooth; ++i) imp.smooth_pass();
-    for (int i = 0; i < opt.optimize; ++i) imp.optimize_round(std::max(imp.worst() + 0.2, 0.3));
-    r.rounds = std::max(opt.smooth, opt.optimize);
-  }
-  r.mesh = std::move(m);
-  r.after = quality_report(r.mesh);
-  log(std::string(with_pillow ? "pillowed" : "without pillowing") + ": worst scaled Jacobian " +
-      std::to_string(imp.worst()) + " after " + std::to_string(r.rounds) + " rounds");
-  return r;
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int inverted_of(const QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+// One candidate mesh on its way through the stages: `input`, pillowed or not, with its topology
+// and the improver working on it.
+class Run {
+ public:
+  Run(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow, const std::vector<char>* sharp_in,
+      const Constraints& cons, const std::function<void(const std::string&)>& log)
+      : with_pillow_(with_pillow), log_(log) {
+    m_ = input;
+    std::vector<char> sharp;
+    if (sharp_in) sharp = *sharp_in;
+    std::vector<int> copy;
+    if (with_pillow) {
+      m_ = pillow(input, opt.pillow_depth, &copy);
+      r_.pillow_cells = m_.num_cells() - input.num_cells();
+      if (sharp_in) {
+        std::vector<char> s2(m_.num_nodes(), 0);
+        for (int v = 0; v < input.num_nodes(); ++v)
+          if (sharp[v] && copy[v] >= 0) s2[copy[v]] = 1;
+        sharp = std::move(s2);
+      }
+    }
+    // The pillowed boundary has the original geometry, so the angle test finds the same features.
+    t_ = topology(m_, opt.feature_angle, sharp_in ? &sharp : nullptr);
+    for (auto k : t_.kind) {
+      r_.feature_nodes += k == Curve;
+      r_.corner_nodes += k == Corner;
+    }
+    for (int v : opt.fixed_nodes) t_.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
+    cons_ = cons;
+    if (with_pillow) cons_.project = nullptr;  // node numbers changed: the projection hook no longer applies
+    imp_ = std::make_unique<Improver>(m_, t_, cons_);
+    log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +
+         ": worst scaled Jacobian " + std::to_string(imp_->worst()) + "; " + std::to_string(r_.feature_nodes) +
+         " feature-curve nodes, " + std::to_string(r_.corner_nodes) + " corners");
+  }
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  std::string name() const { return with_pillow_ ? "pillowed" : "without pillowing"; }
+  double worst() const { return imp_->worst(); }
+  double worst_hex() const { return imp_->worst_hex(); }
+  int rounds() const { return r_.rounds; }
+  int inverted() const { return imp_->inverted(); }
+
+  // Floors of the worst stage: none while cells are inverted (they would only slow untangling),
+  // then each type's worst unless that type is (nearly) the worst of the mesh.
+  void update_floors() {
+    if (imp_->inverted() == 0) imp_->set_floors(-2, 0.05);
+    else imp_->clear_floors();
+  }
+
+  // Smoothing and optimisation rounds until the worst cell stops improving.
+  void worst_stage(int max_rounds) {
+    const int stale_limit = 2;  // rounds without gain before stopping
+    const auto t0 = std::chrono::steady_clock::now();
+    double worst = imp_->worst();
+    int stale = 0;
+    for (int round = 0; round < max_rounds && stale < stale_limit; ++round) {
+      update_floors();
+      imp_->smooth_pass();
+      const double thr = std::max(worst + 0.2, 0.3);
+      for (int k = 0; k < 4; ++k) imp_->optimize_round(thr);
+      const double w = imp_->worst();
+      // While cells are inverted every gain counts; after that, gains below 1e-3 do not show.
+      stale = w > worst + (worst <= 0 ? 1e-4 : 1e-3) ? 0 : stale + 1;
+      worst = std::max(worst, w);
+      r_.rounds = round + 1;
+    }
+    log_(name() + ": worst scaled Jacobian " + std::to_string(imp_->worst()) + " after " + std::to_string(r_.rounds) +
+         " rounds (" + std::to_string(seconds_since(t0)) + " s)");
+  }
+
+  // Mean-stage passes, each revisiting only the nodes near a move of the pass before, until a pass
+  // raises the mean scaled Jacobian by less than `min_gain`. The worst cell is kept.
+  void mean_stage(int max_passes, double min_gain) {
+    const auto t0 = std::chrono::steady_clock::now();
+    imp_->set_floors(0.0);
+    imp_->mark_all();
+    const double mean0 = imp_->mean();
+    double mean = mean0;
+    int passes = 0;
+    while (passes < max_passes) {
+      const int moved = imp_->mean_pass();
+      ++passes;
+      const double m1 = imp_->mean();
+      const bool done = moved == 0 || m1 < mean + min_gain;
+      mean = m1;
+      if (done) break;
+    }
+    log_(name() + ": mean scaled Jacobian " + std::to_string(mean0) + " -> " + std::to_string(mean) + " in " +
+         std::to_string(passes) + " passes (" + std::to_string(seconds_since(t0)) + " s)");
+  }
+
+  void smooth(int passes) {
+    for (int i = 0; i < passes; ++i) {
+      update_floors();
+      imp_->smooth_pass();
+    }
+  }
+  void optimize(int rounds) {
+    for (int i = 0; i < rounds; ++i) {
+      update_floors();
+      imp_->optimize_round(std::max(imp_->worst() + 0.2, 0.3));
+    }
+  }
+  void set_rounds(int n) { r_.rounds = n; }
+
+  ImproveResult finish() {
+    r_.mesh = std::move(m_);
+    r_.after = quality_report(r_.mesh);
+    return std::move(r_);
+  }
+
+ private:
+  bool with_pillow_;
+  std::function<void(const std::string&)> log_;
+  ImproveResult r_;
+  mesh::Mesh m_;
+  Topology t_;
+  Constraints cons_;
+  std::unique_ptr<Improver> imp_;
+};
+
 double worst_of(const QualityReport& q) {
   double w = 2;
   for (const TypeStats* s : {&q.hex, &q.prism, &q.tet})
@@ -494,27 +730,44 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
 
   ImproveResult r;
   if (!recommended) {
-    r = run_stages(input, opt, opt.pillow, sp, cons, log);
+    Run run(input, opt, opt.pillow, sp, cons, log);
+    run.smooth(opt.smooth);
+    run.optimize(opt.optimize);
+    run.set_rounds(std::max(opt.smooth, opt.optimize));
+    r = run.finish();
   } else {
     // Pillowing is preferred (no hex keeps two faces on the boundary), but where the boundary is
-    // pinched or the layer cannot be made valid it can end worse; the run without it then wins.
-    ImproveResult plain = run_stages(input, opt, false, sp, cons, log);
-    ImproveResult pillowed;
-    bool have_pillowed = false;
+    // pinched or the layer cannot be made valid it can end worse; then the run without it is
+    // made too and the better one kept: fewer inverted cells first, then the better worst hex
+    // (the worst cell when there are no hexes), near ties going to the pillowed mesh. A pillowed
+    // run with no inverted cell whose worst hex reaches 0.4 (and the input's) is kept without
+    // trying the other.
+    const double worst_hex_before = before.hex.count ? before.hex.sj_min : worst_of(before);
+    std::unique_ptr<Run> pillowed, plain;
     try {
-      pillowed = run_stages(input, opt, true, sp, cons, log);
-      have_pillowed = true;
+      pillowed = std::make_unique<Run>(input, opt, true, sp, cons, log);
+      pillowed->worst_stage(opt.max_rounds);
     } catch (const GeometryError& e) {
       if (opt.log) opt.log(1, std::string("pillowing skipped: ") + e.what());
+      pillowed.reset();
     }
-    // Fewer inverted cells first, then the better worst cell; near ties go to the pillowed mesh.
-    const bool take_pillowed = have_pillowed &&
-        (inverted_of(pillowed.after) < inverted_of(plain.after) ||
-         (inverted_of(pillowed.after) == inverted_of(plain.after) &&
-          worst_of(pillowed.after) >= worst_of(plain.after) - 0.02 &&
-          worst_of(pillowed.after) >= worst_of(before)));
-    r = take_pillowed ? std::move(pillowed) : std::move(plain);
-    if (!take_pillowed && have_pillowed) log("kept the result without pillowing: its worst cell is better");
+    const bool good_enough = pillowed && pillowed->inverted() == 0 && pillowed->worst_hex() >= std::max(0.4, worst_hex_before);
+    if (!good_enough) {
+      plain = std::make_unique<Run>(input, opt, false, sp, cons, log);
+      // Against a valid pillowed mesh, the second run gets twice the first one's rounds (at least
+      // 10): untangling that creeps on beyond that would not win.
+      const bool rival = pillowed && pillowed->inverted() == 0;
+      plain->worst_stage(rival ? std::min(opt.max_rounds, std::max(10, 2 * pillowed->rounds())) : opt.max_rounds);
+    }
+    const bool take_pillowed = pillowed &&
+        (!plain || pillowed->inverted() < plain->inverted() ||
+         (pillowed->inverted() == plain->inverted() && pillowed->worst_hex() >= plain->worst_hex() - 0.02 &&
+          pillowed->worst_hex() >= worst_hex_before));
+    Run& best = take_pillowed ? *pillowed : *plain;
+    if (!take_pillowed && pillowed) log("kept the result without pillowing: its worst cell is better");
+    // The mean only on the mesh kept: it never changes the worst cell the choice was made on.
+    best.mean_stage(opt.mean_passes, 3e-3);
+    r = best.finish();
   }
   r.before = before;
   return r;

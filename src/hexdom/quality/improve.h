@@ -13,11 +13,16 @@ namespace hexdom::quality {
 
 struct ImproveOptions {
   /// Stages. With all three off (the default), the recommended sequence runs: pillow once, then
-  /// smoothing and optimisation rounds until the worst scaled Jacobian stops improving.
+  /// smoothing and optimisation rounds until the worst scaled Jacobian stops improving, then mean
+  /// passes (see mean_passes) on the better of the pillowed and unpillowed results.
   bool pillow = false;
   int smooth = 0;    ///< smoothing passes
   int optimize = 0;  ///< optimisation rounds
-  int max_rounds = 40;  ///< cap of the recommended sequence
+  int max_rounds = 40;  ///< cap of the worst-cell rounds of the recommended sequence
+  /// Cap of the recommended sequence's mean passes, run after the worst cell has stopped improving:
+  /// node moves that raise the sum of their cells' scaled Jacobians while no cell that gets worse
+  /// falls below the worst cell of its type, so the worst hex, prism and tet are kept (0: none).
+  int mean_passes = 12;
   /// Boundary edges whose faces meet at more than this angle (degrees between normals) are sharp.
   double feature_angle = 35.0;
   /// Sharp-feature nodes given by the user (0-based indices into the input mesh), used instead of
@@ -47,8 +52,10 @@ struct ImproveResult {
 
 /// Improves a hex / prism / tet mesh. Boundary nodes stay on `options.surface` (or the initial
 /// boundary), nodes on sharp edges stay on their feature curves, feature corners stay fixed. Every
-/// accepted move keeps or raises the worst scaled Jacobian of the cells it touches; inverted cells
-/// are untangled first. Throws GeometryError for a mesh that is not a conforming volume mesh.
+/// smoothing and optimisation move keeps or raises the worst scaled Jacobian of the cells it
+/// touches (inverted cells are untangled first) and, once nothing is inverted, does not push a
+/// cell below the worst of its type; mean passes then raise the sum of the scaled Jacobians without
+/// lowering any type's worst. Throws GeometryError for a mesh that is not a conforming volume mesh.
 ImproveResult improve(const mesh::Mesh& mesh, const ImproveOptions& options = {});
 
 /// Adds one layer of cells along the boundary (quads -> hexes, triangles -> prisms) and moves the

@@ -34,26 +34,42 @@ double hex_sj(const CellPoints& P) {
     x[1][k] = (p[3][k] - p[0][k]) + (p[2][k] - p[1][k]) + (p[7][k] - p[4][k]) + (p[6][k] - p[5][k]);
     x[2][k] = (p[4][k] - p[0][k]) + (p[5][k] - p[1][k]) + (p[6][k] - p[2][k]) + (p[7][k] - p[3][k]);
   }
-  auto sample = [&](const double a[3], const double b[3], const double c[3]) {
-    const double la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    const double lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
-    const double lc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    if (la <= kDblMin || lb <= kDblMin || lc <= kDblMin) return false;
-    min_sj = std::min(min_sj, triple(a, b, c) / std::sqrt(la * lb * lc));
-    return true;
-  };
-  if (!sample(x[0], x[1], x[2])) return kDblMax;
-  static const int k8[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
-                               {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
-  for (const auto& c : k8) {
-    double a[3], b[3], d[3];
-    for (int k = 0; k < 3; ++k) {
-      a[k] = p[c[1]][k] - p[c[0]][k];
-      b[k] = p[c[2]][k] - p[c[0]][k];
-      d[k] = p[c[3]][k] - p[c[0]][k];
-    }
-    if (!sample(a, b, d)) return kDblMax;
+  auto len2 = [](const double a[3]) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; };
+  {
+    const double la = len2(x[0]), lb = len2(x[1]), lc = len2(x[2]);
+    if (la <= kDblMin || lb <= kDblMin || lc <= kDblMin) return kDblMax;
+    min_sj = std::min(min_sj, triple(x[0], x[1], x[2]) / std::sqrt(la * lb * lc));
   }
+  // The 12 squared edge lengths, computed once: each corner uses three of them.
+  double l[12];
+  {
+    static const int ke[12][2] = {{0, 1}, {1, 2}, {2, 3}, {0, 3}, {4, 5}, {5, 6},
+                                  {6, 7}, {4, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    for (int j = 0; j < 12; ++j) {
+      const double d0 = p[ke[j][1]][0] - p[ke[j][0]][0], d1 = p[ke[j][1]][1] - p[ke[j][0]][1],
+                   d2 = p[ke[j][1]][2] - p[ke[j][0]][2];
+      l[j] = d0 * d0 + d1 * d1 + d2 * d2;
+      if (l[j] <= kDblMin) return kDblMax;
+    }
+  }
+  // Corner c with neighbours a, b, d (Verdict's order) along edges ea, eb, ed.
+  auto corner = [&](int c, int a, int b, int d, int ea, int eb, int ed) {
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = p[a][k] - p[c][k];
+      v[k] = p[b][k] - p[c][k];
+      w[k] = p[d][k] - p[c][k];
+    }
+    min_sj = std::min(min_sj, triple(u, v, w) / std::sqrt(l[ea] * l[eb] * l[ed]));
+  };
+  corner(0, 1, 3, 4, 0, 3, 8);
+  corner(1, 2, 0, 5, 1, 0, 9);
+  corner(2, 3, 1, 6, 2, 1, 10);
+  corner(3, 0, 2, 7, 3, 2, 11);
+  corner(4, 7, 5, 0, 7, 4, 8);
+  corner(5, 4, 6, 1, 4, 5, 9);
+  corner(6, 5, 7, 2, 5, 6, 10);
+  corner(7, 6, 4, 3, 6, 7, 11);
   return min_sj > 0 ? std::min(min_sj, kDblMax) : std::max(min_sj, -kDblMax);
 }
 
