@@ -251,7 +251,10 @@ class Improver {
         climb_[m_.cells(q, i)] = 1;
       }
   }
-  void mark_all() { std::fill(dirty_.begin(), dirty_.end(), 1); }
+  void mark_all() {
+    std::fill(dirty_.begin(), dirty_.end(), 1);
+    std::fill(climb_.begin(), climb_.end(), 1);
+  }
   // Moves shorter than this are not worth an evaluation (and would keep converged nodes busy).
   bool negligible(int v, const Vec& x) const { return (x - m_.V.row(v).transpose()).squaredNorm() < 1e-8 * edge_[v] * edge_[v]; }
 
@@ -292,7 +295,10 @@ class Improver {
       for (int q : t_.node_cells[v]) {
         const CellPoints P = gather(m_, q);
         const int n = mesh::node_count(m_.type(q));
-        const double w = std::max(std::fabs(centre_volume(m_.type(q), P)), 1e-300);
+        // Valid cells: the cheap centre volume; inverted or tangled ones: the true volume (the centre
+        // volume of a tangled hex misweights it, and untangling stalls: mount1 auto, -0.026 vs 0.133).
+        const double vol = sj_[q] > 0 ? centre_volume(m_.type(q), P) : volume(m_.type(q), P);
+        const double w = std::max(std::fabs(vol), 1e-300);
         target += w * P.topRows(n).colwise().mean().transpose();
         wsum += w;
       }
@@ -626,8 +632,10 @@ class Run {
     const auto t0 = std::chrono::steady_clock::now();
     double worst = imp_->worst();
     int stale = 0;
-    for (int round = 0; round < max_rounds && stale < stale_limit; ++round) {
+    // Untangling gets one more stale round: its gains are small but decisive.
+    for (int round = 0; round < max_rounds && stale < stale_limit + (imp_->inverted() > 0); ++round) {
       update_floors();
+      if (imp_->inverted() > 0) imp_->mark_all();  // untangling: every node may help
       imp_->smooth_pass();
       const double thr = std::max(worst + 0.2, 0.3);
       for (int k = 0; k < 4; ++k) imp_->optimize_round(thr);
