@@ -12,8 +12,10 @@ struct GenerateOptions {
   /// Structure vertices within snap_tolerance x (bounding-box diagonal) of a surface corner are
   /// snapped to it; the others are interior vertices.
   double snap_tolerance = 1e-4;
-  /// Sweeps of the validity-preserving relaxation of nodes inside the volume next to poor cells
-  /// (scaled Jacobian <= 0.2); 0: none. The improvement stage does the thorough work.
+  /// Rounds of the validity-preserving relaxation and untangling of nodes next to poor cells
+  /// (scaled Jacobian <= 0.2): nodes inside the volume move freely, boundary nodes next to cells
+  /// at most 0.05 slide in their patch or along their curve (staying on the input triangles);
+  /// 0: none. The improvement stage does the thorough work.
   int relax_sweeps = 10;
   LogCallback log;
 };
@@ -29,7 +31,8 @@ struct GenerateStats {
 /// into 8^s tets, sharing nodes on shared block edges and faces. Boundary nodes lie on the input
 /// triangles; the rest come from transfinite (hex) or discrete harmonic (prism, tet) interpolation
 /// of the block boundaries, then a relaxation that never lowers a cell's scaled Jacobian below its
-/// neighbourhood's worst. Cell region = 1-based block number.
+/// neighbourhood's worst and untangles inverted cells. Cell region = 1-based block number. Logs
+/// (info) the matching, the relaxation's work and the CPU time of each stage.
 /// Throws GeometryError for a non-manifold or open surface, a face matching no patch, a patch
 /// matching no face, a corner no structure vertex reaches, or a patch that is not a disk with 3 or
 /// 4 corners; std::invalid_argument-free: a bad level is a GeometryError too.
