@@ -286,6 +286,92 @@ struct NodeFreedom {
   std::function<void(int v, double* q)> clamp;
 };
 
+// Moves nodes inside the volume (kind Free) next to cells whose scaled Jacobian (the quality
+// module's, -1 for inverted cells) is at most `poor` towards the centroid of their edge
+// neighbours (steps 1, 1/2, 1/4), keeping a move only when the worst of the node's cells rises;
+// sweeps over those nodes in order until one moves none, at most `sweeps` times.
+std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int sweeps, double poor) {
+  const int nn = M.num_nodes(), nc = M.num_cells();
+  auto cell_sj = [&](int c) {
+    const double sj = quality::scaled_jacobian(M.type(c), quality::cell_points(M, c));
+    return quality::is_inverted(sj) ? -1.0 : sj;
+  };
+  std::vector<char> candidate(nn, 0);
+  for (int c = 0; c < nc; ++c) {
+    const CellType t = M.type(c);
+    const int k = mesh::node_count(t);
+    double p[8][3];
+    for (int i = 0; i < k; ++i)
+      for (int d = 0; d < 3; ++d) p[i][d] = M.V(M.cells(c, i), d);
+    // The root-free test is a superset up to rounding; the quality module decides.
+    if (!sj_at_most(t, p, poor + 1e-9) || cell_sj(c) > poor) continue;
+    for (int i = 0; i < k; ++i)
+      if (kind[M.cells(c, i)] == NodeFreedom::Free) candidate[M.cells(c, i)] = 1;
+  }
+  std::vector<int> nodes;
+  for (int v = 0; v < nn; ++v)
+    if (candidate[v]) nodes.push_back(v);
+  if (nodes.empty()) return "relaxation: no node next to a poor cell";
+  std::vector<int> start(nn + 1, 0), inc;
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
+      if (candidate[M.cells(c, i)]) ++start[M.cells(c, i) + 1];
+  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
+  inc.resize(start[nn]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
+        if (candidate[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
+  }
+  std::unordered_map<int, double> sj;  // cached scaled Jacobian of the cells around the nodes
+  sj.reserve(inc.size());
+  for (int c : inc)
+    if (!sj.count(c)) sj[c] = cell_sj(c);
+  std::vector<double> trial;
+  long long moves = 0;
+  int sweep = 0;
+  for (; sweep < sweeps; ++sweep) {
+    int moved = 0;
+    for (int v : nodes) {
+      double before = 2;
+      Vec3 avg = Vec3::Zero();
+      int ne = 0;
+      for (int r = start[v]; r < start[v + 1]; ++r) {
+        const int c = inc[r];
+        before = std::min(before, sj[c]);
+        int lv = 0;
+        while (M.cells(c, lv) != v) ++lv;
+        const CellType t = M.type(c);
+        const int (*E)[3] = t == CellType::Hex ? kHexEdgesAt : t == CellType::Wedge ? kWedgeEdgesAt : kTetEdgesAt;
+        for (int q = 0; q < 3; ++q, ++ne) avg += M.V.row(M.cells(c, E[lv][q])).transpose();
+      }
+      if (!ne) continue;
+      avg /= ne;
+      const Vec3 old = M.V.row(v).transpose();
+      for (double step : {1.0, 0.5, 0.25}) {
+        M.V.row(v) = (old + step * (avg - old)).transpose();
+        trial.clear();
+        double after = 2;
+        for (int r = start[v]; r < start[v + 1]; ++r) {
+          trial.push_back(cell_sj(inc[r]));
+          after = std::min(after, trial.back());
+        }
+        if (after > before + 1e-12) {
+          for (int r = start[v]; r < start[v + 1]; ++r) sj[inc[r]] = trial[r - start[v]];
+          ++moved;
+          break;
+        }
+        M.V.row(v) = old.transpose();
+      }
+    }
+    moves += moved;
+    if (!moved) break;
+  }
+  return "relaxation: " + std::to_string(nodes.size()) + " nodes next to poor cells, " + std::to_string(moves) + " moves in " +
+         std::to_string(sweep) + " sweeps";
+}
+
 // Moves nodes next to poor cells (scaled Jacobian at most `poor`; surface nodes only next to cells
 // at most `poor_surface`). A move is kept only when it raises the worst sample that depends on the
 // node, so no cell falls below the worst it started from, and when it leaves every edge of the
@@ -295,7 +381,8 @@ struct NodeFreedom {
 // patch parameters, at most `box` from where they were made), which untangles inverted cells: their
 // samples are negative. Nodes of poor cells next to a moved node are visited again, up to `sweeps`
 // rounds. Returns a one-line summary.
-std::string relax_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double poor, double poor_surface, double box) {
+std::string untangle_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double trigger, double poor, double poor_surface,
+                           double box) {
   long long visits = 0, moves = 0, evals = 0;
   const int nn = M.num_nodes(), nc = M.num_cells();
   std::vector<double> x(3 * static_cast<size_t>(nn));
@@ -324,12 +411,12 @@ std::string relax_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double 
     double p[8][3];
     for (int i = 0; i < cnt[c]; ++i)
       for (int d = 0; d < 3; ++d) p[i][d] = x[3 * M.cells(c, i) + d];
-    if (!sj_at_most(type[c], p, poor)) continue;
+    if (!sj_at_most(type[c], p, trigger)) continue;
     sj[c] = cell_sj(c);
     poor_cells.push_back(c);
     for (int i = 0; i < cnt[c]; ++i) mark[M.cells(c, i)] = 1;
   }
-  if (poor_cells.empty()) return "no node to relax";
+  if (poor_cells.empty()) return "untangling: no poor cell";
   std::vector<int> around;  // cells holding a node of a poor cell
   for (int c = 0; c < nc; ++c) {
     bool touch = false;
@@ -470,14 +557,14 @@ std::string relax_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double 
         scale = dl / dq;
       }
       for (int it = 0; it < (best < 0 ? 8 : 2) && best < descent; ++it) {
-        double pen, g[3] = {0, 0, 0}, q[3], pos[3];
+        double pen = 0, g[3] = {0, 0, 0}, q[3], pos[3];
         evaluate_at(xv, &pen);
         const double eps = 1e-6 * h / scale;
         for (int d = 0; d < dims; ++d) {
           std::copy(pv, pv + dims, q);
           q[d] += eps;
           position(q, pos);
-          double pd;
+          double pd = 0;
           evaluate_at(pos, &pd);
           g[d] = (pd - pen) / eps;
         }
@@ -511,14 +598,14 @@ std::string relax_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double 
       if (best < before + 1e-4) continue;  // too small a gain to revisit the neighbours
       for (const Local& l : loc) {
         sj[l.c] = cell_sj(l.c);
-        if (sj[l.c] <= poor) enqueue_cell(l.c, next);
+        if (sj[l.c] <= trigger) enqueue_cell(l.c, next);
       }
     }
     active.swap(next);
   }
   for (int v = 0; v < nn; ++v)
     for (int d = 0; d < 3; ++d) M.V(v, d) = x[3 * v + d];
-  return "relaxation: " + std::to_string(first_active) + " nodes next to poor cells, " + std::to_string(visits) + " visits, " +
+  return "untangling: " + std::to_string(first_active) + " nodes next to poor cells, " + std::to_string(visits) + " visits, " +
          std::to_string(moves) + " moves, " + std::to_string(evals) + " evaluations";
 }
 
@@ -1050,7 +1137,8 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
         q[1] -= shift;
       }
     };
-    log(relax_nodes(result, freedom, opt.relax_sweeps, 0.2, 0.05, 0.45 / n));
+    if (opt.untangle) log(untangle_nodes(result, freedom, opt.relax_sweeps, 0.2, 0.2, 0.05, 0.45 / n));
+    else log(relax_poor(result, freedom.kind, opt.relax_sweeps, 0.2));
   }
   tick("relaxation");
   log(timing);
