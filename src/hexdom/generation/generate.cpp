@@ -329,11 +329,16 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
   for (int c : inc)
     if (!sj.count(c)) sj[c] = cell_sj(c);
   std::vector<double> trial;
+  // A node whose last try failed is skipped until a node of one of its cells moves: its try would
+  // fail again (same positions, same cached values), so skipping changes nothing but the time.
+  std::vector<char> dirty(candidate);
   long long moves = 0;
   int sweep = 0;
   for (; sweep < sweeps; ++sweep) {
     int moved = 0;
     for (int v : nodes) {
+      if (!dirty[v]) continue;
+      dirty[v] = 0;
       double before = 2;
       Vec3 avg = Vec3::Zero();
       int ne = 0;
@@ -358,7 +363,10 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
           after = std::min(after, trial.back());
         }
         if (after > before + 1e-12) {
-          for (int r = start[v]; r < start[v + 1]; ++r) sj[inc[r]] = trial[r - start[v]];
+          for (int r = start[v]; r < start[v + 1]; ++r) {
+            sj[inc[r]] = trial[r - start[v]];
+            for (int i = 0; i < mesh::node_count(M.type(inc[r])); ++i) dirty[M.cells(inc[r], i)] = candidate[M.cells(inc[r], i)];
+          }
           ++moved;
           break;
         }
