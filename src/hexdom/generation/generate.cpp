@@ -324,10 +324,9 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
       for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
         if (candidate[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
   }
-  std::unordered_map<int, double> sj;  // cached scaled Jacobian of the cells around the nodes
-  sj.reserve(inc.size());
+  std::vector<double> sj(nc, 2.0);  // cached scaled Jacobian of the cells around the nodes
   for (int c : inc)
-    if (!sj.count(c)) sj[c] = cell_sj(c);
+    if (sj[c] == 2.0) sj[c] = cell_sj(c);
   std::vector<double> trial;
   // A node whose last try failed is skipped until a node of one of its cells moves: its try would
   // fail again (same positions, same cached values), so skipping changes nothing but the time.
