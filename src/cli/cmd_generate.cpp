@@ -19,6 +19,9 @@ void add_generate(CLI::App& app) {
   cmd->add_option("-s,--level", a->opt.level, "subdivision level: 2^s cells per block edge (0..6)")->capture_default_str();
   cmd->add_option("-o,--output", a->out, "output mesh (.vtk, .vtu, .k, .inp)")->required();
   cmd->add_option("--relax", a->opt.relax_sweeps, "sweeps of validity-preserving relaxation inside the volume")->capture_default_str();
+  cmd->add_flag("--untangle", a->opt.untangle,
+                "untangle instead of the plain relaxation (boundary nodes may slide within the surface): far fewer "
+                "inverted cells before improvement");
   cmd->add_option("--report", a->report, "also write the quality report as JSON to this file");
   cmd->callback([=] {
     io::format_of(a->out);

@@ -99,21 +99,23 @@ PYBIND11_MODULE(_hexdom, m) {
 
   m.def("generate", [](const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch,
                        const Eigen::MatrixXd& TV, const CellArray& Tcells, const Eigen::VectorXi& Ttypes,
-                       int level, int relax_sweeps, double snap_tolerance) {
+                       int level, int relax_sweeps, double snap_tolerance, bool untangle) {
     mesh::SurfaceMesh surface{SV, SF, patch};
     mesh::Mesh structure = make_mesh(TV, Tcells, Ttypes, std::nullopt);
     generation::GenerateOptions opt;
     opt.level = level;
     opt.relax_sweeps = relax_sweeps;
     opt.snap_tolerance = snap_tolerance;
+    opt.untangle = untangle;
     mesh::Mesh r;
     { py::gil_scoped_release nogil; r = generation::generate(surface, structure, opt); }
     return mesh_tuple(r);
   }, py::arg("surface_V"), py::arg("surface_F"), py::arg("patch"), py::arg("structure_V"),
      py::arg("structure_cells"), py::arg("structure_types"), py::arg("level") = 2,
-     py::arg("relax_sweeps") = 10, py::arg("snap_tolerance") = 1e-4,
+     py::arg("relax_sweeps") = 10, py::arg("snap_tolerance") = 1e-4, py::arg("untangle") = false,
   "Hex-dominant mesh from a segmented surface (V, F, patch id per triangle) and a polycube structure\n"
-  "(V, cells, types of hex/prism/tet blocks): 8^level cells per block. Returns (V, cells, types, region).");
+  "(V, cells, types of hex/prism/tet blocks): 8^level cells per block. Returns (V, cells, types, region).\n"
+  "untangle: untangling relaxation (boundary nodes may slide within the surface) instead of the plain one.");
 
   m.def("improve", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
                       const std::optional<Eigen::VectorXi>& region, bool pillow, int smooth, int optimize,

@@ -10,6 +10,8 @@ import pytest
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
+import hexdom_oracles as O
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DATA = os.environ.get("HEXDOM_DATA", os.path.join(ROOT, "..", "shared", "data"))
 BUILD = os.environ.get("HEXDOM_BUILD_DIR", os.path.join(ROOT, "build"))
@@ -35,9 +37,9 @@ def _model_paths(model):
     return p, s
 
 
-def _generate(patches, structure, level, out):
+def _generate(patches, structure, level, out, *extra):
     r = subprocess.run([HEXDOM, "generate", "-i", patches, "-p", structure, "-s", str(level), "-o", out,
-                        "--report", out + ".json"], capture_output=True, text=True)
+                        "--report", out + ".json", *extra], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     with open(out + ".json") as f:
         return json.load(f)
@@ -94,9 +96,13 @@ def _faces_of(grid):
 
 _VOLUME_DEFECT = pytest.mark.xfail(
     strict=True, reason="issue 3: at level 2 the boundary faces of fertility and ant are chords of a "
-    "strongly curved surface and the mesh volume is 2.9% / 1.7% short of the enclosed volume "
-    "(inverted cells do not explain it: it stays after improvement); level 3 is within 1%, see "
-    "test_level3_volume_of_curved_models; everything else holds at level 2")
+    "strongly curved surface and the mesh volume is 2.96% / 1.70% short of the enclosed volume. Measured "
+    "(bench/bench_volume_deficit.py): the mesh volume equals its boundary polyhedron's to 0.001%, the "
+    "surface-side estimate (distance x area) gives 2.90% / 1.43%, and the deficit falls by 3.97 / 3.98 from "
+    "level 2 to 3 and 3.89 / 3.82 from 3 to 4: chordal O(h^2). No patch holds more than 13% of it and "
+    "boundary-face areas vary by a median factor of 1.7 / 1.8 within a patch, so redistributing boundary "
+    "nodes cannot reach 1%; a tube spanned by four block faces is a 16-gon at level 2 (2.6% short). "
+    "Level 3 is within 1%, see test_level3_volume_of_curved_models; everything else holds at level 2")
 
 
 @pytest.mark.parametrize("model", [pytest.param(m, marks=_VOLUME_DEFECT) if m in ("fertility", "ant") else m
@@ -166,6 +172,79 @@ def test_level3_volume_of_curved_models(model, tmp_path):
     sizes.Update()
     vol = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume")).sum()
     assert abs(vol - enclosed) <= 0.01 * enclosed, (vol, enclosed)
+
+
+# Inverted cells straight out of generation with --untangle, before any improvement, by Verdict.
+# The original's raw HexGen output had inverted hexes on every model but hepta (rockerarm: 11, min
+# SJ -0.451); the plain relaxation (the default) leaves 2-60 inverted cells on four of six models.
+_INVERTED_LEFT = {
+    "ant": "issue 3: 3 prisms of the ant stay inverted before improvement (worst Verdict SJ -0.029), "
+           "next to its flat structure tets (block SJ 0.15) where a boundary curve bows 14% of an edge: "
+           "each has three to five of its six nodes on the boundary; the raw placement had 52 inverted prisms and "
+           "60 tets, improvement removes the rest",
+}
+
+
+def _verdict_inverted(path):
+    sj, _ = O.verdict_metrics(_read_grid(path))
+    bad = ~((sj > 0) & (sj <= 1))  # Verdict: <= 0 inverted, DBL_MAX degenerate
+    return int(bad.sum()), float(np.min(np.where(bad & (sj > 1), -1.0, sj)))
+
+
+@pytest.mark.parametrize("model", [pytest.param(m, marks=pytest.mark.xfail(strict=True, reason=_INVERTED_LEFT[m]))
+                                   if m in _INVERTED_LEFT else m for m in MODELS])
+def test_level2_has_no_inverted_cell_before_improvement(model, tmp_path):
+    patches, structure = _model_paths(model)
+    out = str(tmp_path / f"{model}.vtk")
+    report = _generate(patches, structure, 2, out, "--untangle")
+    inverted, worst = _verdict_inverted(out)
+    assert inverted == report["hex"]["inverted"] + report["prism"]["inverted"] + report["tet"]["inverted"]
+    assert inverted == 0, f"{inverted} inverted cells, worst scaled Jacobian {worst:.3f}"
+
+
+def test_relaxation_untangles_the_raw_placement(tmp_path):
+    # Fertility's raw placement (--relax 0) has inverted hexes and prisms; --untangle untangles them
+    # all, sliding boundary nodes within the surface where needed; boundary nodes stay on the input
+    # triangles (checked below with VTK's locator, as in test_level2_counts_conformity_and_surface).
+    patches, structure = _model_paths("fertility")
+    raw = str(tmp_path / "raw.vtk")
+    r = subprocess.run([HEXDOM, "generate", "-i", patches, "-p", structure, "-s", "2", "-o", raw, "--relax", "0"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    relaxed = str(tmp_path / "relaxed.vtk")
+    _generate(patches, structure, 2, relaxed, "--untangle")
+    n0, w0 = _verdict_inverted(raw)
+    n1, w1 = _verdict_inverted(relaxed)
+    assert n0 > 0 and n1 == 0, (n0, n1)
+    assert w1 > w0
+    grid = _read_grid(relaxed)
+    boundary = [v[0] for v in _faces_of(grid).values() if len(v) == 1]
+    X = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+    pd, SV, _ = _read_surface(patches)
+    loc = vtk.vtkCellLocator()
+    loc.SetDataSet(pd)
+    loc.BuildLocator()
+    closest, cid, sub, d2 = [0.0, 0.0, 0.0], vtk.reference(0), vtk.reference(0), vtk.reference(0.0)
+    worst = 0.0
+    for i in sorted({i for f in boundary for i in f}):
+        loc.FindClosestPoint(X[i], closest, cid, sub, d2)
+        worst = max(worst, float(d2) ** 0.5)
+    assert worst <= 1e-9 * np.linalg.norm(SV.max(0) - SV.min(0))
+
+
+_LEVEL3_INVERTED = pytest.mark.xfail(
+    strict=True, reason="issue 3: at level 3 rockerarm keeps 3 inverted hexes with --untangle (worst SJ "
+    "-0.27): each inverted corner and its three edge neighbours are all boundary nodes at a boundary edge, "
+    "and sliding them within a lattice half-step does not untangle it (the raw placement had 10 hexes, 36 prisms)")
+
+
+@_LEVEL3_INVERTED
+def test_rockerarm_level3_has_no_inverted_cell(tmp_path):
+    patches, structure = _model_paths("rockerarm")
+    out = str(tmp_path / "r3.vtk")
+    _generate(patches, structure, 3, out, "--untangle")
+    inverted, worst = _verdict_inverted(out)
+    assert inverted == 0, f"{inverted} inverted cells, worst scaled Jacobian {worst:.3f}"
 
 
 @pytest.mark.parametrize("level", [0, 1, 3])

@@ -3,6 +3,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <ctime>
+#include <cstdio>
+#include <functional>
 #include <cmath>
 #include <map>
 #include <set>
@@ -181,6 +184,438 @@ std::string vertex_list(const std::vector<int>& v) {
   return s;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Relaxation and untangling of the nodes inside the volume.
+
+// Scaled-Jacobian samples as Verdict defines them: at each corner the three edges in the order
+// that gives a positive determinant for a valid cell (VTK node order), the hex's centre sample
+// from its principal axes. The minimum over a cell's samples is its scaled Jacobian.
+const int kHexEdgesAt[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7}, {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
+const int kWedgeEdgesAt[6][3] = {{2, 1, 3}, {0, 2, 4}, {1, 0, 5}, {4, 5, 0}, {5, 3, 1}, {3, 4, 2}};
+const int kTetEdgesAt[4][3] = {{1, 2, 3}, {2, 0, 3}, {0, 1, 3}, {0, 2, 1}};
+
+inline double det3(const double* a, const double* b, const double* c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+inline double norm2(const double* a) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; }
+
+// Per sample of a cell with corner points p: the determinant and the product of the squared
+// lengths of its three edges; the sample is factor x det / sqrt(l2). Returns their number (hex 9,
+// wedge 6, tet 4).
+int sample_terms(CellType t, const double (*p)[3], double* det, double* l2, double& factor) {
+  double e[3][3];
+  if (t == CellType::Tet) {
+    for (int q = 0; q < 3; ++q)
+      for (int d = 0; d < 3; ++d) e[q][d] = p[q + 1][d] - p[0][d];
+    const double D = det3(e[0], e[1], e[2]);
+    for (int k = 0; k < 4; ++k) {
+      double l = 1;
+      for (int q = 0; q < 3; ++q) {
+        const int o = kTetEdgesAt[k][q];
+        const double f[3] = {p[o][0] - p[k][0], p[o][1] - p[k][1], p[o][2] - p[k][2]};
+        l *= norm2(f);
+      }
+      det[k] = D;
+      l2[k] = l;
+    }
+    factor = std::sqrt(2.0);
+    return 4;
+  }
+  const bool hex = t == CellType::Hex;
+  const int (*E)[3] = hex ? kHexEdgesAt : kWedgeEdgesAt;
+  const int nk = hex ? 8 : 6;
+  factor = hex ? 1.0 : 2.0 / std::sqrt(3.0);
+  for (int k = 0; k < nk; ++k) {
+    for (int q = 0; q < 3; ++q)
+      for (int d = 0; d < 3; ++d) e[q][d] = p[E[k][q]][d] - p[k][d];
+    det[k] = det3(e[0], e[1], e[2]);
+    l2[k] = norm2(e[0]) * norm2(e[1]) * norm2(e[2]);
+  }
+  if (!hex) return 6;
+  for (int d = 0; d < 3; ++d) {
+    e[0][d] = p[1][d] - p[0][d] + p[2][d] - p[3][d] + p[5][d] - p[4][d] + p[6][d] - p[7][d];
+    e[1][d] = p[3][d] - p[0][d] + p[2][d] - p[1][d] + p[7][d] - p[4][d] + p[6][d] - p[5][d];
+    e[2][d] = p[4][d] - p[0][d] + p[5][d] - p[1][d] + p[6][d] - p[2][d] + p[7][d] - p[3][d];
+  }
+  det[8] = det3(e[0], e[1], e[2]);
+  l2[8] = norm2(e[0]) * norm2(e[1]) * norm2(e[2]);
+  return 9;
+}
+
+// Samples of a cell; a sample with a zero-length edge is -1 (Verdict: invalid).
+int sj_samples(CellType t, const double (*p)[3], double* s) {
+  double det[9], l2[9], factor;
+  const int ns = sample_terms(t, p, det, l2, factor);
+  for (int k = 0; k < ns; ++k) s[k] = l2[k] > 1e-300 ? factor * det[k] / std::sqrt(l2[k]) : -1.0;
+  return ns;
+}
+
+// Whether some sample is at most `threshold` (> 0), without roots or divisions.
+bool sj_at_most(CellType t, const double (*p)[3], double threshold) {
+  double det[9], l2[9], factor;
+  const int ns = sample_terms(t, p, det, l2, factor);
+  const double r = threshold * threshold / (factor * factor);
+  for (int k = 0; k < ns; ++k)
+    if (!(l2[k] > 1e-300) || det[k] <= 0 || det[k] * det[k] <= r * l2[k]) return true;
+  return false;
+}
+
+// Bit mask of the samples that depend on local node lv: its own corner, the corners it is an
+// edge neighbour of, and the centre.
+unsigned affected_mask(CellType t, int lv) {
+  if (t == CellType::Tet) return 0xf;
+  const bool hex = t == CellType::Hex;
+  const int (*E)[3] = hex ? kHexEdgesAt : kWedgeEdgesAt;
+  unsigned m = hex ? 1u << 8 : 0u;
+  for (int k = 0; k < (hex ? 8 : 6); ++k)
+    if (k == lv || E[k][0] == lv || E[k][1] == lv || E[k][2] == lv) m |= 1u << k;
+  return m;
+}
+
+// How each node may move during relaxation: freely (inside the volume), in the parameter plane of
+// its patch, along its boundary curve (both keep it on the input triangles), or not at all (corners
+// of the structure).
+struct NodeFreedom {
+  enum Kind : signed char { Fixed = 0, Curve = 1, Patch = 2, Free = 3 };
+  std::vector<signed char> kind;            ///< per node
+  std::vector<std::array<double, 2>> param; ///< curve parameter t or patch (u, v)
+  std::vector<const void*> where;           ///< the Curve or PatchMap of a surface node
+  /// 3D position of surface node v at parameters q.
+  std::function<void(int v, const double* q, double* x)> place;
+  /// Clamps parameters q of surface node v into its domain.
+  std::function<void(int v, double* q)> clamp;
+};
+
+// Moves nodes inside the volume (kind Free) next to cells whose scaled Jacobian (the quality
+// module's, -1 for inverted cells) is at most `poor` towards the centroid of their edge
+// neighbours (steps 1, 1/2, 1/4), keeping a move only when the worst of the node's cells rises;
+// sweeps over those nodes in order until one moves none, at most `sweeps` times.
+std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int sweeps, double poor) {
+  const int nn = M.num_nodes(), nc = M.num_cells();
+  auto cell_sj = [&](int c) {
+    const double sj = quality::scaled_jacobian(M.type(c), quality::cell_points(M, c));
+    return quality::is_inverted(sj) ? -1.0 : sj;
+  };
+  std::vector<char> candidate(nn, 0);
+  for (int c = 0; c < nc; ++c) {
+    const CellType t = M.type(c);
+    const int k = mesh::node_count(t);
+    double p[8][3];
+    for (int i = 0; i < k; ++i)
+      for (int d = 0; d < 3; ++d) p[i][d] = M.V(M.cells(c, i), d);
+    // The root-free test is a superset up to rounding; the quality module decides.
+    if (!sj_at_most(t, p, poor + 1e-9) || cell_sj(c) > poor) continue;
+    for (int i = 0; i < k; ++i)
+      if (kind[M.cells(c, i)] == NodeFreedom::Free) candidate[M.cells(c, i)] = 1;
+  }
+  std::vector<int> nodes;
+  for (int v = 0; v < nn; ++v)
+    if (candidate[v]) nodes.push_back(v);
+  if (nodes.empty()) return "relaxation: no node next to a poor cell";
+  std::vector<int> start(nn + 1, 0), inc;
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
+      if (candidate[M.cells(c, i)]) ++start[M.cells(c, i) + 1];
+  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
+  inc.resize(start[nn]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
+        if (candidate[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
+  }
+  std::vector<double> sj(nc, 2.0);  // cached scaled Jacobian of the cells around the nodes
+  for (int c : inc)
+    if (sj[c] == 2.0) sj[c] = cell_sj(c);
+  std::vector<double> trial;
+  // A node whose last try failed is skipped until a node of one of its cells moves: its try would
+  // fail again (same positions, same cached values), so skipping changes nothing but the time.
+  std::vector<char> dirty(candidate);
+  long long moves = 0;
+  int sweep = 0;
+  for (; sweep < sweeps; ++sweep) {
+    int moved = 0;
+    for (int v : nodes) {
+      if (!dirty[v]) continue;
+      dirty[v] = 0;
+      double before = 2;
+      Vec3 avg = Vec3::Zero();
+      int ne = 0;
+      for (int r = start[v]; r < start[v + 1]; ++r) {
+        const int c = inc[r];
+        before = std::min(before, sj[c]);
+        int lv = 0;
+        while (M.cells(c, lv) != v) ++lv;
+        const CellType t = M.type(c);
+        const int (*E)[3] = t == CellType::Hex ? kHexEdgesAt : t == CellType::Wedge ? kWedgeEdgesAt : kTetEdgesAt;
+        for (int q = 0; q < 3; ++q, ++ne) avg += M.V.row(M.cells(c, E[lv][q])).transpose();
+      }
+      if (!ne) continue;
+      avg /= ne;
+      const Vec3 old = M.V.row(v).transpose();
+      for (double step : {1.0, 0.5, 0.25}) {
+        M.V.row(v) = (old + step * (avg - old)).transpose();
+        trial.clear();
+        double after = 2;
+        for (int r = start[v]; r < start[v + 1]; ++r) {
+          trial.push_back(cell_sj(inc[r]));
+          after = std::min(after, trial.back());
+        }
+        if (after > before + 1e-12) {
+          for (int r = start[v]; r < start[v + 1]; ++r) {
+            sj[inc[r]] = trial[r - start[v]];
+            for (int i = 0; i < mesh::node_count(M.type(inc[r])); ++i) dirty[M.cells(inc[r], i)] = candidate[M.cells(inc[r], i)];
+          }
+          ++moved;
+          break;
+        }
+        M.V.row(v) = old.transpose();
+      }
+    }
+    moves += moved;
+    if (!moved) break;
+  }
+  return "relaxation: " + std::to_string(nodes.size()) + " nodes next to poor cells, " + std::to_string(moves) + " moves in " +
+         std::to_string(sweep) + " sweeps";
+}
+
+// Moves nodes next to poor cells (scaled Jacobian at most `poor`; surface nodes only next to cells
+// at most `poor_surface`). A move is kept only when it raises the worst sample that depends on the
+// node, so no cell falls below the worst it started from, and when it leaves every edge of the
+// node at least a tenth of their mean length (or no shorter than its shortest was). Nodes inside the
+// volume first try the centroid of their edge neighbours; nodes whose worst sample is below
+// poor / 2 then descend a penalty on their samples below `poor` (surface nodes in their curve or
+// patch parameters, at most `box` from where they were made), which untangles inverted cells: their
+// samples are negative. Nodes of poor cells next to a moved node are visited again, up to `sweeps`
+// rounds. Returns a one-line summary.
+std::string untangle_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double trigger, double poor, double poor_surface,
+                           double box) {
+  long long visits = 0, moves = 0, evals = 0;
+  const int nn = M.num_nodes(), nc = M.num_cells();
+  std::vector<double> x(3 * static_cast<size_t>(nn));
+  for (int v = 0; v < nn; ++v)
+    for (int d = 0; d < 3; ++d) x[3 * v + d] = M.V(v, d);
+  std::vector<std::array<double, 2>> param = F.param;
+  std::vector<signed char> cnt(nc);
+  std::vector<CellType> type(nc);
+  for (int c = 0; c < nc; ++c) {
+    type[c] = M.type(c);
+    cnt[c] = static_cast<signed char>(mesh::node_count(type[c]));
+  }
+  auto cell_sj = [&](int c) {
+    double p[8][3], s[9];
+    for (int i = 0; i < cnt[c]; ++i)
+      for (int d = 0; d < 3; ++d) p[i][d] = x[3 * M.cells(c, i) + d];
+    const int ns = sj_samples(type[c], p, s);
+    return *std::min_element(s, s + ns);
+  };
+  // Poor cells and the nodes they hold (only nodes of these cells and of the cells around them
+  // can be visited: node -> cell rows are built for those alone).
+  std::vector<double> sj(nc, 1.0);  // exact for poor cells, 1 for the others until they change
+  std::vector<char> mark(nn, 0);      // 1: node of a poor cell, 2: node a visit may reach
+  std::vector<int> poor_cells;
+  for (int c = 0; c < nc; ++c) {
+    double p[8][3];
+    for (int i = 0; i < cnt[c]; ++i)
+      for (int d = 0; d < 3; ++d) p[i][d] = x[3 * M.cells(c, i) + d];
+    if (!sj_at_most(type[c], p, trigger)) continue;
+    sj[c] = cell_sj(c);
+    poor_cells.push_back(c);
+    for (int i = 0; i < cnt[c]; ++i) mark[M.cells(c, i)] = 1;
+  }
+  if (poor_cells.empty()) return "untangling: no poor cell";
+  std::vector<int> around;  // cells holding a node of a poor cell
+  for (int c = 0; c < nc; ++c) {
+    bool touch = false;
+    for (int i = 0; i < cnt[c] && !touch; ++i) touch = mark[M.cells(c, i)] == 1;
+    if (touch) around.push_back(c);
+  }
+  for (int c : around)
+    for (int i = 0; i < cnt[c]; ++i) mark[M.cells(c, i)] = std::max<char>(mark[M.cells(c, i)], 2);
+  std::vector<int> start(nn + 1, 0), inc;
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < cnt[c]; ++i)
+      if (mark[M.cells(c, i)]) ++start[M.cells(c, i) + 1];
+  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
+  inc.resize(start[nn]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < cnt[c]; ++i)
+        if (mark[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
+  }
+  std::vector<int> active;
+  std::vector<char> queued(nn, 0);
+  auto enqueue_cell = [&](int c, std::vector<int>& list) {
+    for (int i = 0; i < cnt[c]; ++i) {
+      const int v = M.cells(c, i);
+      const int k = F.kind[v];
+      if (!mark[v] || k == NodeFreedom::Fixed || queued[v] || (k != NodeFreedom::Free && sj[c] > poor_surface)) continue;
+      queued[v] = 1;
+      list.push_back(v);
+    }
+  };
+  for (int c : poor_cells) enqueue_cell(c, active);
+  const size_t first_active = active.size();
+
+  // The visited node's cells, its local index in each and the samples that depend on it.
+  struct Local { int c, lv; unsigned mask; };
+  std::vector<Local> loc;
+  std::vector<int> ring;  // edge neighbours of the visited node
+  double shortest = 0;     // no trial may bring an edge of the visited node below this
+  auto too_short = [&](const double* q) {
+    for (int u : ring) {
+      const double* a = &x[3 * u];
+      if ((a[0] - q[0]) * (a[0] - q[0]) + (a[1] - q[1]) * (a[1] - q[1]) + (a[2] - q[2]) * (a[2] - q[2]) < shortest * shortest) return true;
+    }
+    return false;
+  };
+  // Worst affected sample (and penalty) with the visited node at q.
+  auto evaluate_at = [&](const double* q, double* penalty) {
+    ++evals;
+    double worst = 2, pen = 0;
+    for (const Local& l : loc) {
+      double p[8][3], s[9];
+      for (int i = 0; i < cnt[l.c]; ++i) {
+        const double* src = i == l.lv ? q : &x[3 * M.cells(l.c, i)];
+        p[i][0] = src[0];
+        p[i][1] = src[1];
+        p[i][2] = src[2];
+      }
+      const int ns = sj_samples(type[l.c], p, s);
+      for (int k = 0; k < ns; ++k) {
+        if (!(l.mask >> k & 1u)) continue;
+        worst = std::min(worst, s[k]);
+        if (s[k] < poor) pen += (poor - s[k]) * (poor - s[k]);
+      }
+    }
+    if (penalty) *penalty = pen;
+    return worst;
+  };
+
+  const double descent = 0.5 * poor;  // nodes whose worst sample is below this descend
+  std::vector<int> next;
+  for (int sweep = 0; sweep < sweeps && !active.empty(); ++sweep) {
+    next.clear();
+    for (int v : active) {
+      ++visits;
+      queued[v] = 0;
+      const int kind = F.kind[v];
+      const int dims = kind == NodeFreedom::Free ? 3 : kind;
+      loc.clear();
+      ring.clear();
+      double centroid[3] = {0, 0, 0}, h = 0, lmin = 1e300;
+      int ne = 0;
+      double* xv = &x[3 * v];
+      for (int r = start[v]; r < start[v + 1]; ++r) {
+        const int c = inc[r];
+        int lv = 0;
+        while (M.cells(c, lv) != v) ++lv;
+        loc.push_back({c, lv, affected_mask(type[c], lv)});
+        const int (*E)[3] = type[c] == CellType::Hex ? kHexEdgesAt : type[c] == CellType::Wedge ? kWedgeEdgesAt : kTetEdgesAt;
+        for (int q = 0; q < 3; ++q) {
+          ring.push_back(M.cells(c, E[lv][q]));
+          const double* u = &x[3 * ring.back()];
+          for (int d = 0; d < 3; ++d) centroid[d] += u[d];
+          const double l = std::sqrt((u[0] - xv[0]) * (u[0] - xv[0]) + (u[1] - xv[1]) * (u[1] - xv[1]) + (u[2] - xv[2]) * (u[2] - xv[2]));
+          h += l;
+          lmin = std::min(lmin, l);
+          ++ne;
+        }
+      }
+      if (!ne) continue;
+      for (double& cd : centroid) cd /= ne;
+      h /= ne;
+      shortest = std::min(0.1 * h, lmin);
+      double best = evaluate_at(xv, nullptr);
+      const double before = best;
+      double trial[3], tp[2];
+      if (kind == NodeFreedom::Free) {
+        for (double step : {1.0, 0.5, 0.25}) {
+          for (int d = 0; d < 3; ++d) trial[d] = xv[d] + step * (centroid[d] - xv[d]);
+          if (too_short(trial)) continue;
+          const double w = evaluate_at(trial, nullptr);
+          if (w > best + 1e-12) {
+            best = w;
+            std::copy(trial, trial + 3, xv);
+            break;
+          }
+        }
+      }
+      // Descent on the penalty of poor samples, by finite differences in the node's own
+      // coordinates (3D, or its curve or patch parameters), while it raises the worst sample.
+      // Parameter steps are scaled by the ratio of parameter to 3D length near the node.
+      double scale = 1;  // 3D length per unit parameter
+      auto position = [&](const double* q, double* out) {
+        if (kind == NodeFreedom::Free) std::copy(q, q + 3, out);
+        else F.place(v, q, out);
+      };
+      double* pv = kind == NodeFreedom::Free ? xv : param[v].data();
+      if (kind != NodeFreedom::Free) {
+        double probe[3];
+        std::copy(pv, pv + dims, tp);
+        tp[0] += 1e-3;
+        F.clamp(v, tp);
+        position(tp, probe);
+        const double dq = std::fabs(tp[0] - pv[0]);
+        const double dl = std::sqrt((probe[0] - xv[0]) * (probe[0] - xv[0]) + (probe[1] - xv[1]) * (probe[1] - xv[1]) +
+                                    (probe[2] - xv[2]) * (probe[2] - xv[2]));
+        if (!(dq > 0) || !(dl > 0)) continue;
+        scale = dl / dq;
+      }
+      for (int it = 0; it < (best < 0 ? 8 : 2) && best < descent; ++it) {
+        double pen = 0, g[3] = {0, 0, 0}, q[3], pos[3];
+        evaluate_at(xv, &pen);
+        const double eps = 1e-6 * h / scale;
+        for (int d = 0; d < dims; ++d) {
+          std::copy(pv, pv + dims, q);
+          q[d] += eps;
+          position(q, pos);
+          double pd = 0;
+          evaluate_at(pos, &pd);
+          g[d] = (pd - pen) / eps;
+        }
+        double gn = 0;
+        for (int d = 0; d < dims; ++d) gn += g[d] * g[d];
+        gn = std::sqrt(gn);
+        if (!(gn > 0)) break;
+        bool moved = false;
+        for (double step = 0.5 * h / scale; step > 1e-3 * h / scale; step *= 0.5) {
+          for (int d = 0; d < dims; ++d) q[d] = pv[d] - step * g[d] / gn;
+          if (kind != NodeFreedom::Free) {
+            // Within `box` of its lattice parameters, so that surface nodes keep their order.
+            for (int d = 0; d < dims; ++d) q[d] = std::clamp(q[d], F.param[v][d] - box, F.param[v][d] + box);
+            F.clamp(v, q);
+          }
+          position(q, pos);
+          if (too_short(pos)) continue;
+          const double w = evaluate_at(pos, nullptr);
+          if (w > best + 1e-12) {
+            best = w;
+            std::copy(q, q + dims, pv);
+            std::copy(pos, pos + 3, xv);
+            moved = true;
+            break;
+          }
+        }
+        if (!moved) break;
+      }
+      if (best <= before + 1e-12) continue;
+      ++moves;
+      if (best < before + 1e-4) continue;  // too small a gain to revisit the neighbours
+      for (const Local& l : loc) {
+        sj[l.c] = cell_sj(l.c);
+        if (sj[l.c] <= trigger) enqueue_cell(l.c, next);
+      }
+    }
+    active.swap(next);
+  }
+  for (int v = 0; v < nn; ++v)
+    for (int d = 0; d < 3; ++d) M.V(v, d) = x[3 * v + d];
+  return "untangling: " + std::to_string(first_active) + " nodes next to poor cells, " + std::to_string(visits) + " visits, " +
+         std::to_string(moves) + " moves, " + std::to_string(evals) + " evaluations";
+}
+
 }  // namespace
 
 mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const GenerateOptions& opt,
@@ -190,6 +625,15 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   const int n = 1 << opt.level;
   const long long N3 = static_cast<long long>(n) * n * n;
   auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  auto t_last = std::clock();
+  std::string timing = "stage times (ms):";
+  auto tick = [&](const char* stage) {
+    const auto now = std::clock();
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " %s %.1f", stage, 1000.0 * static_cast<double>(now - t_last) / CLOCKS_PER_SEC);
+    timing += buf;
+    t_last = now;
+  };
   GenerateStats stats;
 
   // ---- the surface and its patches
@@ -198,6 +642,7 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   const double diag = (S.V.colwise().maxCoeff() - S.V.colwise().minCoeff()).norm();
   stats.patches = static_cast<int>(layout.patches.size());
   stats.corners = static_cast<int>(layout.corners.size());
+  tick("surface layout");
 
   // ---- the structure: blocks, snapped vertices, faces
   const int nb = T.num_cells(), nsv = T.num_nodes();
@@ -349,6 +794,7 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
       throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(layout.patches[p].label) +
                           ", " + std::to_string(layout.patches[p].triangles.size()) + " triangles) matches no boundary face of the structure");
   stats.boundary_faces = bf_count;
+  tick("patch maps");
   log("matched " + std::to_string(bf_count) + " boundary faces to patches (" + std::to_string(stats.cotangent_patches) +
       " cotangent, " + std::to_string(stats.mean_value_patches) + " mean-value maps)");
 
@@ -365,6 +811,7 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   auto lidx = [&](int i, int j, int k) { return (k * n1 + j) * n1 + i; };
   std::vector<std::vector<int>> lattice(nb, std::vector<int>(n1 * n1 * n1, -1));
   std::unordered_map<Key, int, KeyHash> shared;
+  shared.reserve(static_cast<size_t>(nb) * 6 * n1 * n1);
   std::vector<Key> node_key;       // weights of shared nodes (empty key for block-interior nodes)
   std::vector<int> node_block;     // block of a block-interior node, -1 for shared nodes
   for (int b = 0; b < nb; ++b) {
@@ -400,8 +847,13 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
         }
   }
   const int nn = static_cast<int>(node_key.size());
+  tick("node ids");
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nn, 3);
-  std::vector<char> known(nn, 0), on_surface(nn, 0);
+  std::vector<char> known(nn, 0);
+  NodeFreedom freedom;
+  freedom.kind.assign(nn, NodeFreedom::Free);
+  freedom.param.assign(nn, {0.0, 0.0});
+  freedom.where.assign(nn, nullptr);
 
   // Vertices, edges and boundary-face nodes straight from their keys.
   for (int id = 0; id < nn; ++id) {
@@ -415,12 +867,14 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
     if (m == 1) {
       X.row(id) = P[vs[0]].transpose();
       known[id] = 1;
-      on_surface[id] = vertex_corner[vs[0]] >= 0;
+      if (vertex_corner[vs[0]] >= 0) freedom.kind[id] = NodeFreedom::Fixed;
     } else if (m == 2) {
       auto c = curves.find({vs[0], vs[1]});
       if (boundary_edges.count({vs[0], vs[1]}) && c != curves.end()) {
         X.row(id) = c->second.at(static_cast<double>(ws[1]) / N3).transpose();
-        on_surface[id] = 1;
+        freedom.kind[id] = NodeFreedom::Curve;
+        freedom.param[id] = {static_cast<double>(ws[1]) / N3, 0.0};
+        freedom.where[id] = &c->second;
       } else {
         X.row(id) = ((ws[0] * P[vs[0]] + ws[1] * P[vs[1]]) / static_cast<double>(N3)).transpose();
       }
@@ -435,9 +889,13 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
       uv /= static_cast<double>(N3);
       X.row(id) = evaluate(pm, S, uv(0), uv(1)).transpose();
       known[id] = 1;
-      on_surface[id] = 1;
+      freedom.kind[id] = NodeFreedom::Patch;
+      freedom.param[id] = {uv(0), uv(1)};
+      freedom.where[id] = &pm;
     }
   }
+
+  tick("boundary nodes");
 
   // Harmonic fill of unknown lattice nodes: successive over-relaxation from a linear start.
   const double omega = 2.0 / (1.0 + std::sin(M_PI / std::max(2, n)));
@@ -527,6 +985,8 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
     }
   }
 
+  tick("interior faces");
+
   // Block interiors: transfinite interpolation (hex) or harmonic fill (prism, tet).
   for (int b = 0; b < nb; ++b) {
     const CellType t = T.type(b);
@@ -572,8 +1032,28 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
     }
   }
 
+  tick("block interiors");
+
   // ---- cells
-  mesh::MeshBuilder out;
+  // Every block makes n^3 cells, written straight into the result.
+  mesh::Mesh result;
+  const long long total_cells = static_cast<long long>(nb) * N3;
+  result.cells.setConstant(total_cells, 8, -1);
+  result.types.resize(total_cells);
+  result.region.resize(total_cells);
+  long long next_cell = 0;
+  struct {
+    mesh::Mesh& m;
+    long long& at;
+    void add(CellType t, const int* nodes, int region) {
+      if (at >= m.cells.rows()) throw MeshingError("generation: more cells than 8^level per block");
+      int* row = m.cells.row(at).data();
+      for (int i = 0; i < mesh::node_count(t); ++i) row[i] = nodes[i];
+      m.types(at) = static_cast<int>(t);
+      m.region(at) = region;
+      ++at;
+    }
+  } out{result, next_cell};
   for (int b = 0; b < nb; ++b) {
     const CellType t = T.type(b);
     const auto& L = lattice[b];
@@ -637,70 +1117,38 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
           }
     }
   }
-  mesh::Mesh result = out.finish(std::move(X));
+  if (next_cell != total_cells) throw MeshingError("generation: made " + std::to_string(next_cell) + " cells, expected " + std::to_string(total_cells));
+  result.V = std::move(X);
+  tick("cells");
 
-  // ---- relaxation of nodes inside the volume, accepted only where it raises the local worst SJ
+  // ---- relaxation and untangling of the nodes inside the volume
   if (opt.relax_sweeps > 0) {
-    const int nc = result.num_cells();
-    std::vector<std::vector<int>> node_cells(nn);
-    for (int c = 0; c < nc; ++c)
-      for (int i = 0; i < mesh::node_count(result.type(c)); ++i) node_cells[result.cells(c, i)].push_back(c);
-    std::vector<std::vector<int>> nbr(nn);
-    static const int he[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-    static const int we[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
-    static const int te[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
-    for (int c = 0; c < nc; ++c) {
-      const int(*e)[2] = result.type(c) == CellType::Hex ? he : result.type(c) == CellType::Wedge ? we : te;
-      const int ne = result.type(c) == CellType::Hex ? 12 : result.type(c) == CellType::Wedge ? 9 : 6;
-      for (int q = 0; q < ne; ++q) {
-        int a = result.cells(c, e[q][0]), bq = result.cells(c, e[q][1]);
-        nbr[a].push_back(bq);
-        nbr[bq].push_back(a);
-      }
-    }
-    // Cached scaled Jacobian per cell; only nodes next to a poor cell (SJ <= 0.2) are candidates.
-    auto cell_sj = [&](int c) {
-      const double sj = quality::scaled_jacobian(result.type(c), quality::cell_points(result, c));
-      return quality::is_inverted(sj) ? -1.0 : sj;
+    freedom.place = [&](int v, const double* q, double* x) {
+      Vec3 p = freedom.kind[v] == NodeFreedom::Curve ? static_cast<const Curve*>(freedom.where[v])->at(q[0])
+                                                     : evaluate(*static_cast<const PatchMap*>(freedom.where[v]), S, q[0], q[1]);
+      x[0] = p(0);
+      x[1] = p(1);
+      x[2] = p(2);
     };
-    std::vector<double> sj(nc);
-    for (int c = 0; c < nc; ++c) sj[c] = cell_sj(c);
-    std::vector<int> candidates;
-    for (int v = 0; v < nn; ++v) {
-      if (on_surface[v] || nbr[v].empty()) continue;
-      bool poor = false;
-      for (int c : node_cells[v]) poor = poor || sj[c] <= 0.2;
-      if (poor) candidates.push_back(v);
-    }
-    std::vector<double> trial;
-    for (int sweep = 0; sweep < opt.relax_sweeps && !candidates.empty(); ++sweep) {
-      int moved = 0;
-      for (int v : candidates) {
-        double before = 2;
-        for (int c : node_cells[v]) before = std::min(before, sj[c]);
-        Vec3 avg = Vec3::Zero();
-        for (int u : nbr[v]) avg += result.V.row(u).transpose();
-        avg /= static_cast<double>(nbr[v].size());
-        const Vec3 old = result.V.row(v).transpose();
-        for (double step : {1.0, 0.5, 0.25}) {
-          result.V.row(v) = (old + step * (avg - old)).transpose();
-          trial.clear();
-          double after = 2;
-          for (int c : node_cells[v]) {
-            trial.push_back(cell_sj(c));
-            after = std::min(after, trial.back());
-          }
-          if (after > before + 1e-12) {
-            for (size_t q = 0; q < trial.size(); ++q) sj[node_cells[v][q]] = trial[q];
-            ++moved;
-            break;
-          }
-          result.V.row(v) = old.transpose();
-        }
+    freedom.clamp = [&](int v, double* q) {
+      const double e = 1e-6;
+      if (freedom.kind[v] == NodeFreedom::Curve) {
+        q[0] = std::clamp(q[0], e, 1 - e);
+        return;
       }
-      if (!moved) break;
-    }
+      q[0] = std::clamp(q[0], e, 1 - e);
+      q[1] = std::clamp(q[1], e, 1 - e);
+      if (static_cast<const PatchMap*>(freedom.where[v])->domain.size() == 3 && q[0] + q[1] > 1 - e) {
+        const double shift = 0.5 * (q[0] + q[1] - (1 - e));
+        q[0] -= shift;
+        q[1] -= shift;
+      }
+    };
+    if (opt.untangle) log(untangle_nodes(result, freedom, opt.relax_sweeps, 0.2, 0.2, 0.05, 0.45 / n));
+    else log(relax_poor(result, freedom.kind, opt.relax_sweeps, 0.2));
   }
+  tick("relaxation");
+  log(timing);
   if (stats_out) *stats_out = stats;
   return result;
 }
