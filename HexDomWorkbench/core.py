@@ -289,7 +289,7 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
     goes onto a CAD face, edge (within edge_tolerance x its shortest boundary edge) or vertex; then
     untangles and optimises the interior with the boundary held. Returns (Mesh, report dict:
     boundary_nodes, face_nodes, edge_nodes, vertex_nodes, max_before / mean_before / max_after /
-    mean_after B-rep distances, max_move, diagonal, inverted_snapped, inverted, worst_sj_before,
+    mean_after B-rep distances (max_distance = max_after), max_move, diagonal, inverted_snapped, inverted, worst_sj_before,
     worst_sj_snapped, worst_sj, seconds_project, seconds_restore, quality, kind and entity per node
     (see SNAP_KINDS)). Inverted cells are reported, not raised."""
     if not has_opencascade():
@@ -299,6 +299,8 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
                                      surface.F, surface.patch, solid=int(solid),
                                      edge_tolerance=float(edge_tolerance), smooth=int(smooth),
                                      optimize=int(optimize))
+    report = dict(report)
+    report["max_distance"] = report["max_after"]
     return Mesh(*m), report
 
 
