@@ -1,4 +1,4 @@
-"""The automatic structure's patch surface should have a polycube boundary, so that the Build
+"""The automatic structure's patch surface must have a polycube boundary, so that the Build
 Polycube panel can check (and a user edit) an automatic Polycube against its own patches, as it
 does for hand-made ones (issue 9: "keeping every intermediate editable in the dialogs")."""
 
@@ -7,17 +7,23 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import hexdom_test_support as support
+
 REPO = Path(__file__).resolve().parents[2]
 BRACKET = REPO / "examples" / "data" / "bracket.step"
+CAD = support.HEXDOM_DATA.parent / "cad"
+PARTS = ["bracket", "s09o_bridge.step", "s11o_cube_cyl.stp", "s14o_cube_corner_sub_sphere.stp",
+         "s12o_cube_rounded_1.stp"]
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "autopolycube's cut along the grid leaves sliver triangles (area 1.3e-9 against a mean of "
-    "1.15 on bracket.step) that polycube_boundary refuses as degenerate"))
-def test_automatic_patches_have_a_polycube_boundary(core):
+@pytest.mark.parametrize("part", PARTS)
+def test_automatic_patches_have_a_polycube_boundary(core, part):
     if not core.has_opencascade():
         pytest.skip("_hexdom built without OpenCASCADE")
-    V, F, face = core.tessellate_file(str(BRACKET))
+    path = BRACKET if part == "bracket" else CAD / part
+    if not path.is_file():
+        pytest.skip(support.missing(path))
+    V, F, face = core.tessellate_file(str(path))
     labels = core.segment(core.Surface(V, F, face))
     result = core.autopolycube(labels, level=1)
     patches = result.patches
@@ -25,6 +31,13 @@ def test_automatic_patches_have_a_polycube_boundary(core):
                  patches.V[patches.F[:, 2]] - patches.V[patches.F[:, 0]])
     area = 0.5 * np.linalg.norm(n, axis=1)
     boundary = core.polycube_boundary(patches)  # raises GeometryError on a degenerate triangle
-    # One polycube face per patch, each over 4 corners (the patches are grid squares).
+    # One polycube face per patch (the patches are grid squares). Specks of triangles where a grid
+    # line passed a hair from a vertex are gone on the bracket (they were 1e-9 of the mean area); on
+    # s11o a grid point a hair from an edge still leaves one of 2e-8 of the mean, above the check's
+    # floor (1e-12 of the squared diagonal).
     assert len(boundary.faces) == len(np.unique(patches.patch))
-    assert area.min() > 1e-6 * area.mean()
+    diag2 = float(np.sum((patches.V.max(axis=0) - patches.V.min(axis=0)) ** 2))
+    print(f"{part}: smallest triangle {area.min():.3g}, mean {area.mean():.3g}")
+    assert area.min() > 1e-12 * diag2
+    if part == "bracket":
+        assert area.min() > 1e-6 * area.mean()

@@ -24,11 +24,19 @@ struct Poly {
 
 GridCut cut_along_grid(const mesh::SurfaceMesh& s, const ChartGraph& g, const PolycubeMap& m, const PolycubeGrid& grid) {
   const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
+  // A vertex a hair off a grid line (1e-3 of a grid step) is put on it (only its polycube position,
+  // which decides where cuts run): cutting there would leave a speck of a triangle (edges 5e-5 mm,
+  // area 1e-9 mm^2 on bracket.step) that the polycube check calls degenerate.
+  Eigen::MatrixXd D = m.D;
+  for (Eigen::Index i = 0; i < D.size(); ++i) {
+    const double r = std::round(D.data()[i]);
+    if (std::abs(D.data()[i] - r) < 1e-3) D.data()[i] = r;
+  }
   std::vector<Eigen::Vector3d> outD, outX;
   outD.reserve(2 * nv);
   outX.reserve(2 * nv);
   for (int v = 0; v < nv; ++v) {
-    outD.push_back(m.D.row(v).transpose());
+    outD.push_back(D.row(v).transpose());
     outX.push_back(s.V.row(v).transpose());
   }
   std::map<std::array<int, 4>, int> on_edge;    // (p < q, axis, line) -> vertex
@@ -56,8 +64,8 @@ GridCut cut_along_grid(const mesh::SurfaceMesh& s, const ChartGraph& g, const Po
         const std::array<int, 4> key{p, q, k, L};
         auto it = on_edge.find(key);
         if (it != on_edge.end()) return {it->second, outD[it->second]};
-        const double t = (L - m.D(p, k)) / (m.D(q, k) - m.D(p, k));
-        Eigen::Vector3d d = m.D.row(p).transpose() + t * (m.D.row(q) - m.D.row(p)).transpose();
+        const double t = (L - D(p, k)) / (D(q, k) - D(p, k));
+        Eigen::Vector3d d = D.row(p).transpose() + t * (D.row(q) - D.row(p)).transpose();
         d(k) = L;
         // An edge through a grid point (regular meshes of planar faces have them): the crossing is the
         // grid point itself, so that the other axis' line finds it on the line rather than a hair away.

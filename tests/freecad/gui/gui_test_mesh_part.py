@@ -179,17 +179,7 @@ def run():
     check(panel is not None, "Build Polycube opens on the automatic Polycube")
     if panel is not None:
         problems = [str(p) for p in panel.problems()]
-        # Known defect (strict xfail): autopolycube's patch surface holds sliver triangles (area
-        # about 1e-9 of the mean on the bracket) that core.polycube_boundary refuses as
-        # degenerate, so the panel cannot check the blocks against the patches.
-        sliver = [p for p in problems if "degenerate" in p]
-        if sliver and len(sliver) == len(problems):
-            g.skip("xfail: Build Polycube cannot check an automatic Polycube: {}".format(
-                sliver[0]))
-        else:
-            check(not problems, "its blocks fit its patches: {}".format(problems[:3]))
-            check(False, "XPASS: the automatic patch surface has a polycube boundary now; "
-                  "turn the xfail above into a plain check")
+        check(not problems, "its blocks fit its patches, no problem listed: {}".format(problems[:3]))
         check(panel.counts()["hex"] == poly.HexBlocks, "the panel holds the Polycube's blocks")
         panel.accept()
         g.process_events()
