@@ -18,11 +18,11 @@ orientations 1..6 (+X -X +Y -Y +Z -Z), one per triangle; every edit keeps one la
 import numpy as np
 
 from .. import api, core
+from .undo_stack import UndoStack
 
 LABEL_NAMES = {1: "+X", 2: "-X", 3: "+Y", 4: "-Y", 5: "+Z", 6: "-Z"}
 AXES = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
 SELECT_MODES = ("replace", "add", "remove", "toggle")
-MAX_UNDO = 200
 
 
 def label_number(label):
@@ -97,7 +97,7 @@ class PatchEditor:
         self.original_labels = self.labels.copy()
         self.selection = np.zeros(n, bool)
         self.path = []
-        self._undo, self._redo = [], []
+        self._history = UndoStack()
         self._check = None
         self._vertex_triangles = None
         self.listeners = []
@@ -268,10 +268,7 @@ class PatchEditor:
     # Edits (each one undoable)
 
     def _push(self):
-        self._undo.append((self.patches.copy(), self.labels.copy()))
-        if len(self._undo) > MAX_UNDO:
-            self._undo.pop(0)
-        self._redo.clear()
+        self._history.push((self.patches.copy(), self.labels.copy()))
 
     def _changed(self, patches, labels):
         self._push()
@@ -372,27 +369,22 @@ class PatchEditor:
 
     @property
     def can_undo(self):
-        return bool(self._undo)
+        return self._history.can_undo
 
     @property
     def can_redo(self):
-        return bool(self._redo)
+        return self._history.can_redo
 
     def undo(self):
-        if not self._undo:
-            return False
-        self._redo.append((self.patches, self.labels))
-        self.patches, self.labels = self._undo.pop()
-        self._check = None
-        self.selection[:] = False
-        self._notify("patches")
-        return True
+        return self._restore(self._history.undo((self.patches, self.labels)))
 
     def redo(self):
-        if not self._redo:
+        return self._restore(self._history.redo((self.patches, self.labels)))
+
+    def _restore(self, state):
+        if state is None:
             return False
-        self._undo.append((self.patches, self.labels))
-        self.patches, self.labels = self._redo.pop()
+        self.patches, self.labels = state
         self._check = None
         self.selection[:] = False
         self._notify("patches")

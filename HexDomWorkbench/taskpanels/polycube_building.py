@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import core
+from .undo_stack import UndoStack
 
 HEX, WEDGE, TET = core.HEX, core.WEDGE, core.TET
 TYPE_OF_COUNT = {8: HEX, 6: WEDGE, 4: TET}
@@ -33,7 +34,6 @@ BLOCK_FACES = {
     TET: [(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)],
 }
 _PERMUTATIONS = {}
-MAX_UNDO = 200
 
 
 @dataclass
@@ -262,7 +262,7 @@ class PolycubeBuilder:
         self.points = corners.copy()
         self.blocks = []  # (type, tuple of vertex ids in VTK order)
         self.selection = []
-        self._undo, self._redo = [], []
+        self._history = UndoStack()
         self._problems = None
         self.listeners = []
         self.patch_faces = {}
@@ -358,10 +358,7 @@ class PolycubeBuilder:
     # Edits (each one undoable)
 
     def _push(self):
-        self._undo.append((self.points.copy(), list(self.blocks)))
-        if len(self._undo) > MAX_UNDO:
-            self._undo.pop(0)
-        self._redo.clear()
+        self._history.push((self.points.copy(), list(self.blocks)))
 
     def _changed(self, what="structure"):
         self._problems = None
@@ -517,26 +514,22 @@ class PolycubeBuilder:
 
     @property
     def can_undo(self):
-        return bool(self._undo)
+        return self._history.can_undo
 
     @property
     def can_redo(self):
-        return bool(self._redo)
+        return self._history.can_redo
 
     def undo(self):
-        if not self._undo:
-            return False
-        self._redo.append((self.points, self.blocks))
-        self.points, self.blocks = self._undo.pop()
-        self.selection = []
-        self._changed()
-        return True
+        return self._restore(self._history.undo((self.points, self.blocks)))
 
     def redo(self):
-        if not self._redo:
+        return self._restore(self._history.redo((self.points, self.blocks)))
+
+    def _restore(self, state):
+        if state is None:
             return False
-        self._undo.append((self.points, self.blocks))
-        self.points, self.blocks = self._redo.pop()
+        self.points, self.blocks = state
         self.selection = []
         self._changed()
         return True
