@@ -188,46 +188,40 @@ class _Segment(CommandManager):
                                          [("segmenting", line)])
 
 
-class _ImportPatches(CommandManager):
+class _ImportKFile(CommandManager):
+    """Reads a .k file through ``HexDomWorkbench.api.<api_function>(path, doc)`` in one transaction."""
+    is_active = "always"
+    dialog_title = transaction = api_function = ""
+
+    def Activated(self):
+        path = _open_file(self.dialog_title, "LS-DYNA keyword (*.k);;All files (*)")
+        if path:
+            self.import_file(path)
+
+    def import_file(self, path):
+        doc = _ensure_document()
+        new = manager.run_and_recompute(
+            doc, self.transaction, ["HexDomWorkbench.api"],
+            [("reading " + os.path.basename(path),
+              "HexDomWorkbench.api.{}({!r}, App.ActiveDocument)".format(self.api_function, path))])
+        _fit()
+        return new
+
+
+class _ImportPatches(_ImportKFile):
     menutext = "Import patches..."
     tooltip = ("Reads a segmented surface (.k shells, part id = patch id, as the paper's patch "
                "files) into a HexDom Surface and a HexDom Segmentation")
-    is_active = "always"
-
-    def Activated(self):
-        path = _open_file("Import HexDom patches", "LS-DYNA keyword (*.k);;All files (*)")
-        if path:
-            self.import_file(path)
-
-    def import_file(self, path):
-        doc = _ensure_document()
-        new = manager.run_and_recompute(
-            doc, "Import patches", ["HexDomWorkbench.api"],
-            [("reading " + os.path.basename(path),
-              "HexDomWorkbench.api.import_patches({!r}, App.ActiveDocument)".format(path))])
-        _fit()
-        return new
+    dialog_title, transaction, api_function = ("Import HexDom patches", "Import patches",
+                                               "import_patches")
 
 
-class _ImportStructure(CommandManager):
+class _ImportStructure(_ImportKFile):
     menutext = "Import polycube structure..."
     tooltip = ("Reads a polycube structure (.k, hex / prism / tet blocks as *ELEMENT_SOLID) into "
                "a HexDom Polycube")
-    is_active = "always"
-
-    def Activated(self):
-        path = _open_file("Import polycube structure", "LS-DYNA keyword (*.k);;All files (*)")
-        if path:
-            self.import_file(path)
-
-    def import_file(self, path):
-        doc = _ensure_document()
-        new = manager.run_and_recompute(
-            doc, "Import structure", ["HexDomWorkbench.api"],
-            [("reading " + os.path.basename(path),
-              "HexDomWorkbench.api.import_structure({!r}, App.ActiveDocument)".format(path))])
-        _fit()
-        return new
+    dialog_title, transaction, api_function = ("Import polycube structure", "Import structure",
+                                               "import_structure")
 
 
 class _ExportStructure(CommandManager):

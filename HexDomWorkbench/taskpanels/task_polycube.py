@@ -27,6 +27,7 @@ from PySide import QtGui
 from .. import core, paths
 from ..objects import polycube, segmentation
 from ..viewproviders import coin_mesh
+from ..commands.manager import show_error
 from . import panel_undo, view_overlay
 from .polycube_building import BLOCK_FACES, TYPE_NAMES, PolycubeBuilder
 
@@ -47,12 +48,6 @@ _active = []
 def active_panel():
     """The open Build Polycube panel, or None (for macros and tests)."""
     return _active[-1] if _active else None
-
-
-def show_error(title, error):
-    text = str(error) or type(error).__name__
-    FreeCAD.Console.PrintError("HexDom: {}: {}\n".format(title, text))
-    QtGui.QMessageBox.critical(FreeCADGui.getMainWindow(), "HexDom: " + title, text)
 
 
 def segmentations(doc):

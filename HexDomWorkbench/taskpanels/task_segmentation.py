@@ -26,6 +26,7 @@ from PySide import QtGui
 from .. import core, paths
 from ..objects import segmentation
 from ..viewproviders import coin_mesh
+from ..commands.manager import show_error
 from . import panel_undo, view_overlay
 from .patch_editing import LABEL_NAMES, PatchEditor, points_in_polygon
 
@@ -41,12 +42,6 @@ _active = []
 def active_panel():
     """The open Edit Patches panel, or None (for macros and tests)."""
     return _active[-1] if _active else None
-
-
-def show_error(title, error):
-    text = str(error) or type(error).__name__
-    FreeCAD.Console.PrintError("HexDom: {}: {}\n".format(title, text))
-    QtGui.QMessageBox.critical(FreeCADGui.getMainWindow(), "HexDom: " + title, text)
 
 
 class _TaskPanel:
