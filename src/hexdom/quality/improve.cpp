@@ -603,9 +603,11 @@ class Run {
       r_.corner_nodes += k == Corner;
     }
     for (int v : opt.fixed_nodes) t_.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
-    cons_ = cons;
-    if (with_pillow) cons_.project = nullptr;  // node numbers changed: the projection hook no longer applies
-    imp_ = std::make_unique<Improver>(m_, t_, cons_);
+    if (with_pillow && cons.project) {  // node numbers changed: the projection hook no longer applies
+      unhooked_ = std::make_unique<Constraints>(cons);
+      unhooked_->project = nullptr;
+    }
+    imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
     log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +
          ": worst scaled Jacobian " + std::to_string(imp_->worst()) + "; " + std::to_string(r_.feature_nodes) +
          " feature-curve nodes, " + std::to_string(r_.corner_nodes) + " corners");
@@ -696,7 +698,7 @@ class Run {
   ImproveResult r_;
   mesh::Mesh m_;
   Topology t_;
-  Constraints cons_;
+  std::unique_ptr<Constraints> unhooked_;  // a copy without the projection hook, for a pillowed mesh
   std::unique_ptr<Improver> imp_;
 };
 
