@@ -20,7 +20,6 @@ Labels (polycube directions) are numbered as in the core: 1 +X, 2 -X, 3 +Y, 4 -Y
 patch ids are positive integers, one per connected region a polycube face maps to.
 """
 
-import heapq
 import math
 import os
 from dataclasses import dataclass
@@ -259,155 +258,13 @@ def default_size(shape):
     return shape.BoundBox.DiagonalLength / 25.0
 
 
-def _dot(u, v):
-    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
-
-
-def _norm(u):
-    return math.sqrt(_dot(u, u))
-
-
-class _Triangulation:
-    """Triangles with an id each and an edge -> triangles map, for refinement in place."""
-
-    def __init__(self, V, F, ids):
-        self.V = [list(map(float, p)) for p in np.asarray(V, float).reshape(-1, 3).tolist()]
-        self.F = [list(t) for t in np.asarray(F, np.int64).reshape(-1, 3).tolist()]
-        self.ids = list(np.asarray(ids).reshape(-1).tolist())
-        self.edge_tris = {}
-        for t, (a, b, c) in enumerate(self.F):
-            for u, v in ((a, b), (b, c), (c, a)):
-                self.edge_tris.setdefault((min(u, v), max(u, v)), []).append(t)
-
-    def arrays(self):
-        return (np.asarray(self.V, float).reshape(-1, 3),
-                np.asarray(self.F, np.int32).reshape(-1, 3), np.asarray(self.ids, np.int32))
-
-    def length(self, a, b):
-        pa, pb = self.V[a], self.V[b]
-        return math.sqrt((pa[0] - pb[0]) ** 2 + (pa[1] - pb[1]) ** 2 + (pa[2] - pb[2]) ** 2)
-
-    def _link(self, u, v, t):
-        key = (min(u, v), max(u, v))
-        self.edge_tris.setdefault(key, []).append(t)
-        return key
-
-    def _unlink(self, u, v, t):
-        key = (min(u, v), max(u, v))
-        lst = self.edge_tris[key]
-        lst.remove(t)
-        if not lst:
-            del self.edge_tris[key]
-
-    def bisect(self, size, max_triangles):
-        """Splits the longest edge (hence the longest of both its triangles) while any edge is
-        longer than ``size``."""
-        V, F, ids, edge_tris = self.V, self.F, self.ids, self.edge_tris
-        heap = [(-self.length(*e), e) for e in edge_tris if self.length(*e) > size]
-        heapq.heapify(heap)
-        while heap:
-            neg, key = heapq.heappop(heap)
-            tris = edge_tris.pop(key, None)
-            if tris is None:
-                continue
-            a, b = key
-            m = len(V)
-            V.append([(V[a][k] + V[b][k]) * 0.5 for k in range(3)])
-            for t in tris:
-                tri = F[t]
-                i = next(i for i in range(3) if {tri[i], tri[(i + 1) % 3]} == {a, b})
-                x, y, c = tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]
-                t2 = len(F)
-                F[t] = [x, m, c]
-                F.append([m, y, c])
-                ids.append(ids[t])
-                lst = edge_tris[(min(y, c), max(y, c))]
-                lst[lst.index(t)] = t2
-                self._link(x, m, t)
-                self._link(m, y, t2)
-                mc = self._link(m, c, t)
-                edge_tris[mc].append(t2)
-                if self.length(m, c) > size:
-                    heapq.heappush(heap, (-self.length(m, c), mc))
-            if -neg * 0.5 > size:
-                for e in ((min(a, m), max(a, m)), (min(m, b), max(m, b))):
-                    heapq.heappush(heap, (neg * 0.5, e))
-            if len(F) > max_triangles:
-                raise ValueError("tessellation exceeds {} triangles: Size {:g} is too small "
-                                 "for this part".format(max_triangles, size))
-
-    def _normal(self, a, b, c):
-        pa, pb, pc = self.V[a], self.V[b], self.V[c]
-        ux, uy, uz = pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]
-        vx, vy, vz = pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]
-        return (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx)
-
-    def _angle(self, at, u, v):
-        n = self._normal(at, u, v)
-        p, q, r = self.V[at], self.V[u], self.V[v]
-        dot = sum((q[k] - p[k]) * (r[k] - p[k]) for k in range(3))
-        return math.atan2(math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), dot)
-
-    def flip(self, coplanar=0.99999, max_sweeps=50):
-        """Delaunay edge flips between triangles of one id that lie in one plane (so the
-        surface does not change); returns the number of flips."""
-        F, ids, edge_tris = self.F, self.ids, self.edge_tris
-        flips = 0
-        todo = list(edge_tris)
-        for _ in range(max_sweeps):
-            changed = []
-            for key in todo:
-                tris = edge_tris.get(key)
-                if tris is None or len(tris) != 2 or ids[tris[0]] != ids[tris[1]]:
-                    continue
-                t1, t2 = tris
-                a, b = key
-                f1 = F[t1]
-                i = next(i for i in range(3) if {f1[i], f1[(i + 1) % 3]} == {a, b})
-                a, b, c = f1[i], f1[(i + 1) % 3], f1[(i + 2) % 3]  # t1 = (a, b, c)
-                d = next(v for v in F[t2] if v != a and v != b)  # t2 = (b, a, d)
-                cd = (min(c, d), max(c, d))
-                if c == d or cd in edge_tris:
-                    continue
-                n1, n2 = self._normal(a, b, c), self._normal(b, a, d)
-                l1, l2 = _norm(n1), _norm(n2)
-                if l1 == 0 or l2 == 0 or _dot(n1, n2) < coplanar * l1 * l2:
-                    continue
-                if self._angle(c, a, b) + self._angle(d, a, b) <= math.pi + 1e-9:
-                    continue
-                new1, new2 = [a, d, c], [d, b, c]
-                if _dot(self._normal(*new1), n1) <= 0 or _dot(self._normal(*new2), n1) <= 0:
-                    continue  # not convex
-                for u, v, t in ((a, b, t1), (b, c, t1), (c, a, t1), (b, a, t2), (a, d, t2),
-                                (d, b, t2)):
-                    self._unlink(u, v, t)
-                F[t1], F[t2] = new1, new2
-                for u, v, t in ((a, d, t1), (d, c, t1), (c, a, t1), (d, b, t2), (b, c, t2),
-                                (c, d, t2)):
-                    self._link(u, v, t)
-                flips += 1
-                changed += [(min(a, d), max(a, d)), (min(d, b), max(d, b)),
-                            (min(b, c), max(b, c)), (min(c, a), max(c, a))]
-            if not changed:
-                break
-            todo = changed
-        return flips
-
-
-def refine_to_size(V, F, ids, size, max_triangles=MAX_TRIANGLES, rounds=4):
-    """Longest-edge bisection until no edge is longer than ``size``, alternated with Delaunay
-    flips inside planar faces (which removes the slivers a plain tessellation leaves around holes);
-    conforming, keeps each triangle's orientation and id. New points lie on the old triangles (no
-    projection), so the distance to the original surface does not grow. Returns (V, F, ids)."""
-    mesh = _Triangulation(V, F, ids)
-    if size > 0 and mesh.F:
-        mesh.flip()
-        for _ in range(rounds):
-            mesh.bisect(size, max_triangles)
-            if mesh.flip() == 0:
-                break
-        mesh.bisect(size, max_triangles)
-    return mesh.arrays()
+def remesh_to_size(V, F, ids, size):
+    """The closed triangle surface (V, F, face id per triangle) remeshed by the core onto itself:
+    near-equilateral triangles of about ``size``, each vertex on the input triangles of its own face
+    id, the curves between faces and their corners kept. Returns (V, F, ids)."""
+    s = core.remesh_triangles(core.Surface(np.asarray(V, float), np.asarray(F, np.int32).reshape(-1, 3),
+                                           np.asarray(ids, np.int32).reshape(-1)), size)
+    return np.asarray(s.V, float), np.asarray(s.F, np.int32), np.asarray(s.patch, np.int32)
 
 
 def curvature_length(shape, size, deflection, angle, samples=5):
@@ -495,8 +352,8 @@ def _tessellate_mefisto(shape, length):
 
 
 def _tessellate_standard(shape, size, deflection, angle):
-    """MeshPart's standard (BRepMesh) mesher, one segment per face, then longest-edge bisection
-    and flips down to ``size``."""
+    """MeshPart's standard (BRepMesh) mesher, one segment per face, then the core's remeshing to
+    ``size`` (its triangles are needles along the edges)."""
     import MeshPart
 
     mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=deflection,
@@ -511,7 +368,7 @@ def _tessellate_standard(shape, size, deflection, angle):
             mesh.countSegments(), len(shape.Faces)))
     for i in range(mesh.countSegments()):
         face_id[np.asarray(mesh.getSegment(i), np.int64)] = i + 1
-    return refine_to_size(V, F, face_id, size)
+    return remesh_to_size(V, F, face_id, size)
 
 
 def _tessellate_meshpart(shape, size, deflection, angle):
@@ -566,7 +423,7 @@ def tessellate(shape, size=0.0, deflection=0.0, angle=20.0, method="auto", run=N
     between neighbouring chords on curved faces. method "auto" uses the core's OCCT tessellation
     (core.tessellate_brep) when the build has it, else FreeCAD's MeshPart (each face meshed by
     Mefisto at one edge length, shortened for the curvature, shared edges merged; the standard
-    mesher refined by bisection if that fails); "core" or "meshpart" force one. Returns a closed
+    mesher remeshed by the core if that fails); "core" or "meshpart" force one. Returns a closed
     core.Surface for a solid; ``tessellate.last_method`` tells which mesher ran. ``run``
     (Progress.run) runs the core's call, in a worker thread under the GUI; MeshPart runs in the
     calling thread.

@@ -12,6 +12,7 @@
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/mesh/mesh.h"
+#include "hexdom/mesh/remesh_triangles.h"
 #include "hexdom/quality/report.h"
 
 namespace py = pybind11;
@@ -80,6 +81,23 @@ PYBIND11_MODULE(_hexdom, m) {
     py::gil_scoped_release nogil;
     io::write_mesh(path, msh);
   }, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("patch") = py::none());
+
+  m.def("remesh_triangles", [](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& patch,
+                               double size, int iterations) {
+    mesh::RemeshTrianglesOptions opt;
+    opt.size = size;
+    opt.iterations = iterations;
+    mesh::SurfaceMesh out;
+    {
+      py::gil_scoped_release nogil;
+      out = mesh::remesh_triangles(mesh::SurfaceMesh{V, F, patch}, opt);
+    }
+    return py::make_tuple(out.V, out.F, out.patch);
+  }, py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("iterations") = 10,
+  "Remeshes a closed, outward triangle surface (V, F, face id per triangle) onto itself: near-equilateral\n"
+  "triangles of about `size` (0: bounding-box diagonal / 30), vertices on the input triangles of their own\n"
+  "face id, curves where two face ids meet and their corners kept. Returns (V, F, face_id). Raises InputError\n"
+  "for an open or non-manifold surface (naming the edge) or a degenerate triangle.");
 
   m.def("cell_metrics", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types) {
     mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);

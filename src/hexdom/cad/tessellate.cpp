@@ -28,22 +28,22 @@
 #include <limits>
 #include <unordered_map>
 
-#include "hexdom/cad/remesh_surface.h"
+#include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/cad/shape_impl.h"
 
 namespace hexdom::cad {
 
 namespace {
 
-using detail::Kind;
-using detail::RVertex;
+using mesh::remesh::Kind;
+using mesh::remesh::RVertex;
 constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 gp_Pnt pnt(const Eigen::Vector3d& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
 
 /// The B-rep as RemeshGeometry: projections onto faces and edge curves, and the size field.
-class OcctGeometry : public detail::RemeshGeometry {
+class OcctGeometry : public mesh::remesh::RemeshGeometry {
  public:
   OcctGeometry(const TopTools_IndexedMapOfShape& faces,
                const TopTools_IndexedMapOfShape& edges, const TopTools_IndexedMapOfShape& vertices,
@@ -509,11 +509,11 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
                          " vertices (" + std::to_string(dropped) + " degenerate dropped)");
 
     OcctGeometry geometry(faces, edges, vertices, size, deflection, angle, min_size);
-    detail::RemeshParams rp;
+    mesh::remesh::RemeshParams rp;
     rp.max_size = size;
     rp.iterations = options.iterations;
     rp.log = options.log;
-    detail::SurfaceRemesher remesher(std::move(V), F, face_of, geometry, rp);
+    mesh::remesh::SurfaceRemesher remesher(std::move(V), F, face_of, geometry, rp);
     for (int e = 0; e < edges.Extent(); ++e)
       if (edge_nodes[e].size() == 2 && edge_nodes[e][0] != edge_nodes[e][1])
         remesher.set_corner_edge(edge_nodes[e][0], edge_nodes[e][1], e);

@@ -137,7 +137,7 @@ def test_stale_edits_are_reported_not_fatal(doc):
 
 def test_patch_file_transfers_to_another_triangulation(doc):
     fine = core.read_surface(PATCHES)
-    V, F, ids = api.refine_to_size(fine.V, fine.F, fine.patch, 0.9)
+    V, F, ids = api.remesh_to_size(fine.V, fine.F, fine.patch, 0.9)
     assert len(F) > 2 * len(fine.F)
     surf = make.make_surface(doc, surface=core.Surface(V, F, np.zeros(len(F), np.int32)))
     seg = make.make_segmentation(doc, surf, method="Patch file", patch_file=PATCHES)

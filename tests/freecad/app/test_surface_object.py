@@ -152,12 +152,35 @@ def test_meshpart_triangles_are_well_shaped():
     assert sorted(set(s.patch.tolist())) == list(range(1, len(shape.Faces) + 1))
 
 
-def test_standard_mesher_fallback_refines_to_size():
-    V, F, ids = api._tessellate_standard(Part.makeBox(20, 10, 5), 2.0, 0.2, 20.0)
+def test_standard_mesher_fallback_remeshes_to_size():
+    # MeshPart's standard mesher gives a box 12 needle triangles; the core remeshes them onto
+    # themselves: near-equilateral triangles of about the size, each on its own face.
+    shape = Part.makeBox(20, 10, 5)
+    V, F, ids = api._tessellate_standard(shape, 2.0, 0.2, 20.0)
     uses, volume, _ = fc_testdata.closed_surface_checks(V, F)
     assert uses == {2} and volume == pytest.approx(1000.0, rel=1e-9)
-    assert fc_testdata.edge_lengths(V, F).max() <= 2.0 + 1e-9
+    lengths = fc_testdata.edge_lengths(V, F)
+    assert lengths.max() <= 1.5 * 2.0 and 1.2 <= np.median(lengths) <= 2.6
     assert sorted(set(ids.tolist())) == [1, 2, 3, 4, 5, 6]
+    normals, _ = api.triangle_normals(V, F)
+    for k, face in enumerate(shape.Faces, 1):  # every triangle on the plane of its FreeCAD face
+        n = face.normalAt(0, 0)
+        n = np.array([n.x, n.y, n.z])
+        assert np.all(normals[ids == k] @ n > 1 - 1e-9)
+        assert np.ptp(V[F[ids == k]].reshape(-1, 3) @ n) < 1e-9
+    corners = [V[F[:, i]] for i in range(3)]
+    angles = []
+    for i in range(3):
+        u, w = corners[(i + 1) % 3] - corners[i], corners[(i + 2) % 3] - corners[i]
+        angles.append(np.degrees(np.arctan2(np.linalg.norm(np.cross(u, w), axis=1), np.einsum("ij,ij->i", u, w))))
+    assert np.min(angles) > 20.0  # the standard mesher's needles are gone
+
+
+def test_remesh_of_an_open_surface_names_the_edge():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    F = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3]], np.int32)  # a tetrahedron without one face
+    with pytest.raises(core.InputError, match=r"open: edge \(\d, \d\) has one triangle"):
+        api.remesh_to_size(V, F, np.ones(3, np.int32), 0.2)
 
 
 def test_too_small_size_is_refused():

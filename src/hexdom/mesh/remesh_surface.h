@@ -1,7 +1,7 @@
-// Isotropic remeshing of a closed triangle surface whose vertices are tied to a B-rep: vertices
-// inside a CAD face move on that face, vertices on a CAD edge slide along its curve, CAD vertices
-// stay put. Internal to hexdom_cad (used by tessellate); knows no OCCT: the geometry comes in
-// through RemeshGeometry.
+// Isotropic remeshing of a closed triangle surface whose vertices are tied to a geometry: vertices
+// inside a face move on that face, vertices on an edge curve slide along it, corners stay put. Knows
+// no OCCT: the geometry comes in through RemeshGeometry (cad::tessellate gives the B-rep,
+// mesh::remesh_triangles the input triangles themselves).
 //
 // After Botsch and Kobbelt, "A remeshing approach to multiresolution modeling" (SGP 2004): split
 // edges longer than 4/3 h, collapse edges shorter than 4/5 h, flip edges, relax vertices
@@ -17,7 +17,7 @@
 
 #include "hexdom/common/error.h"
 
-namespace hexdom::cad::detail {
+namespace hexdom::mesh::remesh {
 
 enum class Kind : unsigned char { Corner, Curve, Face };
 
@@ -109,4 +109,4 @@ class SurfaceRemesher {
   RemeshParams params_;
 };
 
-}  // namespace hexdom::cad::detail
+}  // namespace hexdom::mesh::remesh

@@ -1,11 +1,11 @@
-#include "hexdom/cad/remesh_surface.h"
+#include "hexdom/mesh/remesh_surface.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <queue>
 
-namespace hexdom::cad::detail {
+namespace hexdom::mesh::remesh {
 
 namespace {
 
@@ -605,4 +605,4 @@ void SurfaceRemesher::extract(Eigen::MatrixXd& V, Eigen::MatrixXi& F, Eigen::Vec
   }
 }
 
-}  // namespace hexdom::cad::detail
+}  // namespace hexdom::mesh::remesh
