@@ -111,15 +111,37 @@ void add_polycube(CLI::App& app) {
       "polycube",
       "Polycube boundary of a segmented surface, as the original's initial polycube files: the corners\n"
       "(vertices where 3 or more patches meet) as nodes and one shell per patch over its 3 or 4 corners\n"
-      "(part id = patch number, in the order of each patch's first triangle).");
-  struct Args { std::string in, out; bool corners = false; };
+      "(part id = patch number, in the order of each patch's first triangle).\n"
+      "With --auto: the polycube STRUCTURE built automatically (hexdom autopolycube): hex blocks written to -o,\n"
+      "the surface re-split into one patch per block face to --patches-out (default <output stem>_patches.k);\n"
+      "`hexdom generate -i PATCHES -p STRUCTURE -s LEVEL` takes both unchanged.");
+  struct Args {
+    std::string in, out;
+    bool corners = false, automatic = false;
+    AutoPolycubeArgs auto_args;
+  };
   auto a = std::make_shared<Args>();
-  cmd->add_option("-i,--input", a->in, "segmented surface: part id per triangle (.k, .obj, .vtk)")->required();
-  cmd->add_option("-o,--output", a->out, "initial polycube (.k; .vtk, .vtu, .obj also work)")->required();
+  cmd->add_option("-i,--input", a->in, "segmented surface: part id per triangle (.k, .obj, .vtk); with --auto labels 1..6 "
+                  "(hexdom segment) or patches (each labelled by its nearest axis)")->required();
+  cmd->add_option("-o,--output", a->out, "initial polycube, or with --auto the structure (.k; .vtk, .vtu, .obj also work)")->required();
   cmd->add_flag("--corners", a->corners,
                 "also write <output stem>_corners.txt ('vertexIndex x y z', 0-based) and <output stem>_edges.vtk "
                 "(corners and the boundary curves between them, for display)");
+  auto* automatic = cmd->add_flag("--auto", a->automatic, "build the block structure automatically (see hexdom autopolycube)");
+  cmd->add_option("--patches-out", a->auto_args.patches, "--auto: patch surface to write; default <output stem>_patches.k");
+  add_autopolycube_options(*cmd, a->auto_args);
+  for (const char* name : {"--patches-out", "--polycube-out", "--size", "--level", "--max-relabels", "--max-attempts", "--untangle"})
+    cmd->get_option(name)->needs(automatic);
+  automatic->excludes("--corners");
   cmd->callback([=] {
+    if (a->automatic) {
+      AutoPolycubeArgs& x = a->auto_args;
+      x.in = a->in;
+      x.out = a->out;
+      if (x.patches.empty()) x.patches = a->out.substr(0, a->out.size() - io::extension(a->out).size() - 1) + "_patches.k";
+      run_autopolycube(x);
+      return;
+    }
     io::format_of(a->out);
     mesh::SurfaceMesh surface = io::read_surface(a->in);
     segmentation::PolycubeBoundary b = segmentation::polycube_boundary(surface);

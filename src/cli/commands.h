@@ -3,6 +3,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
+
+#include "hexdom/autopolycube/autopolycube.h"
 
 namespace hexdom::cli {
 
@@ -13,6 +16,17 @@ void add_improve(CLI::App& app);
 void add_segmentation_commands(CLI::App& app);  // segment, check, polycube
 void add_cad_commands(CLI::App& app);           // tessellate
 void add_auto_commands(CLI::App& app);          // autopolycube, mesh
+
+/// hexdom autopolycube and hexdom polycube --auto: input, outputs and options.
+struct AutoPolycubeArgs {
+  std::string in, out, patches, polycube;
+  autopolycube::AutoPolycubeOptions opt;
+};
+/// --polycube-out, --size, --level and the repair/untangle limits.
+void add_autopolycube_options(CLI::App& cmd, AutoPolycubeArgs& a);
+/// Reads a.in (labels, or patches labelled by their nearest axis), builds the structure and writes
+/// a.out, a.patches (and a.polycube); prints the summary.
+void run_autopolycube(AutoPolycubeArgs& a);
 
 /// Prints progress and warnings from the core's log callback on stderr.
 void print_log(int level, const std::string& message);

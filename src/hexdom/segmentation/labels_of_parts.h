@@ -1,0 +1,16 @@
+// Polycube labels from a segmented surface whose part ids may be labels or patch numbers.
+#pragma once
+
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::segmentation {
+
+/// Label 1..6 (+X, -X, +Y, -Y, +Z, -Z) per triangle of `surface`, whose `patch` holds either
+/// labels already (hexdom segment's output) or patch numbers (the paper's patch files, hand-edited
+/// segmentations). The ids are taken as labels when all lie in 1..6 and each id's area-weighted
+/// normal is nearest its own label's axis; otherwise every part (triangles of one id) gets the
+/// label of the axis nearest its area-weighted normal. `relabelled` (optional) receives true when
+/// the ids were not labels.
+Eigen::VectorXi labels_of_parts(const mesh::SurfaceMesh& surface, bool* relabelled = nullptr);
+
+}  // namespace hexdom::segmentation
