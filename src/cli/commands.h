@@ -10,6 +10,7 @@
 namespace hexdom::cli {
 
 void add_convert(CLI::App& app);
+void add_remesh(CLI::App& app);
 void add_quality(CLI::App& app);
 void add_generate(CLI::App& app);
 void add_improve(CLI::App& app);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("hexdom ") + HEXDOM_VERSION);
   app.require_subcommand(1);
   hexdom::cli::add_convert(app);
+  hexdom::cli::add_remesh(app);
   hexdom::cli::add_quality(app);
   hexdom::cli::add_generate(app);
   hexdom::cli::add_improve(app);

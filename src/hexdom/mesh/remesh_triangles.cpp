@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -132,22 +131,41 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
       throw InputError("remesh: the surface is open: edge " + vertex_pair(a, b) + " has one triangle");
   }
 
-  // Dense face numbers.
-  std::map<int, int> dense;
-  for (int t = 0; t < nt; ++t) dense.emplace(s.patch(t), 0);
-  std::vector<int> ids;
-  for (auto& [id, d] : dense) d = static_cast<int>(ids.size()), ids.push_back(id);
-  std::vector<int> face(nt);
-  for (int t = 0; t < nt; ++t) face[t] = dense[s.patch(t)];
-
-  // Feature edges: between two face ids. Vertices with a feature edge count other than 2, or on
-  // three or more faces, are corners.
-  std::vector<std::vector<int>> feature_nb(nv);
+  // Feature edges: between two face ids, or (feature angle) sharper than the angle. The faces the
+  // remesher works on are the regions of one id that feature edges bound, so that a sharp edge
+  // inside a part is a curve between two faces, as a CAD edge is.
+  auto unit_normal = [&](int t) -> Eigen::Vector3d {
+    const Eigen::Vector3d a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
+    return (b - a).cross(c - a).normalized();
+  };
+  const double cos_feature = options.feature_angle > 0 ? std::cos(options.feature_angle * 3.14159265358979323846 / 180) : -2;
+  std::vector<std::pair<int, int>> feature_edges;
+  std::vector<int> parent(nt);
+  for (int t = 0; t < nt; ++t) parent[t] = t;
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
   for (const auto& [k, t] : directed) {
     const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
     if (a > b) continue;
-    if (face[t] != face[directed.at(key(b, a))]) feature_nb[a].push_back(b), feature_nb[b].push_back(a);
+    const int u = directed.at(key(b, a));
+    if (s.patch(t) != s.patch(u) || unit_normal(t).dot(unit_normal(u)) < cos_feature)
+      feature_edges.emplace_back(a, b);
+    else
+      parent[find(t)] = find(u);
   }
+  std::vector<int> face(nt, -1), ids;  // region per triangle; the input id per region
+  {
+    std::unordered_map<int, int> region;
+    for (int t = 0; t < nt; ++t) {
+      auto [it, fresh] = region.emplace(find(t), static_cast<int>(ids.size()));
+      if (fresh) ids.push_back(s.patch(t));
+      face[t] = it->second;
+    }
+  }
+  std::vector<std::vector<int>> feature_nb(nv);
+  for (const auto& [a, b] : feature_edges) feature_nb[a].push_back(b), feature_nb[b].push_back(a);
   std::vector<std::vector<int>> faces_at(nv);
   for (int t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
@@ -155,8 +173,14 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
       if (std::find(fa.begin(), fa.end(), face[t]) == fa.end()) fa.push_back(face[t]);
     }
   std::vector<char> corner(nv, 0);
-  for (int v = 0; v < nv; ++v)
+  for (int v = 0; v < nv; ++v) {
     corner[v] = (!feature_nb[v].empty() && feature_nb[v].size() != 2) || faces_at[v].size() >= 3;
+    if (!corner[v] && feature_nb[v].size() == 2 && cos_feature > -2) {
+      const Eigen::Vector3d in = (V.row(v) - V.row(feature_nb[v][0])).normalized();
+      const Eigen::Vector3d out = (V.row(feature_nb[v][1]) - V.row(v)).normalized();
+      corner[v] = in.dot(out) < cos_feature;
+    }
+  }
 
   // Chains from corner to corner, then the loops that have no corner (one of their vertices
   // becomes one).

@@ -4,7 +4,8 @@
 // target size without OpenCASCADE: the same remesher as cad::tessellate (mesh/remesh_surface.h),
 // with vertices inside a face projected onto that face's input triangles, vertices on the curves
 // where two face ids meet kept on those polylines, and corners (where three or more faces meet, or
-// a curve ends) kept in place. The input's face ids carry over to the output triangles.
+// a curve ends) kept in place. The input's face ids carry over to the output triangles. Optionally
+// sharp edges (dihedral angle) are curves too.
 #pragma once
 
 #include "hexdom/common/error.h"
@@ -15,6 +16,11 @@ namespace hexdom::mesh {
 struct RemeshTrianglesOptions {
   double size = 0;      ///< target edge length; 0: the bounding-box diagonal / 30
   int iterations = 10;  ///< remeshing sweeps
+  /// Degrees; > 0: an edge whose two triangles' normals differ by more than this is a curve too,
+  /// and a curve turning by more than this at a vertex has a corner there (surfaces without face
+  /// ids: STL, OBJ). 0: only the face ids make curves (a coarse tessellation of a smooth CAD face
+  /// may have steep facets).
+  double feature_angle = 0;
   LogCallback log;
 };
 

@@ -15,6 +15,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+RemeshTrianglesOptions with_size(double size) {
+  RemeshTrianglesOptions o;
+  o.size = size;
+  return o;
+}
+
 /// Box [0,a]x[0,b]x[0,c] as 12 triangles, face ids 1..6 (-x, +x, -y, +y, -z, +z), outward.
 SurfaceMesh box(double a, double b, double c) {
   SurfaceMesh s;
@@ -89,7 +95,7 @@ double min_angle_deg(const SurfaceMesh& s, int t) {
 TEST(RemeshTriangles, BoxBecomesIsotropicAndKeepsItsFacesAndCorners) {
   const SurfaceMesh in = box(2, 1, 1);
   const double h = 0.2;
-  const SurfaceMesh out = remesh_triangles(in, {h, 10, {}});
+  const SurfaceMesh out = remesh_triangles(in, with_size(h));
   ASSERT_TRUE(closed_and_oriented(out.F));
   EXPECT_NEAR(volume(out), 2.0, 1e-9);
   // Each triangle lies in the plane of its face id, facing the same way.
@@ -126,7 +132,7 @@ TEST(RemeshTriangles, BoxBecomesIsotropicAndKeepsItsFacesAndCorners) {
 
 TEST(RemeshTriangles, VerticesStayOnTheInputTrianglesOfTheirFace) {
   const SurfaceMesh in = cylinder(5, 12, 24);
-  const SurfaceMesh out = remesh_triangles(in, {1.0, 10, {}});
+  const SurfaceMesh out = remesh_triangles(in, with_size(1.0));
   ASSERT_TRUE(closed_and_oriented(out.F));
   // Every vertex of a triangle with face id k lies on the input triangles of id k.
   std::map<int, TriangleProjector> on;
@@ -162,15 +168,28 @@ TEST(RemeshTriangles, OpenOrNonManifoldSurfacesAreRefused) {
   open.F.conservativeResize(11, 3);
   open.patch.conservativeResize(11);
   try {
-    remesh_triangles(open, {0.2, 10, {}});
+    remesh_triangles(open, with_size(0.2));
     FAIL() << "no error for an open surface";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("open: edge ("), std::string::npos) << e.what();
   }
   SurfaceMesh flipped = box(1, 1, 1);
   flipped.F.row(0) << flipped.F(0, 0), flipped.F(0, 2), flipped.F(0, 1);
-  EXPECT_THROW(remesh_triangles(flipped, {0.2, 10, {}}), InputError);
+  EXPECT_THROW(remesh_triangles(flipped, with_size(0.2)), InputError);
   SurfaceMesh wrong_ids = box(1, 1, 1);
   wrong_ids.patch.conservativeResize(5);
-  EXPECT_THROW(remesh_triangles(wrong_ids, {0.2, 10, {}}), InputError);
+  EXPECT_THROW(remesh_triangles(wrong_ids, with_size(0.2)), InputError);
+}
+
+TEST(RemeshTriangles, FeatureAngleKeepsTheEdgesOfASurfaceWithoutFaceIds) {
+  SurfaceMesh one = box(2, 1, 1);
+  one.patch.setConstant(7);
+  RemeshTrianglesOptions o = with_size(0.2);
+  o.feature_angle = 45;
+  const SurfaceMesh sharp = remesh_triangles(one, o);
+  ASSERT_TRUE(closed_and_oriented(sharp.F));
+  EXPECT_NEAR(volume(sharp), 2.0, 1e-9);  // no chord cuts an edge of the box
+  for (int t = 0; t < sharp.F.rows(); ++t) EXPECT_EQ(sharp.patch(t), 7);
+  const SurfaceMesh round = remesh_triangles(one, with_size(0.2));  // nothing holds the edges
+  EXPECT_LT(volume(round), 2.0 - 1e-3);
 }
