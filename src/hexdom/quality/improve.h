@@ -64,4 +64,15 @@ ImproveResult improve(const mesh::Mesh& mesh, const ImproveOptions& options = {}
 /// (-1 for interior nodes).
 mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, std::vector<int>* old_to_new = nullptr);
 
+/// \overload Pillows only the boundary faces f with faces[f] != 0 (#faces of
+/// mesh::boundary_faces(mesh), in its order): a layer over part of the boundary. An old node on the
+/// edge of that part (it also lies on a face left out) moves inward along the faces left out
+/// (their tangent plane, or the line where two of them meet), so the layer's side faces lie on them
+/// and the old mesh stays conforming; with a curved face left out, it ends off that face by the
+/// order of depth squared times the curvature (project it back). Throws GeometryError naming the
+/// node where no such move exists: at a corner of three faces left out, or where the faces left
+/// out do not lie ahead of the layer (a reflex edge).
+mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, const std::vector<char>& faces,
+                  std::vector<int>* old_to_new = nullptr);
+
 }  // namespace hexdom::quality
