@@ -14,7 +14,11 @@ namespace hexdom::quality {
 struct ImproveOptions {
   /// Stages. With all three off (the default), the recommended sequence runs: pillow once, then
   /// smoothing and optimisation rounds until the worst scaled Jacobian stops improving, then mean
-  /// passes (see mean_passes) on the better of the pillowed and unpillowed results.
+  /// passes (see mean_passes) on the best of the runs made. The runs, each made only when the ones
+  /// before end inverted or below 0.4: a layer over the smooth regions (faces joined across edges
+  /// that are not sharp) in which a cell has two faces meeting at an edge, i.e. where a polycube
+  /// edge lies on a smooth surface, and over the regions across a reflex edge from them; a layer
+  /// everywhere; no layer.
   bool pillow = false;
   int smooth = 0;    ///< smoothing passes
   int optimize = 0;  ///< optimisation rounds
