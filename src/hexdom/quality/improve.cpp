@@ -205,7 +205,7 @@ Constraints constraints(const mesh::Mesh& m, const Topology& t, const mesh::Surf
 // takes the angle, and the faces around them, across sharp edges, get a ring of layer sides
 // instead of keeping the round corner in their own quads (the cap of a cylinder: a full layer
 // would copy its corner quads, three nodes on the rim, as they are). A region across a reflex edge
-// from one of those joins them. Empty when no region has such a cell.
+// from one of those joins them. Empty when no region has such a cell, or when they are all.
 std::vector<char> smooth_layer_faces(const mesh::Mesh& m, const Topology& t) {
   std::map<int, std::vector<int>> cell_faces;
   for (int f = 0; f < static_cast<int>(t.faces.size()); ++f) cell_faces[t.faces[f].cell].push_back(f);
@@ -242,6 +242,7 @@ std::vector<char> smooth_layer_faces(const mesh::Mesh& m, const Topology& t) {
   }
   std::vector<char> mask(t.faces.size(), 0);
   for (size_t f = 0; f < mask.size(); ++f) mask[f] = regions.count(t.region[f]) > 0;
+  if (std::all_of(mask.begin(), mask.end(), [](char x) { return x != 0; })) return {};  // the layer everywhere
   return mask;
 }
 
