@@ -263,9 +263,6 @@ def test_mesh_missing_input_is_exit_1(tmp_path):
 CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
              "n11o_limit_cycle", "i10o_simp", "i11o_s1"]
 _CAD_DEFECT = {
-    "s15o_cylinder": "issue 9: worst hex SJ 0.206 (pillowed, volume -0.44% against the tessellation; the layer "
-                     "over the 4 polycube edges on the round side is thin)",
-    "n11o_limit_cycle": "issue 9: worst hex SJ 0.152 (a polycube edge across a smooth blend)",
     "i10o_simp": "issue 9: the labelling cannot be repaired at lambda 0.1, 1, 0.3 or 3 (relabelling cascades "
                  "to one chart)",
     "i11o_s1": "issue 9: after untangling, the polycube map still folds 9 triangles of two large charts (+X 268 "

@@ -30,12 +30,7 @@ _NOT_MESHED = {
     "i01o_m1": "issue 9: autopolycube: the polycube map folds 267 triangles (charts 5 and 6, -Z / +Z)",
 }
 # Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
-_SJ_DEFECT = {
-    "n11o_limit_cycle": "issue 9: worst hex SJ 0.146 after the snap (0.152 before it): a polycube edge across a "
-                        "smooth blend",
-    "s15o_cylinder": "issue 9: worst hex SJ 0.215 after the snap (0.206 before it): the pillowed mesh is kept "
-                     "(volume -0.44%, mean 0.91); without the layer the worst is 0.298 but the volume -1.44%",
-}
+_SJ_DEFECT = {}
 _VOLUME_DEFECT = {}
 
 

@@ -1,5 +1,6 @@
 #include "hexdom/quality/improve.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -86,6 +87,8 @@ struct Topology {
   std::vector<Kind> kind;
   std::vector<std::vector<int>> curve_nbrs;  // feature-edge neighbours of curve nodes
   std::vector<std::vector<int>> edge_nbrs;   // mesh-edge neighbours of every node
+  std::vector<int> region;  // per boundary face: its smooth region (faces joined across edges not sharp)
+  std::vector<std::pair<int, int>> across_sharp;  // the two faces of each sharp edge that has two
 };
 
 Topology topology(const mesh::Mesh& m, double feature_angle, const std::vector<char>* sharp) {
@@ -127,6 +130,7 @@ Topology topology(const mesh::Mesh& m, double feature_angle, const std::vector<c
     }
   t.curve_nbrs.assign(nn, {});
   const double cos_limit = std::cos(feature_angle * M_PI / 180.0);
+  std::vector<std::pair<int, int>> joined;  // faces on both sides of an edge that is not sharp
   for (const auto& [e, fs] : edge_faces) {
     bool sharp_edge;
     if (sharp) {
@@ -141,7 +145,21 @@ Topology topology(const mesh::Mesh& m, double feature_angle, const std::vector<c
     if (sharp_edge) {
       t.curve_nbrs[e.first].push_back(e.second);
       t.curve_nbrs[e.second].push_back(e.first);
+      if (fs.size() == 2) t.across_sharp.emplace_back(fs[0], fs[1]);
+    } else if (fs.size() == 2) {
+      joined.emplace_back(fs[0], fs[1]);
     }
+  }
+  {
+    std::vector<int> up(t.faces.size());
+    for (size_t f = 0; f < up.size(); ++f) up[f] = static_cast<int>(f);
+    auto root = [&](int f) {
+      while (up[f] != f) f = up[f] = up[up[f]];
+      return f;
+    };
+    for (const auto& [a, b] : joined) up[root(a)] = root(b);
+    t.region.resize(t.faces.size());
+    for (size_t f = 0; f < up.size(); ++f) t.region[f] = root(static_cast<int>(f));
   }
   t.kind.assign(nn, Interior);
   for (int v = 0; v < nn; ++v) {
@@ -179,6 +197,53 @@ Constraints constraints(const mesh::Mesh& m, const Topology& t, const mesh::Surf
   for (size_t i = 0; i < segs.size(); ++i) S.row(i) << segs[i][0], segs[i][1], segs[i][2];
   if (S.rows()) c.curves = mesh::TriangleProjector(m.V, S);
   return c;
+}
+
+// Boundary faces for a layer where a polycube edge lies on a smooth surface: the smooth regions in
+// which some cell has two faces meeting at an edge. That cell's dihedral there is near 180 degrees
+// (a grid corner on a round side), which no node placement mends. A layer over those regions only
+// takes the angle, and the faces around them, across sharp edges, get a ring of layer sides
+// instead of keeping the round corner in their own quads (the cap of a cylinder: a full layer
+// would copy its corner quads, three nodes on the rim, as they are). A region across a reflex edge
+// from one of those joins them. Empty when no region has such a cell, or when they are all.
+std::vector<char> smooth_layer_faces(const mesh::Mesh& m, const Topology& t) {
+  std::map<int, std::vector<int>> cell_faces;
+  for (int f = 0; f < static_cast<int>(t.faces.size()); ++f) cell_faces[t.faces[f].cell].push_back(f);
+  std::set<int> regions;
+  for (const auto& [c, fs] : cell_faces)
+    for (size_t i = 0; i < fs.size(); ++i)
+      for (size_t j = i + 1; j < fs.size(); ++j) {
+        const auto &a = t.faces[fs[i]], &b = t.faces[fs[j]];
+        if (t.region[fs[i]] != t.region[fs[j]]) continue;
+        int shared = 0;
+        for (int x = 0; x < a.n; ++x)
+          for (int y = 0; y < b.n; ++y) shared += a.v[x] == b.v[y];
+        if (shared >= 2) regions.insert(t.region[fs[i]]);
+      }
+  if (regions.empty()) return {};
+  // The layer cannot end at a reflex edge (its side faces would lie inside the part): it goes on
+  // across it, over the next region too.
+  auto centroid = [&](int f) {
+    Vec c = Vec::Zero();
+    for (int i = 0; i < t.faces[f].n; ++i) c += m.V.row(t.faces[f].v[i]).transpose();
+    return Vec(c / t.faces[f].n);
+  };
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const auto& [f, g] : t.across_sharp) {
+      const bool in_f = regions.count(t.region[f]) > 0, in_g = regions.count(t.region[g]) > 0;
+      if (in_f == in_g) continue;
+      const int a = in_f ? f : g, b = in_f ? g : f;  // a in the layer, b not
+      if ((centroid(b) - centroid(a)).dot(face_normal(m, t.faces[a])) > 0) {  // b in front of a: reflex
+        regions.insert(t.region[b]);
+        grew = true;
+      }
+    }
+  }
+  std::vector<char> mask(t.faces.size(), 0);
+  for (size_t f = 0; f < mask.size(); ++f) mask[f] = regions.count(t.region[f]) > 0;
+  if (std::all_of(mask.begin(), mask.end(), [](char x) { return x != 0; })) return {};  // the layer everywhere
+  return mask;
 }
 
 class Improver {
@@ -472,22 +537,28 @@ class Improver {
 
 }  // namespace
 
-mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_new) {
+namespace {
+
+// The layer over the boundary faces f with (*mask)[f] (all of them without a mask); see pillow().
+mesh::Mesh pillow_faces(const mesh::Mesh& m, double depth, const std::vector<char>* mask, std::vector<int>* old_to_new) {
   const auto faces = mesh::boundary_faces(m);
+  if (mask && mask->size() != faces.size())
+    throw GeometryError("pillow: " + std::to_string(mask->size()) + " face flags for " + std::to_string(faces.size()) +
+                        " boundary faces");
+  auto selected = [&](size_t f) { return !mask || (*mask)[f]; };
   const int nn = m.num_nodes();
   std::vector<int> copy(nn, -1);
-  std::vector<Vec> normal(nn, Vec::Zero());
   std::vector<double> shortest(nn, std::numeric_limits<double>::max());
   int next = nn;
-  for (const auto& f : faces) {
-    const Vec n = face_normal(m, f);
+  for (size_t k = 0; k < faces.size(); ++k) {
+    if (!selected(k)) continue;
+    const auto& f = faces[k];
     for (int i = 0; i < f.n; ++i) {
-      const int v = f.v[i];
+      const int v = f.v[i], w = f.v[(i + 1) % f.n];
       if (copy[v] < 0) copy[v] = next++;
-      normal[v] += n;
-      const double l = (m.V.row(v) - m.V.row(f.v[(i + 1) % f.n])).norm();
+      const double l = (m.V.row(v) - m.V.row(w)).norm();
       shortest[v] = std::min(shortest[v], l);
-      shortest[f.v[(i + 1) % f.n]] = std::min(shortest[f.v[(i + 1) % f.n]], l);
+      shortest[w] = std::min(shortest[w], l);
     }
   }
   Eigen::MatrixXd V(next, 3);
@@ -502,7 +573,11 @@ mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_ne
     b.types.push_back(m.types(c));
     b.region.push_back(m.region(c));
   }
-  for (const auto& f : faces) {
+  std::vector<int> layer_face;  // the boundary face under each new cell
+  for (size_t k = 0; k < faces.size(); ++k) {
+    if (!selected(k)) continue;
+    const auto& f = faces[k];
+    layer_face.push_back(static_cast<int>(k));
     if (f.n == 4) {
       int h[8] = {f.v[0], f.v[1], f.v[2], f.v[3], copy[f.v[0]], copy[f.v[1]], copy[f.v[2]], copy[f.v[3]]};
       b.add(CellType::Hex, h, m.region(f.cell));
@@ -517,17 +592,28 @@ mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_ne
   std::vector<double> scale(nn, 1.0);
   std::vector<Vec> dir(nn, Vec::Zero());
   // Inward direction: one that makes a positive angle with every corner normal of the node's
-  // boundary faces (else a thin layer cell on a warped face inverts at that corner, however thin):
+  // layer faces (else a thin layer cell on a warped face inverts at that corner, however thin):
   // start from the mean corner normal and lean toward the worst one until all agree.
   {
-    std::vector<std::vector<Vec>> corner_normals(nn);
-    for (const auto& f : faces)
+    std::vector<std::vector<Vec>> corner_normals(nn), left_normals(nn);
+    std::vector<Vec> left_ahead(nn, Vec::Zero());  // sum of (centroid - node) over faces left out
+    for (size_t k = 0; k < faces.size(); ++k) {
+      const auto& f = faces[k];
+      Vec c = Vec::Zero();
+      for (int i = 0; i < f.n; ++i) c += m.V.row(f.v[i]).transpose();
+      c /= f.n;
       for (int i = 0; i < f.n; ++i) {
         const Vec p = m.V.row(f.v[i]).transpose();
-        const Vec a = m.V.row(f.v[(i + 1) % f.n]).transpose() - p, b = m.V.row(f.v[(i + f.n - 1) % f.n]).transpose() - p;
-        const Vec cn = a.cross(b);
-        if (cn.norm() > 0) corner_normals[f.v[i]].push_back(-cn.normalized());  // inward
+        const Vec a = m.V.row(f.v[(i + 1) % f.n]).transpose() - p, e = m.V.row(f.v[(i + f.n - 1) % f.n]).transpose() - p;
+        const Vec cn = a.cross(e);
+        if (selected(k)) {
+          if (cn.norm() > 0) corner_normals[f.v[i]].push_back(-cn.normalized());  // inward
+        } else if (copy[f.v[i]] >= 0) {
+          if (cn.norm() > 0) left_normals[f.v[i]].push_back(-cn.normalized());
+          left_ahead[f.v[i]] += c - p;
+        }
       }
+    }
     for (int v = 0; v < nn; ++v) {
       if (copy[v] < 0 || corner_normals[v].empty()) continue;
       Vec d = Vec::Zero();
@@ -542,13 +628,32 @@ mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_ne
         if (w > 0.3 || !worst) break;
         d = (d + 0.5 * *worst).normalized();
       }
+      if (!left_normals[v].empty()) {
+        // On the edge of the layer: along the faces left out. Their normals span one direction
+        // (one smooth face: move in its tangent plane), two (two faces meeting at an angle: move
+        // along the line where they meet) or three (a corner: no move keeps the node on them).
+        Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
+        for (const Vec& q : left_normals[v]) N += q * q.transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(N);  // ascending eigenvalues
+        const Eigen::Vector3d lam = es.eigenvalues();
+        const int normals = (lam(2) > 0) + (lam(1) > 0.1 * lam(2)) + (lam(0) > 0.1 * lam(2));
+        Vec t = Vec::Zero();
+        if (normals == 1) t = d - es.eigenvectors().col(2) * es.eigenvectors().col(2).dot(d);
+        else if (normals == 2) t = es.eigenvectors().col(0) * es.eigenvectors().col(0).dot(d);
+        const Vec ahead = left_ahead[v].normalized();
+        if (!(t.norm() > 0.05) || !(t.normalized().dot(ahead) > 0.1))
+          throw GeometryError("pillow: node " + std::to_string(v + 1) +
+                              " lies where the layer ends, and no move inward keeps it on the faces left out" +
+                              (normals >= 3 ? " (a corner of them)" : ""));
+        d = t.normalized();
+      }
       dir[v] = d;
     }
   }
   std::vector<char> was_valid(out.num_cells(), 1);
   for (int c = 0; c < m.num_cells(); ++c) was_valid[c] = !is_inverted(scaled_jacobian(m.type(c), cell_points(m, c)));
   // A layer cell on the face of an inverted cell inherits its orientation: no depth mends it.
-  for (size_t k = 0; k < faces.size(); ++k) was_valid[m.num_cells() + k] = was_valid[faces[k].cell];
+  for (size_t k = 0; k < layer_face.size(); ++k) was_valid[m.num_cells() + k] = was_valid[faces[layer_face[k]].cell];
   for (int attempt = 0; attempt < 8; ++attempt) {
     for (int v = 0; v < nn; ++v)
       if (copy[v] >= 0) out.V.row(v) = (m.V.row(v).transpose() + scale[v] * depth * shortest[v] * dir[v]).transpose();
@@ -569,6 +674,16 @@ mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_ne
   return out;
 }
 
+}  // namespace
+
+mesh::Mesh pillow(const mesh::Mesh& m, double depth, std::vector<int>* old_to_new) {
+  return pillow_faces(m, depth, nullptr, old_to_new);
+}
+
+mesh::Mesh pillow(const mesh::Mesh& m, double depth, const std::vector<char>& faces, std::vector<int>* old_to_new) {
+  return pillow_faces(m, depth, &faces, old_to_new);
+}
+
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -579,25 +694,39 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // and the improver working on it.
 class Run {
  public:
+  // `layer`: the boundary faces to pillow (smooth_layer_faces); null or empty: all of them.
+  // Throws GeometryError when the layer cannot be made.
   Run(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow, const std::vector<char>* sharp_in,
-      const Constraints& cons, const std::function<void(const std::string&)>& log)
+      const Constraints& cons, const std::function<void(const std::string&)>& log, const std::vector<char>* layer = nullptr)
       : with_pillow_(with_pillow), log_(log) {
     m_ = input;
     std::vector<char> sharp;
     if (sharp_in) sharp = *sharp_in;
     std::vector<int> copy;
+    const bool partial = with_pillow && layer && !layer->empty();
+    partial_ = partial;
     if (with_pillow) {
-      m_ = pillow(input, opt.pillow_depth, &copy);
+      m_ = partial ? pillow(input, opt.pillow_depth, *layer, &copy) : pillow(input, opt.pillow_depth, &copy);
       r_.pillow_cells = m_.num_cells() - input.num_cells();
-      if (sharp_in) {
+      if (sharp_in) {  // the copies take the flags; old nodes under the layer are no longer on the boundary
         std::vector<char> s2(m_.num_nodes(), 0);
         for (int v = 0; v < input.num_nodes(); ++v)
-          if (sharp[v] && copy[v] >= 0) s2[copy[v]] = 1;
+          if (sharp[v]) s2[copy[v] >= 0 ? copy[v] : v] = 1;
         sharp = std::move(s2);
       }
     }
     // The pillowed boundary has the original geometry, so the angle test finds the same features.
     t_ = topology(m_, opt.feature_angle, sharp_in ? &sharp : nullptr);
+    if (partial) {
+      // Old nodes on the edge of the layer moved along the faces left out, in straight lines: back
+      // onto the surface (and onto their feature curve when they moved along one).
+      for (int v = 0; v < input.num_nodes(); ++v) {
+        if (copy[v] < 0 || t_.node_faces[v].empty()) continue;
+        Vec x = m_.V.row(v).transpose();
+        if (t_.kind[v] == Curve && !cons.curves.empty()) x = cons.curves.project(x);
+        if (t_.kind[v] != Interior) m_.V.row(v) = cons.surface.project(x).transpose();
+      }
+    }
     for (auto k : t_.kind) {
       r_.feature_nodes += k == Curve;
       r_.corner_nodes += k == Corner;
@@ -615,7 +744,9 @@ class Run {
   Run(const Run&) = delete;
   Run& operator=(const Run&) = delete;
 
-  std::string name() const { return with_pillow_ ? "pillowed" : "without pillowing"; }
+  std::string name() const {
+    return with_pillow_ ? (partial_ ? "pillowed (smooth regions)" : "pillowed") : "without pillowing";
+  }
   double worst() const { return imp_->worst(); }
   double worst_hex() const { return imp_->worst_hex(); }
   int rounds() const { return r_.rounds; }
@@ -693,7 +824,7 @@ class Run {
   }
 
  private:
-  bool with_pillow_;
+  bool with_pillow_, partial_ = false;
   std::function<void(const std::string&)> log_;
   ImproveResult r_;
   mesh::Mesh m_;
@@ -737,6 +868,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   cons.project = opt.project;
   const QualityReport before = quality_report(input);
   const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
+  const std::vector<char> layer = smooth_layer_faces(input, t0);
 
   ImproveResult r;
   if (!recommended) {
@@ -746,35 +878,44 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     run.set_rounds(std::max(opt.smooth, opt.optimize));
     r = run.finish();
   } else {
-    // Pillowing is preferred (no hex keeps two faces on the boundary), but where the boundary is
-    // pinched or the layer cannot be made valid it can end worse; then the run without it is
-    // made too and the better one kept: fewer inverted cells first, then the better worst hex
-    // (the worst cell when there are no hexes), near ties going to the pillowed mesh. A pillowed
-    // run with no inverted cell whose worst hex reaches 0.4 (and the input's) is kept without
-    // trying the other.
+    // Pillowing is preferred (no hex keeps two faces on the boundary). Where a polycube edge lies
+    // on a smooth surface, a layer over those smooth regions only comes first (smooth_layer_faces),
+    // then the layer everywhere, then no layer: where the boundary is pinched or a layer cannot be
+    // made valid it can end worse. The first run with no inverted cell whose worst hex reaches 0.4
+    // (and the input's) is kept without trying the next; otherwise the best of the runs made is:
+    // fewer inverted cells first, then the better worst hex (the worst cell when there are no
+    // hexes), near ties (0.02) going to the earlier run unless it ends below the input's worst.
     const double worst_hex_before = before.hex.count ? before.hex.sj_min : worst_of(before);
-    std::unique_ptr<Run> pillowed, plain;
-    try {
-      pillowed = std::make_unique<Run>(input, opt, true, sp, cons, log);
-      pillowed->worst_stage(opt.max_rounds);
-    } catch (const GeometryError& e) {
-      if (opt.log) opt.log(1, std::string("pillowing skipped: ") + e.what());
-      pillowed.reset();
+    auto good_enough = [&](const Run& x) { return x.inverted() == 0 && x.worst_hex() >= std::max(0.4, worst_hex_before); };
+    std::vector<std::unique_ptr<Run>> runs;
+    for (const std::vector<char>* faces : {&layer, static_cast<const std::vector<char>*>(nullptr)}) {
+      if (faces && faces->empty()) continue;
+      try {
+        runs.push_back(std::make_unique<Run>(input, opt, true, sp, cons, log, faces));
+        runs.back()->worst_stage(opt.max_rounds);
+      } catch (const GeometryError& e) {
+        if (opt.log) opt.log(1, std::string(faces ? "layer on the smooth regions skipped: " : "pillowing skipped: ") + e.what());
+        continue;
+      }
+      if (good_enough(*runs.back())) break;
     }
-    const bool good_enough = pillowed && pillowed->inverted() == 0 && pillowed->worst_hex() >= std::max(0.4, worst_hex_before);
-    if (!good_enough) {
-      plain = std::make_unique<Run>(input, opt, false, sp, cons, log);
-      // Against a valid pillowed mesh, the second run gets twice the first one's rounds (at least
-      // 10): untangling that creeps on beyond that would not win.
-      const bool rival = pillowed && pillowed->inverted() == 0;
-      plain->worst_stage(rival ? std::min(opt.max_rounds, std::max(10, 2 * pillowed->rounds())) : opt.max_rounds);
+    if (runs.empty() || !good_enough(*runs.back())) {
+      // Against a valid pillowed mesh, the run without a layer gets twice the rounds of the best
+      // pillowed one (at least 10): untangling that creeps on beyond that would not win.
+      int rival_rounds = -1;
+      for (const auto& x : runs)
+        if (x->inverted() == 0) rival_rounds = std::max(rival_rounds, x->rounds());
+      runs.push_back(std::make_unique<Run>(input, opt, false, sp, cons, log));
+      runs.back()->worst_stage(rival_rounds >= 0 ? std::min(opt.max_rounds, std::max(10, 2 * rival_rounds)) : opt.max_rounds);
     }
-    const bool take_pillowed = pillowed &&
-        (!plain || pillowed->inverted() < plain->inverted() ||
-         (pillowed->inverted() == plain->inverted() && pillowed->worst_hex() >= plain->worst_hex() - 0.02 &&
-          pillowed->worst_hex() >= worst_hex_before));
-    Run& best = take_pillowed ? *pillowed : *plain;
-    if (!take_pillowed && pillowed) log("kept the result without pillowing: its worst cell is better");
+    Run* kept = runs.front().get();
+    for (const auto& x : runs)
+      if (x->inverted() < kept->inverted() ||
+          (x->inverted() == kept->inverted() &&
+           (kept->worst_hex() < x->worst_hex() - 0.02 || (kept->worst_hex() < worst_hex_before && x->worst_hex() > kept->worst_hex()))))
+        kept = x.get();
+    Run& best = *kept;
+    if (kept != runs.front().get()) log("kept the result " + best.name() + ": its worst cell is better");
     // The mean only on the mesh kept: it never changes the worst cell the choice was made on.
     best.mean_stage(opt.mean_passes, 3e-3);
     r = best.finish();

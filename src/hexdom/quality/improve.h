@@ -14,7 +14,11 @@ namespace hexdom::quality {
 struct ImproveOptions {
   /// Stages. With all three off (the default), the recommended sequence runs: pillow once, then
   /// smoothing and optimisation rounds until the worst scaled Jacobian stops improving, then mean
-  /// passes (see mean_passes) on the better of the pillowed and unpillowed results.
+  /// passes (see mean_passes) on the best of the runs made. The runs, each made only when the ones
+  /// before end inverted or below 0.4: a layer over the smooth regions (faces joined across edges
+  /// that are not sharp) in which a cell has two faces meeting at an edge, i.e. where a polycube
+  /// edge lies on a smooth surface, and over the regions across a reflex edge from them; a layer
+  /// everywhere; no layer.
   bool pillow = false;
   int smooth = 0;    ///< smoothing passes
   int optimize = 0;  ///< optimisation rounds
@@ -63,5 +67,16 @@ ImproveResult improve(const mesh::Mesh& mesh, const ImproveOptions& options = {}
 /// new mesh; `old_to_new` (#V of the input) receives each old boundary node's new boundary copy
 /// (-1 for interior nodes).
 mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, std::vector<int>* old_to_new = nullptr);
+
+/// \overload Pillows only the boundary faces f with faces[f] != 0 (#faces of
+/// mesh::boundary_faces(mesh), in its order): a layer over part of the boundary. An old node on the
+/// edge of that part (it also lies on a face left out) moves inward along the faces left out
+/// (their tangent plane, or the line where two of them meet), so the layer's side faces lie on them
+/// and the old mesh stays conforming; with a curved face left out, it ends off that face by the
+/// order of depth squared times the curvature (project it back). Throws GeometryError naming the
+/// node where no such move exists: at a corner of three faces left out, or where the faces left
+/// out do not lie ahead of the layer (a reflex edge).
+mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, const std::vector<char>& faces,
+                  std::vector<int>* old_to_new = nullptr);
 
 }  // namespace hexdom::quality
