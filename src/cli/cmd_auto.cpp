@@ -37,7 +37,11 @@ void run_autopolycube(AutoPolycubeArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   mesh::SurfaceMesh labels = io::read_surface(a.in);
   bool from_normals = false;
-  labels.patch = segmentation::labels_of_parts(labels, &from_normals);
+  try {
+    labels.patch = segmentation::labels_of_parts(labels, &from_normals);
+  } catch (const InputError& e) {
+    throw InputError(a.in + ": " + e.what());
+  }
   if (from_normals)
     print_log(0, a.in + ": part ids are patches, not labels 1..6: each patch labelled by the axis nearest its normal");
   autopolycube::AutoPolycube progress;

@@ -153,14 +153,14 @@ def test_autopolycube_reports_its_figures(hepta_auto):
 def test_autopolycube_errors_write_nothing(tmp_path):
     raw = _raw("hepta")
     out, patches = tmp_path / "s.k", tmp_path / "p.k"
-    # A raw surface's part ids are not axis labels 1..6 everywhere.
+    # One part id over the whole closed surface: neither labels 1..6 nor patches of one orientation.
     V, F, _ = _k_surface(raw)
     bad = tmp_path / "bad.obj"
     with open(bad, "w") as f:
         f.write("".join(f"v {x} {y} {z}\n" for x, y, z in V))
         f.write("g patch_9\n" + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F))
     r = _run("autopolycube", "-i", bad, "-o", out, "--patches-out", patches, ok=False)
-    assert r.returncode == 1 and "label 9" in r.stderr
+    assert r.returncode == 1 and "bad.obj: part 9 (" in r.stderr and "faces no one axis" in r.stderr
     assert not out.exists() and not patches.exists()
     r = _run("autopolycube", "-i", raw, "-o", tmp_path / "s.xyz", "--patches-out", patches, ok=False)
     assert r.returncode == 1 and not patches.exists()

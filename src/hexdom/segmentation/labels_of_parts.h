@@ -10,7 +10,9 @@ namespace hexdom::segmentation {
 /// segmentations). The ids are taken as labels when all lie in 1..6 and each id's area-weighted
 /// normal is nearest its own label's axis; otherwise every part (triangles of one id) gets the
 /// label of the axis nearest its area-weighted normal. `relabelled` (optional) receives true when
-/// the ids were not labels.
+/// the ids were not labels. Throws InputError naming a part whose triangles face no one axis (its
+/// area-weighted normal shorter than half its area, e.g. a whole closed surface as one part): the
+/// surface is then neither labelled nor segmented.
 Eigen::VectorXi labels_of_parts(const mesh::SurfaceMesh& surface, bool* relabelled = nullptr);
 
 }  // namespace hexdom::segmentation
