@@ -357,14 +357,43 @@ struct NodeFreedom {
   std::function<void(int v, double* q)> clamp;
 };
 
+// Node -> cell rows of a mesh (cells in increasing order in each row), built once for the
+// relaxation and the untangling.
+struct Adjacency {
+  std::vector<int> start, cells;
+  std::vector<signed char> count;  ///< nodes per cell
+  std::vector<CellType> type;      ///< per cell
+};
+Adjacency node_cells(const mesh::Mesh& M) {
+  Adjacency A;
+  const int nn = M.num_nodes(), nc = M.num_cells();
+  A.count.resize(nc);
+  A.type.resize(nc);
+  for (int c = 0; c < nc; ++c) {
+    A.type[c] = M.type(c);
+    A.count[c] = static_cast<signed char>(mesh::node_count(A.type[c]));
+  }
+  const int* cn = M.cells.data();
+  const int stride = static_cast<int>(M.cells.cols());
+  A.start.assign(nn + 1, 0);
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < A.count[c]; ++i) ++A.start[cn[c * stride + i] + 1];
+  for (int v = 0; v < nn; ++v) A.start[v + 1] += A.start[v];
+  A.cells.resize(A.start[nn]);
+  std::vector<int> fill(A.start.begin(), A.start.end() - 1);
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < A.count[c]; ++i) A.cells[fill[cn[c * stride + i]]++] = c;
+  return A;
+}
+
 // Moves nodes inside the volume (kind Free) next to cells whose scaled Jacobian (the quality
 // module's, -1 for inverted cells) is at most `poor` towards the centroid of their edge
 // neighbours (steps 1, 1/2, 1/4), keeping a move only when the worst of the node's cells rises;
 // sweeps over those nodes in order until one moves none, at most `sweeps` times. The search for
 // poor cells runs on `threads` threads. When `left` is given, it receives every cell whose
 // scaled-Jacobian samples reach down to `left_threshold` (< poor) afterwards, in increasing order.
-std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int sweeps, double poor, int threads,
-                       std::vector<int>* left = nullptr, double left_threshold = 0) {
+std::string relax_poor(mesh::Mesh& M, const Adjacency& adj, const std::vector<signed char>& kind, int sweeps, double poor,
+                       int threads, std::vector<int>* left = nullptr, double left_threshold = 0) {
   const int nn = M.num_nodes(), nc = M.num_cells();
   auto cell_sj = [&](int c) {
     const double sj = quality::scaled_jacobian(M.type(c), quality::cell_points(M, c));
@@ -372,8 +401,7 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
   };
   const int* cells = M.cells.data();  // row-major, 8 per cell
   const int stride = static_cast<int>(M.cells.cols());
-  std::vector<signed char> cnt(nc);
-  for (int c = 0; c < nc; ++c) cnt[c] = static_cast<signed char>(mesh::node_count(M.type(c)));
+  const std::vector<signed char>& cnt = adj.count;
   auto points = [&](int c, double (*p)[3]) {
     for (int i = 0; i < cnt[c]; ++i)
       for (int d = 0; d < 3; ++d) p[i][d] = M.V(cells[c * stride + i], d);
@@ -386,7 +414,7 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
       double p[8][3];
       points(c, p);
       // The root-free test is a superset up to rounding; the quality module decides.
-      is_poor[c] = sj_at_most(M.type(c), p, poor + 1e-9) && cell_sj(c) <= poor;
+      is_poor[c] = sj_at_most(adj.type[c], p, poor + 1e-9) && cell_sj(c) <= poor;
     }
   });
   std::vector<int> poor_cells;
@@ -408,7 +436,7 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
     for (int c : all) {
       double p[8][3];
       points(c, p);
-      if (sj_at_most(M.type(c), p, left_threshold + 1e-9)) left->push_back(c);
+      if (sj_at_most(adj.type[c], p, left_threshold + 1e-9)) left->push_back(c);
     }
   };
   std::vector<int> nodes;
@@ -418,20 +446,12 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
     report_left({});
     return "relaxation: no node next to a poor cell";
   }
-  std::vector<int> start(nn + 1, 0), inc;
-  for (int c = 0; c < nc; ++c)
-    for (int i = 0; i < cnt[c]; ++i)
-      if (candidate[cells[c * stride + i]]) ++start[cells[c * stride + i] + 1];
-  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
-  inc.resize(start[nn]);
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int c = 0; c < nc; ++c)
-      for (int i = 0; i < cnt[c]; ++i)
-        if (candidate[cells[c * stride + i]]) inc[fill[cells[c * stride + i]]++] = c;
-  }
+  const std::vector<int>& start = adj.start;
+  const std::vector<int>& inc = adj.cells;
+  std::vector<int> around;  // cells of the candidate nodes
+  for (int v : nodes) around.insert(around.end(), inc.begin() + start[v], inc.begin() + start[v + 1]);
   std::vector<double> sj(nc, 2.0);  // cached scaled Jacobian of the cells around the nodes
-  for (int c : inc)
+  for (int c : around)
     if (sj[c] == 2.0) sj[c] = cell_sj(c);
   std::vector<double> trial;
   // A node whose last try failed is skipped until a node of one of its cells moves: its try would
@@ -481,7 +501,7 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
     moves += moved;
     if (!moved) break;
   }
-  report_left(inc);
+  report_left(around);
   return "relaxation: " + std::to_string(nodes.size()) + " nodes next to poor cells, " + std::to_string(moves) + " moves in " +
          std::to_string(sweep) + " sweeps";
 }
@@ -495,7 +515,7 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
 // patch parameters, at most `box` from where they were made), which untangles inverted cells: their
 // samples are negative. Nodes of poor cells next to a moved node are visited again, up to `sweeps`
 // rounds. Returns a one-line summary.
-std::string untangle_nodes(mesh::Mesh& M, NodeFreedom& F, int sweeps, double trigger, double poor, double poor_surface,
+std::string untangle_nodes(mesh::Mesh& M, const Adjacency& adj, NodeFreedom& F, int sweeps, double trigger, double poor, double poor_surface,
                            double box, const std::vector<int>* candidates = nullptr, std::vector<int>* left = nullptr) {
   long long visits = 0, moves = 0, evals = 0;
   const int nn = M.num_nodes(), nc = M.num_cells();
@@ -503,12 +523,8 @@ std::string untangle_nodes(mesh::Mesh& M, NodeFreedom& F, int sweeps, double tri
   for (int v = 0; v < nn; ++v)
     for (int d = 0; d < 3; ++d) x[3 * v + d] = M.V(v, d);
   std::vector<std::array<double, 2>>& param = F.now;
-  std::vector<signed char> cnt(nc);
-  std::vector<CellType> type(nc);
-  for (int c = 0; c < nc; ++c) {
-    type[c] = M.type(c);
-    cnt[c] = static_cast<signed char>(mesh::node_count(type[c]));
-  }
+  const std::vector<signed char>& cnt = adj.count;
+  const std::vector<CellType>& type = adj.type;
   auto cell_sj = [&](int c) {
     double p[8][3], s[9];
     for (int i = 0; i < cnt[c]; ++i)
@@ -537,26 +553,24 @@ std::string untangle_nodes(mesh::Mesh& M, NodeFreedom& F, int sweeps, double tri
     if (left) left->clear();
     return "untangling: no poor cell";
   }
-  std::vector<int> around;  // cells holding a node of a poor cell
-  for (int c = 0; c < nc; ++c) {
-    bool touch = false;
-    for (int i = 0; i < cnt[c] && !touch; ++i) touch = mark[M.cells(c, i)] == 1;
-    if (touch) around.push_back(c);
-  }
-  for (int c : around)
-    for (int i = 0; i < cnt[c]; ++i) mark[M.cells(c, i)] = std::max<char>(mark[M.cells(c, i)], 2);
-  std::vector<int> start(nn + 1, 0), inc;
-  for (int c = 0; c < nc; ++c)
-    for (int i = 0; i < cnt[c]; ++i)
-      if (mark[M.cells(c, i)]) ++start[M.cells(c, i) + 1];
-  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
-  inc.resize(start[nn]);
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int c = 0; c < nc; ++c)
-      for (int i = 0; i < cnt[c]; ++i)
-        if (mark[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
-  }
+  const std::vector<int>& start = adj.start;
+  const std::vector<int>& inc = adj.cells;
+  std::vector<int> ones;  // nodes of poor cells
+  for (int c : poor_cells)
+    for (int i = 0; i < cnt[c]; ++i) ones.push_back(M.cells(c, i));
+  std::sort(ones.begin(), ones.end());
+  ones.erase(std::unique(ones.begin(), ones.end()), ones.end());
+  std::vector<int> reach;  // nodes a visit may reach: those of the cells around the poor cells' nodes
+  for (int v : ones)
+    for (int r = start[v]; r < start[v + 1]; ++r)
+      for (int i = 0; i < cnt[inc[r]]; ++i) {
+        const int u = M.cells(inc[r], i);
+        if (!mark[u]) {
+          mark[u] = 2;
+          reach.push_back(u);
+        }
+      }
+  reach.insert(reach.end(), ones.begin(), ones.end());
   std::vector<int> active;
   std::vector<char> queued(nn, 0);
   auto enqueue_cell = [&](int c, std::vector<int>& list) {
@@ -726,7 +740,8 @@ std::string untangle_nodes(mesh::Mesh& M, NodeFreedom& F, int sweeps, double tri
   for (int v = 0; v < nn; ++v)
     for (int d = 0; d < 3; ++d) M.V(v, d) = x[3 * v + d];
   if (left) {  // cells still at most `trigger`: only cells of marked nodes can have changed
-    std::vector<int> all(inc);
+    std::vector<int> all;
+    for (int v : reach) all.insert(all.end(), inc.begin() + start[v], inc.begin() + start[v + 1]);
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
     left->clear();
@@ -1441,12 +1456,13 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
     // left, within 0.45 of a step. Nodes away from inverted cells keep the plain relaxation's
     // positions exactly.
     std::vector<int> left;
-    log(relax_poor(result, freedom.kind, opt.relax_sweeps, 0.2, nthreads, opt.untangle ? &left : nullptr, 0.0));
+    const Adjacency adj = node_cells(result);
+    log(relax_poor(result, adj, freedom.kind, opt.relax_sweeps, 0.2, nthreads, opt.untangle ? &left : nullptr, 0.0));
     if (opt.untangle)
       for (double box : {0.2, 0.45}) {
         if (left.empty()) break;
         const std::vector<int> candidates = left;
-        log(untangle_nodes(result, freedom, opt.relax_sweeps, 0.0, 0.2, 0.0, box / n, &candidates, &left));
+        log(untangle_nodes(result, adj, freedom, opt.relax_sweeps, 0.0, 0.2, 0.0, box / n, &candidates, &left));
       }
   }
   tick("relaxation");
