@@ -111,13 +111,13 @@ def quality_report(mesh):
     return _hexdom.quality_report(mesh.V, mesh.cells, mesh.types)
 
 
-def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, untangle=False):
+def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, untangle=True, threads=0):
     """Hex-dominant mesh from a segmented Surface and a polycube structure Mesh (hex, prism and tet
     blocks): 8^level cells per block, conforming across blocks; region = 1-based block number.
-    untangle: the untangling relaxation (boundary nodes may slide within the surface) instead of
-    the plain one: far fewer inverted cells before improvement."""
+    untangle: after the plain relaxation, untangle the cells it leaves inverted (boundary nodes may
+    slide within the surface). threads: 0 = one per hardware thread; the result is the same."""
     return Mesh(*_hexdom.generate(surface.V, surface.F, surface.patch, structure.V, structure.cells,
-                                  structure.types, level, relax_sweeps, snap_tolerance, untangle))
+                                  structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
 def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angle=35.0,

@@ -19,9 +19,14 @@ void add_generate(CLI::App& app) {
   cmd->add_option("-s,--level", a->opt.level, "subdivision level: 2^s cells per block edge (0..6)")->capture_default_str();
   cmd->add_option("-o,--output", a->out, "output mesh (.vtk, .vtu, .k, .inp)")->required();
   cmd->add_option("--relax", a->opt.relax_sweeps, "sweeps of validity-preserving relaxation inside the volume")->capture_default_str();
-  cmd->add_flag("--untangle", a->opt.untangle,
-                "untangle instead of the plain relaxation (boundary nodes may slide within the surface): far fewer "
-                "inverted cells before improvement");
+  cmd->add_flag("--untangle,!--no-untangle", a->opt.untangle,
+                "after the plain relaxation, untangle the cells it leaves inverted (boundary nodes may slide within "
+                "the surface); on by default, --no-untangle turns it off");
+  cmd->add_option("--volume-slide", a->opt.volume_slide,
+                  "experiment: sweeps sliding boundary nodes within the surface to enlarge the enclosed volume (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--threads", a->opt.threads, "threads for the patch maps (0: one per hardware thread; same output)")
+      ->capture_default_str();
   cmd->add_option("--report", a->report, "also write the quality report as JSON to this file");
   cmd->callback([=] {
     io::format_of(a->out);

@@ -117,7 +117,7 @@ PYBIND11_MODULE(_hexdom, m) {
 
   m.def("generate", [](const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch,
                        const Eigen::MatrixXd& TV, const CellArray& Tcells, const Eigen::VectorXi& Ttypes,
-                       int level, int relax_sweeps, double snap_tolerance, bool untangle) {
+                       int level, int relax_sweeps, double snap_tolerance, bool untangle, int threads) {
     mesh::SurfaceMesh surface{SV, SF, patch};
     mesh::Mesh structure = make_mesh(TV, Tcells, Ttypes, std::nullopt);
     generation::GenerateOptions opt;
@@ -125,15 +125,17 @@ PYBIND11_MODULE(_hexdom, m) {
     opt.relax_sweeps = relax_sweeps;
     opt.snap_tolerance = snap_tolerance;
     opt.untangle = untangle;
+    opt.threads = threads;
     mesh::Mesh r;
     { py::gil_scoped_release nogil; r = generation::generate(surface, structure, opt); }
     return mesh_tuple(r);
   }, py::arg("surface_V"), py::arg("surface_F"), py::arg("patch"), py::arg("structure_V"),
      py::arg("structure_cells"), py::arg("structure_types"), py::arg("level") = 2,
-     py::arg("relax_sweeps") = 10, py::arg("snap_tolerance") = 1e-4, py::arg("untangle") = false,
+     py::arg("relax_sweeps") = 10, py::arg("snap_tolerance") = 1e-4, py::arg("untangle") = true, py::arg("threads") = 0,
   "Hex-dominant mesh from a segmented surface (V, F, patch id per triangle) and a polycube structure\n"
   "(V, cells, types of hex/prism/tet blocks): 8^level cells per block. Returns (V, cells, types, region).\n"
-  "untangle: untangling relaxation (boundary nodes may slide within the surface) instead of the plain one.");
+  "untangle: after the plain relaxation, untangle the cells it leaves inverted (boundary nodes may slide within\n"
+  "the surface). threads: for the patch maps, block interiors and cells (0: one per hardware thread; same result).");
 
   m.def("improve", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
                       const std::optional<Eigen::VectorXi>& region, bool pillow, int smooth, int optimize,

@@ -3,14 +3,16 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <ctime>
+#include <atomic>
+#include <exception>
+#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <cmath>
 #include <map>
 #include <set>
-#include <unordered_map>
-#include <unordered_set>
+#include <thread>
+#include <cstdint>
 
 #include "hexdom/parametrization/harmonic_map.h"
 #include "hexdom/polycube/patch_layout.h"
@@ -87,12 +89,72 @@ int weights(CellType t, int n, int i, int j, int k, int* w) {
 
 // A lattice point on block boundaries, identified by its weights on structure vertices.
 using Key = std::array<long long, 4>;
-struct KeyHash {
-  size_t operator()(const Key& k) const {
-    size_t h = 1469598103934665603ull;
-    for (long long x : k) h = (h ^ static_cast<size_t>(x)) * 1099511628211ull;
-    return h;
+
+// Calls f(i) for i in [0, n) on `threads` threads (the caller's included), handing out indices in
+// order; f must write only what index i owns. Rethrows the first exception by index.
+template <class Fn>
+void parallel_for(int n, int threads, Fn&& f) {
+  threads = std::max(1, std::min(threads, n));
+  if (threads == 1) {
+    for (int i = 0; i < n; ++i) f(i);
+    return;
   }
+  std::atomic<int> next{0};
+  std::vector<std::exception_ptr> errors(n);
+  auto worker = [&] {
+    for (int i; (i = next.fetch_add(1)) < n;) {
+      try {
+        f(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+// Open-addressing table from keys to node ids (linear probing; sized once for the most keys a
+// run can insert, so it never rehashes): a std::unordered_map allocates a node per key.
+class KeyTable {
+ public:
+  explicit KeyTable(size_t max_keys) {
+    size_t cap = 16;
+    while (cap < 2 * max_keys) cap *= 2;
+    keys_.resize(cap);
+    ids_.assign(cap, -1);
+    mask_ = cap - 1;
+  }
+  /// The id of `k`, inserting it with id `fresh` when absent; `inserted` says which.
+  int find_or_insert(const Key& k, int fresh, bool& inserted) {
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (long long x : k) {
+      h ^= static_cast<uint64_t>(x);
+      h *= 0xbf58476d1ce4e5b9ull;
+      h ^= h >> 31;
+    }
+    for (size_t i = h & mask_;; i = (i + 1) & mask_) {
+      if (ids_[i] < 0) {
+        keys_[i] = k;
+        ids_[i] = fresh;
+        inserted = true;
+        return fresh;
+      }
+      if (keys_[i] == k) {
+        inserted = false;
+        return ids_[i];
+      }
+    }
+  }
+
+ private:
+  std::vector<Key> keys_;
+  std::vector<int> ids_;
+  size_t mask_ = 0;
 };
 
 // Neighbour offsets of the lattices, for harmonic filling.
@@ -120,7 +182,12 @@ struct Curve {  // polyline from one corner to another, with cumulative arc leng
 
 struct PatchMap {
   std::vector<int> tris;        // surface triangles
-  Eigen::MatrixXd uv;           // per surface vertex (rows of vertices in the patch are valid)
+  // The patch on its own: local vertices (in increasing surface vertex order), local triangles
+  // (rows in the order of `tris`) and each local vertex's parametric position.
+  std::vector<int> vertex;      // local -> surface vertex
+  Eigen::MatrixXi F;
+  Eigen::MatrixXd uv;
+  std::vector<int> all;         // 0 .. #tris-1, for the exhaustive search
   std::map<int, Eigen::Vector2d> domain;  // structure vertex -> its domain corner
   // Uniform grid over [0,1]^2 for point location.
   int g = 1;
@@ -130,12 +197,15 @@ struct PatchMap {
 void build_grid(PatchMap& pm, const mesh::SurfaceMesh& S) {
   pm.g = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(pm.tris.size()) / 2.0)));
   pm.cells.assign(pm.g * pm.g, {});
-  for (int t : pm.tris) {
+  (void)S;
+  pm.all.resize(pm.tris.size());
+  for (size_t t = 0; t < pm.tris.size(); ++t) pm.all[t] = static_cast<int>(t);
+  for (int t : pm.all) {
     double lo[2] = {1e30, 1e30}, hi[2] = {-1e30, -1e30};
     for (int k = 0; k < 3; ++k)
       for (int d = 0; d < 2; ++d) {
-        lo[d] = std::min(lo[d], pm.uv(S.F(t, k), d));
-        hi[d] = std::max(hi[d], pm.uv(S.F(t, k), d));
+        lo[d] = std::min(lo[d], pm.uv(pm.F(t, k), d));
+        hi[d] = std::max(hi[d], pm.uv(pm.F(t, k), d));
       }
     auto cell = [&](double x) { return std::max(0, std::min(pm.g - 1, static_cast<int>(std::floor(x * pm.g)))); };
     for (int y = cell(lo[1] - 1e-9); y <= cell(hi[1] + 1e-9); ++y)
@@ -151,7 +221,7 @@ Vec3 evaluate(const PatchMap& pm, const mesh::SurfaceMesh& S, double u, double v
   Vec3 result = Vec3::Zero();
   auto try_tris = [&](const std::vector<int>& list) {
     for (int t : list) {
-      const int a = S.F(t, 0), b = S.F(t, 1), c = S.F(t, 2);
+      const int a = pm.F(t, 0), b = pm.F(t, 1), c = pm.F(t, 2);
       const double x0 = pm.uv(a, 0), y0 = pm.uv(a, 1);
       const double d = (pm.uv(b, 0) - x0) * (pm.uv(c, 1) - y0) - (pm.uv(c, 0) - x0) * (pm.uv(b, 1) - y0);
       if (d == 0) continue;
@@ -163,12 +233,12 @@ Vec3 evaluate(const PatchMap& pm, const mesh::SurfaceMesh& S, double u, double v
         best = m;
         double c0 = std::max(0.0, l0), c1 = std::max(0.0, l1), c2 = std::max(0.0, l2);
         const double sum = c0 + c1 + c2;
-        result = (c0 * S.V.row(a) + c1 * S.V.row(b) + c2 * S.V.row(c)).transpose() / sum;
+        result = (c0 * S.V.row(pm.vertex[a]) + c1 * S.V.row(pm.vertex[b]) + c2 * S.V.row(pm.vertex[c])).transpose() / sum;
       }
     }
   };
   try_tris(pm.cells[cell(v) * pm.g + cell(u)]);
-  if (best < -1e-9) try_tris(pm.tris);  // outside every candidate: search the whole patch
+  if (best < -1e-9) try_tris(pm.all);  // outside every candidate: search the whole patch
   return result;
 }
 
@@ -278,7 +348,8 @@ unsigned affected_mask(CellType t, int lv) {
 struct NodeFreedom {
   enum Kind : signed char { Fixed = 0, Curve = 1, Patch = 2, Free = 3 };
   std::vector<signed char> kind;            ///< per node
-  std::vector<std::array<double, 2>> param; ///< curve parameter t or patch (u, v)
+  std::vector<std::array<double, 2>> param; ///< curve parameter t or patch (u, v) where the node was made
+  std::vector<std::array<double, 2>> now;   ///< the parameters of its current position
   std::vector<const void*> where;           ///< the Curve or PatchMap of a surface node
   /// 3D position of surface node v at parameters q.
   std::function<void(int v, const double* q, double* x)> place;
@@ -286,46 +357,101 @@ struct NodeFreedom {
   std::function<void(int v, double* q)> clamp;
 };
 
+// Node -> cell rows of a mesh (cells in increasing order in each row), built once for the
+// relaxation and the untangling.
+struct Adjacency {
+  std::vector<int> start, cells;
+  std::vector<signed char> count;  ///< nodes per cell
+  std::vector<CellType> type;      ///< per cell
+};
+Adjacency node_cells(const mesh::Mesh& M) {
+  Adjacency A;
+  const int nn = M.num_nodes(), nc = M.num_cells();
+  A.count.resize(nc);
+  A.type.resize(nc);
+  for (int c = 0; c < nc; ++c) {
+    A.type[c] = M.type(c);
+    A.count[c] = static_cast<signed char>(mesh::node_count(A.type[c]));
+  }
+  const int* cn = M.cells.data();
+  const int stride = static_cast<int>(M.cells.cols());
+  A.start.assign(nn + 1, 0);
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < A.count[c]; ++i) ++A.start[cn[c * stride + i] + 1];
+  for (int v = 0; v < nn; ++v) A.start[v + 1] += A.start[v];
+  A.cells.resize(A.start[nn]);
+  std::vector<int> fill(A.start.begin(), A.start.end() - 1);
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < A.count[c]; ++i) A.cells[fill[cn[c * stride + i]]++] = c;
+  return A;
+}
+
 // Moves nodes inside the volume (kind Free) next to cells whose scaled Jacobian (the quality
 // module's, -1 for inverted cells) is at most `poor` towards the centroid of their edge
 // neighbours (steps 1, 1/2, 1/4), keeping a move only when the worst of the node's cells rises;
-// sweeps over those nodes in order until one moves none, at most `sweeps` times.
-std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int sweeps, double poor) {
+// sweeps over those nodes in order until one moves none, at most `sweeps` times. The search for
+// poor cells runs on `threads` threads. When `left` is given, it receives every cell whose
+// scaled-Jacobian samples reach down to `left_threshold` (< poor) afterwards, in increasing order.
+std::string relax_poor(mesh::Mesh& M, const Adjacency& adj, const std::vector<signed char>& kind, int sweeps, double poor,
+                       int threads, std::vector<int>* left = nullptr, double left_threshold = 0) {
   const int nn = M.num_nodes(), nc = M.num_cells();
   auto cell_sj = [&](int c) {
     const double sj = quality::scaled_jacobian(M.type(c), quality::cell_points(M, c));
     return quality::is_inverted(sj) ? -1.0 : sj;
   };
+  const int* cells = M.cells.data();  // row-major, 8 per cell
+  const int stride = static_cast<int>(M.cells.cols());
+  const std::vector<signed char>& cnt = adj.count;
+  auto points = [&](int c, double (*p)[3]) {
+    for (int i = 0; i < cnt[c]; ++i)
+      for (int d = 0; d < 3; ++d) p[i][d] = M.V(cells[c * stride + i], d);
+  };
+  // Poor cells, in parallel over chunks of cells (each chunk writes its own flags).
+  std::vector<char> is_poor(nc, 0);
+  const int chunk = 4096;
+  parallel_for((nc + chunk - 1) / chunk, threads, [&](int q) {
+    for (int c = q * chunk; c < std::min(nc, (q + 1) * chunk); ++c) {
+      double p[8][3];
+      points(c, p);
+      // The root-free test is a superset up to rounding; the quality module decides.
+      is_poor[c] = sj_at_most(adj.type[c], p, poor + 1e-9) && cell_sj(c) <= poor;
+    }
+  });
+  std::vector<int> poor_cells;
   std::vector<char> candidate(nn, 0);
   for (int c = 0; c < nc; ++c) {
-    const CellType t = M.type(c);
-    const int k = mesh::node_count(t);
-    double p[8][3];
-    for (int i = 0; i < k; ++i)
-      for (int d = 0; d < 3; ++d) p[i][d] = M.V(M.cells(c, i), d);
-    // The root-free test is a superset up to rounding; the quality module decides.
-    if (!sj_at_most(t, p, poor + 1e-9) || cell_sj(c) > poor) continue;
-    for (int i = 0; i < k; ++i)
-      if (kind[M.cells(c, i)] == NodeFreedom::Free) candidate[M.cells(c, i)] = 1;
+    if (!is_poor[c]) continue;
+    poor_cells.push_back(c);
+    for (int i = 0; i < cnt[c]; ++i)
+      if (kind[cells[c * stride + i]] == NodeFreedom::Free) candidate[cells[c * stride + i]] = 1;
   }
+  // Cells that may be below left_threshold at the end: the poor ones and those around moved nodes.
+  auto report_left = [&](const std::vector<int>& inc) {
+    if (!left) return;
+    left->clear();
+    std::vector<int> all(poor_cells);
+    all.insert(all.end(), inc.begin(), inc.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    for (int c : all) {
+      double p[8][3];
+      points(c, p);
+      if (sj_at_most(adj.type[c], p, left_threshold + 1e-9)) left->push_back(c);
+    }
+  };
   std::vector<int> nodes;
   for (int v = 0; v < nn; ++v)
     if (candidate[v]) nodes.push_back(v);
-  if (nodes.empty()) return "relaxation: no node next to a poor cell";
-  std::vector<int> start(nn + 1, 0), inc;
-  for (int c = 0; c < nc; ++c)
-    for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
-      if (candidate[M.cells(c, i)]) ++start[M.cells(c, i) + 1];
-  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
-  inc.resize(start[nn]);
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int c = 0; c < nc; ++c)
-      for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
-        if (candidate[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
+  if (nodes.empty()) {
+    report_left({});
+    return "relaxation: no node next to a poor cell";
   }
+  const std::vector<int>& start = adj.start;
+  const std::vector<int>& inc = adj.cells;
+  std::vector<int> around;  // cells of the candidate nodes
+  for (int v : nodes) around.insert(around.end(), inc.begin() + start[v], inc.begin() + start[v + 1]);
   std::vector<double> sj(nc, 2.0);  // cached scaled Jacobian of the cells around the nodes
-  for (int c : inc)
+  for (int c : around)
     if (sj[c] == 2.0) sj[c] = cell_sj(c);
   std::vector<double> trial;
   // A node whose last try failed is skipped until a node of one of its cells moves: its try would
@@ -375,6 +501,7 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
     moves += moved;
     if (!moved) break;
   }
+  report_left(around);
   return "relaxation: " + std::to_string(nodes.size()) + " nodes next to poor cells, " + std::to_string(moves) + " moves in " +
          std::to_string(sweep) + " sweeps";
 }
@@ -388,20 +515,16 @@ std::string relax_poor(mesh::Mesh& M, const std::vector<signed char>& kind, int 
 // patch parameters, at most `box` from where they were made), which untangles inverted cells: their
 // samples are negative. Nodes of poor cells next to a moved node are visited again, up to `sweeps`
 // rounds. Returns a one-line summary.
-std::string untangle_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, double trigger, double poor, double poor_surface,
-                           double box) {
+std::string untangle_nodes(mesh::Mesh& M, const Adjacency& adj, NodeFreedom& F, int sweeps, double trigger, double poor, double poor_surface,
+                           double box, const std::vector<int>* candidates = nullptr, std::vector<int>* left = nullptr) {
   long long visits = 0, moves = 0, evals = 0;
   const int nn = M.num_nodes(), nc = M.num_cells();
   std::vector<double> x(3 * static_cast<size_t>(nn));
   for (int v = 0; v < nn; ++v)
     for (int d = 0; d < 3; ++d) x[3 * v + d] = M.V(v, d);
-  std::vector<std::array<double, 2>> param = F.param;
-  std::vector<signed char> cnt(nc);
-  std::vector<CellType> type(nc);
-  for (int c = 0; c < nc; ++c) {
-    type[c] = M.type(c);
-    cnt[c] = static_cast<signed char>(mesh::node_count(type[c]));
-  }
+  std::vector<std::array<double, 2>>& param = F.now;
+  const std::vector<signed char>& cnt = adj.count;
+  const std::vector<CellType>& type = adj.type;
   auto cell_sj = [&](int c) {
     double p[8][3], s[9];
     for (int i = 0; i < cnt[c]; ++i)
@@ -414,7 +537,10 @@ std::string untangle_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, doub
   std::vector<double> sj(nc, 1.0);  // exact for poor cells, 1 for the others until they change
   std::vector<char> mark(nn, 0);      // 1: node of a poor cell, 2: node a visit may reach
   std::vector<int> poor_cells;
-  for (int c = 0; c < nc; ++c) {
+  // Only `candidates` (when given: a superset of the cells at most `trigger`, in increasing order)
+  // are examined.
+  for (int q = 0, qn = candidates ? static_cast<int>(candidates->size()) : nc; q < qn; ++q) {
+    const int c = candidates ? (*candidates)[q] : q;
     double p[8][3];
     for (int i = 0; i < cnt[c]; ++i)
       for (int d = 0; d < 3; ++d) p[i][d] = x[3 * M.cells(c, i) + d];
@@ -423,27 +549,28 @@ std::string untangle_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, doub
     poor_cells.push_back(c);
     for (int i = 0; i < cnt[c]; ++i) mark[M.cells(c, i)] = 1;
   }
-  if (poor_cells.empty()) return "untangling: no poor cell";
-  std::vector<int> around;  // cells holding a node of a poor cell
-  for (int c = 0; c < nc; ++c) {
-    bool touch = false;
-    for (int i = 0; i < cnt[c] && !touch; ++i) touch = mark[M.cells(c, i)] == 1;
-    if (touch) around.push_back(c);
+  if (poor_cells.empty()) {
+    if (left) left->clear();
+    return "untangling: no poor cell";
   }
-  for (int c : around)
-    for (int i = 0; i < cnt[c]; ++i) mark[M.cells(c, i)] = std::max<char>(mark[M.cells(c, i)], 2);
-  std::vector<int> start(nn + 1, 0), inc;
-  for (int c = 0; c < nc; ++c)
-    for (int i = 0; i < cnt[c]; ++i)
-      if (mark[M.cells(c, i)]) ++start[M.cells(c, i) + 1];
-  for (int v = 0; v < nn; ++v) start[v + 1] += start[v];
-  inc.resize(start[nn]);
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int c = 0; c < nc; ++c)
-      for (int i = 0; i < cnt[c]; ++i)
-        if (mark[M.cells(c, i)]) inc[fill[M.cells(c, i)]++] = c;
-  }
+  const std::vector<int>& start = adj.start;
+  const std::vector<int>& inc = adj.cells;
+  std::vector<int> ones;  // nodes of poor cells
+  for (int c : poor_cells)
+    for (int i = 0; i < cnt[c]; ++i) ones.push_back(M.cells(c, i));
+  std::sort(ones.begin(), ones.end());
+  ones.erase(std::unique(ones.begin(), ones.end()), ones.end());
+  std::vector<int> reach;  // nodes a visit may reach: those of the cells around the poor cells' nodes
+  for (int v : ones)
+    for (int r = start[v]; r < start[v + 1]; ++r)
+      for (int i = 0; i < cnt[inc[r]]; ++i) {
+        const int u = M.cells(inc[r], i);
+        if (!mark[u]) {
+          mark[u] = 2;
+          reach.push_back(u);
+        }
+      }
+  reach.insert(reach.end(), ones.begin(), ones.end());
   std::vector<int> active;
   std::vector<char> queued(nn, 0);
   auto enqueue_cell = [&](int c, std::vector<int>& list) {
@@ -612,8 +739,132 @@ std::string untangle_nodes(mesh::Mesh& M, const NodeFreedom& F, int sweeps, doub
   }
   for (int v = 0; v < nn; ++v)
     for (int d = 0; d < 3; ++d) M.V(v, d) = x[3 * v + d];
+  if (left) {  // cells still at most `trigger`: only cells of marked nodes can have changed
+    std::vector<int> all;
+    for (int v : reach) all.insert(all.end(), inc.begin() + start[v], inc.begin() + start[v + 1]);
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    left->clear();
+    for (int c : all) {
+      double p[8][3];
+      for (int i = 0; i < cnt[c]; ++i)
+        for (int d = 0; d < 3; ++d) p[i][d] = x[3 * M.cells(c, i) + d];
+      if (sj_at_most(type[c], p, trigger)) left->push_back(c);
+    }
+  }
   return "untangling: " + std::to_string(first_active) + " nodes next to poor cells, " + std::to_string(visits) + " visits, " +
          std::to_string(moves) + " moves, " + std::to_string(evals) + " evaluations";
+}
+
+// Slides surface nodes (kind Curve or Patch) within the surface, at most `box` in parameters from
+// where they were made, to enlarge the volume the mesh's boundary encloses: each node climbs the
+// volume of its boundary faces (bilinear quads: the mean of both diagonal splits, which is the
+// trilinear cells' volume) by finite differences in its parameters, keeping a move only when no
+// cell of the node falls below min(floor, its worst sample before). Returns a one-line summary
+// with the volume gained.
+std::string slide_for_volume(mesh::Mesh& M, NodeFreedom& F, int sweeps, double floor, double box) {
+  const int nn = M.num_nodes(), nc = M.num_cells();
+  // Boundary faces, outward, from the cells' local faces.
+  std::map<std::vector<int>, std::pair<int, std::array<int, 4>>> seen;  // sorted -> (count, outward)
+  for (int c = 0; c < nc; ++c) {
+    auto [lf, nlf] = local_faces(M.type(c));
+    for (int f = 0; f < nlf; ++f) {
+      std::array<int, 4> o = {-1, -1, -1, -1};
+      std::vector<int> k;
+      for (int i = 0; i < lf[f].n; ++i) { o[i] = M.cells(c, lf[f].v[i]); k.push_back(o[i]); }
+      std::sort(k.begin(), k.end());
+      auto [it, ins] = seen.emplace(k, std::make_pair(1, o));
+      if (!ins) it->second.first++;
+    }
+  }
+  std::vector<std::array<int, 4>> bfaces;
+  for (const auto& [k, v] : seen)
+    if (v.first == 1) bfaces.push_back(v.second);
+  auto face_volume = [&](const std::array<int, 4>& f, int v, const double* q) {
+    auto P = [&](int i) -> Vec3 { return f[i] == v ? Vec3(q[0], q[1], q[2]) : Vec3(M.V.row(f[i]).transpose()); };
+    auto tri = [](const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)) / 6.0; };
+    if (f[3] < 0) return tri(P(0), P(1), P(2));
+    const Vec3 a = P(0), b = P(1), c = P(2), d = P(3);
+    return 0.5 * (tri(a, b, c) + tri(a, c, d) + tri(a, b, d) + tri(b, c, d));
+  };
+  double total0 = 0;
+  for (const auto& f : bfaces) total0 += face_volume(f, -1, nullptr);
+  std::vector<std::vector<int>> node_faces(nn), node_cells(nn);
+  for (size_t i = 0; i < bfaces.size(); ++i)
+    for (int k = 0; k < 4 && bfaces[i][k] >= 0; ++k) node_faces[bfaces[i][k]].push_back(static_cast<int>(i));
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < mesh::node_count(M.type(c)); ++i)
+      if (!node_faces[M.cells(c, i)].empty()) node_cells[M.cells(c, i)].push_back(c);
+  auto worst_at = [&](int v, const double* q) {
+    double w = 2;
+    for (int c : node_cells[v]) {
+      double p[8][3], sm[9];
+      for (int i = 0; i < mesh::node_count(M.type(c)); ++i) {
+        const int u = M.cells(c, i);
+        for (int d = 0; d < 3; ++d) p[i][d] = u == v ? q[d] : M.V(u, d);
+      }
+      const int ns = sj_samples(M.type(c), p, sm);
+      w = std::min(w, *std::min_element(sm, sm + ns));
+    }
+    return w;
+  };
+  std::vector<std::array<double, 2>>& param = F.now;
+  long long moves = 0;
+  int sweep = 0;
+  for (; sweep < sweeps; ++sweep) {
+    long long moved = 0;
+    for (int v = 0; v < nn; ++v) {
+      const int kind = F.kind[v];
+      if (node_faces[v].empty() || (kind != NodeFreedom::Curve && kind != NodeFreedom::Patch)) continue;
+      const int dims = kind;
+      double x0[3] = {M.V(v, 0), M.V(v, 1), M.V(v, 2)}, pos[3], q[2];
+      auto vol = [&](const double* x) {
+        double s = 0;
+        for (int f : node_faces[v]) s += face_volume(bfaces[f], v, x);
+        return s;
+      };
+      const double v0 = vol(x0), floor_v = std::min(floor, worst_at(v, x0));
+      // Parameter scale: 3D length per unit parameter near the node; h: mean edge length.
+      double h = 0;
+      int ne = 0;
+      for (int f : node_faces[v])
+        for (int k = 0; k < 4 && bfaces[f][k] >= 0; ++k)
+          if (bfaces[f][k] != v) { h += (M.V.row(bfaces[f][k]) - M.V.row(v)).norm(); ++ne; }
+      h /= std::max(1, ne);
+      double g[2] = {0, 0};
+      const double eps = 1e-4 * box;
+      for (int d = 0; d < dims; ++d) {
+        q[0] = param[v][0];
+        q[1] = param[v][1];
+        q[d] += eps;
+        F.clamp(v, q);
+        F.place(v, q, pos);
+        const double dq = q[d] - param[v][d];
+        g[d] = dq != 0 ? (vol(pos) - v0) / dq : 0;
+      }
+      const double gn = std::hypot(g[0], g[1]);
+      if (!(gn > 0)) continue;
+      for (double step = box; step > 1e-3 * box; step *= 0.5) {
+        for (int d = 0; d < dims; ++d) q[d] = std::clamp(param[v][d] + step * g[d] / gn, F.param[v][d] - box, F.param[v][d] + box);
+        if (dims == 1) q[1] = 0;
+        F.clamp(v, q);
+        F.place(v, q, pos);
+        if (vol(pos) <= v0 + 1e-15 * h * h * h || worst_at(v, pos) < floor_v) continue;
+        param[v] = {q[0], q[1]};
+        for (int d = 0; d < 3; ++d) M.V(v, d) = pos[d];
+        ++moved;
+        break;
+      }
+    }
+    moves += moved;
+    if (!moved) break;
+  }
+  double total1 = 0;
+  for (const auto& f : bfaces) total1 += face_volume(f, -1, nullptr);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "volume slide: %lld moves in %d sweeps, boundary volume %.6g -> %.6g (%+.3f%%)", moves, sweep,
+                total0, total1, 100.0 * (total1 - total0) / std::fabs(total0));
+  return buf;
 }
 
 }  // namespace
@@ -625,16 +876,18 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   const int n = 1 << opt.level;
   const long long N3 = static_cast<long long>(n) * n * n;
   auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
-  auto t_last = std::clock();
+  // Wall-clock stage times: the patch maps run on several threads, where CPU time would add up.
+  auto t_last = std::chrono::steady_clock::now();
   std::string timing = "stage times (ms):";
   auto tick = [&](const char* stage) {
-    const auto now = std::clock();
+    const auto now = std::chrono::steady_clock::now();
     char buf[64];
-    std::snprintf(buf, sizeof buf, " %s %.1f", stage, 1000.0 * static_cast<double>(now - t_last) / CLOCKS_PER_SEC);
+    std::snprintf(buf, sizeof buf, " %s %.1f", stage, std::chrono::duration<double, std::milli>(now - t_last).count());
     timing += buf;
     t_last = now;
   };
   GenerateStats stats;
+  const int nthreads = opt.threads > 0 ? opt.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
   // ---- the surface and its patches
   polycube::check_closed_manifold(S);
@@ -706,6 +959,16 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   std::map<std::vector<int>, int> boundary_face_patch;  // sorted vertices -> patch
   std::map<std::pair<int, int>, Curve> curves;          // (structure vertex a, b) -> curve a->b
   int bf_count = 0;
+  struct MapJob {  // one patch's harmonic map: its triangles and fixed boundary
+    int patch = 0;
+    Eigen::MatrixXd V;  // the patch's local vertices
+    std::vector<int> bnd;
+    Eigen::MatrixXd bc;
+    parametrization::HarmonicMapResult result;
+    std::exception_ptr error;
+  };
+  std::vector<MapJob> jobs;
+  std::vector<int> local_of(S.V.rows(), -1);  // surface vertex -> local vertex of the current patch
   for (const auto& [vs, users] : faces) {
     if (users.size() > 2)
       throw GeometryError("structure face (vertices " + vertex_list(vs) + ") is shared by " + std::to_string(users.size()) + " blocks");
@@ -777,22 +1040,59 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
       }
     }
     (void)dir;
-    Eigen::MatrixXi F(static_cast<int>(pm.tris.size()), 3);
-    for (size_t i = 0; i < pm.tris.size(); ++i) F.row(i) = S.F.row(pm.tris[i]);
-    Eigen::MatrixXd bc(static_cast<int>(bnd.size()), 2);
-    for (size_t i = 0; i < bnd.size(); ++i) bc.row(i) = bpos[i].transpose();
-    auto hm = parametrization::harmonic_map(S.V, F, bnd, bc);
-    if (hm.flipped > 0)
-      throw MeshingError("patch " + std::to_string(p + 1) + " (label " + std::to_string(patch.label) + "): the harmonic map flips " +
-                         std::to_string(hm.flipped) + " triangles even with mean-value weights");
-    (hm.weights == parametrization::Weights::Cotangent ? stats.cotangent_patches : stats.mean_value_patches)++;
-    pm.uv = std::move(hm.uv);
-    build_grid(pm, S);
+    // The patch with local vertex numbers (increasing with the surface's, so the linear system is
+    // the one the whole surface's numbering gives), so that no per-patch array is surface-sized.
+    for (int t : pm.tris)
+      for (int k = 0; k < 3; ++k) pm.vertex.push_back(S.F(t, k));
+    std::sort(pm.vertex.begin(), pm.vertex.end());
+    pm.vertex.erase(std::unique(pm.vertex.begin(), pm.vertex.end()), pm.vertex.end());
+    for (size_t i = 0; i < pm.vertex.size(); ++i) local_of[pm.vertex[i]] = static_cast<int>(i);
+    MapJob job;
+    job.patch = p;
+    job.V.resize(static_cast<int>(pm.vertex.size()), 3);
+    for (size_t i = 0; i < pm.vertex.size(); ++i) job.V.row(i) = S.V.row(pm.vertex[i]);
+    pm.F.resize(static_cast<int>(pm.tris.size()), 3);
+    for (size_t i = 0; i < pm.tris.size(); ++i)
+      for (int k = 0; k < 3; ++k) pm.F(i, k) = local_of[S.F(pm.tris[i], k)];
+    for (int& v : bnd) v = local_of[v];
+    job.bnd = std::move(bnd);
+    job.bc.resize(static_cast<int>(job.bnd.size()), 2);
+    for (size_t i = 0; i < job.bnd.size(); ++i) job.bc.row(i) = bpos[i].transpose();
+    jobs.push_back(std::move(job));
   }
   for (size_t p = 0; p < layout.patches.size(); ++p)
     if (patch_face[p] < 0)
       throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(layout.patches[p].label) +
                           ", " + std::to_string(layout.patches[p].triangles.size()) + " triangles) matches no boundary face of the structure");
+  // The harmonic maps are independent: solved on `threads` threads, largest patches first; each
+  // job writes only its own PatchMap, and errors are reported in matching order, so the output
+  // does not depend on the thread count.
+  {
+    std::vector<int> order(jobs.size());
+    for (size_t j = 0; j < jobs.size(); ++j) order[j] = static_cast<int>(j);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return jobs[a].V.rows() > jobs[b].V.rows(); });
+    parallel_for(static_cast<int>(order.size()), nthreads, [&](int q) {
+      MapJob& job = jobs[order[q]];
+      try {
+        job.result = parametrization::harmonic_map(job.V, maps[job.patch].F, job.bnd, job.bc);
+        if (job.result.flipped == 0) {
+          PatchMap& pm = maps[job.patch];
+          pm.uv = std::move(job.result.uv);
+          build_grid(pm, S);
+        }
+      } catch (...) {
+        job.error = std::current_exception();
+      }
+    });
+    for (const MapJob& job : jobs) {
+      if (job.error) std::rethrow_exception(job.error);
+      if (job.result.flipped > 0)
+        throw MeshingError("patch " + std::to_string(job.patch + 1) + " (label " + std::to_string(layout.patches[job.patch].label) +
+                           "): the harmonic map flips " + std::to_string(job.result.flipped) +
+                           " triangles even with mean-value weights");
+      (job.result.weights == parametrization::Weights::Cotangent ? stats.cotangent_patches : stats.mean_value_patches)++;
+    }
+  }
   stats.boundary_faces = bf_count;
   tick("patch maps");
   log("matched " + std::to_string(bf_count) + " boundary faces to patches (" + std::to_string(stats.cotangent_patches) +
@@ -810,8 +1110,7 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   const int n1 = n + 1;
   auto lidx = [&](int i, int j, int k) { return (k * n1 + j) * n1 + i; };
   std::vector<std::vector<int>> lattice(nb, std::vector<int>(n1 * n1 * n1, -1));
-  std::unordered_map<Key, int, KeyHash> shared;
-  shared.reserve(static_cast<size_t>(nb) * 6 * n1 * n1);
+  KeyTable shared(static_cast<size_t>(nb) * 6 * n1 * n1);  // at most 6 faces of (n+1)^2 points per block
   std::vector<Key> node_key;       // weights of shared nodes (empty key for block-interior nodes)
   std::vector<int> node_block;     // block of a block-interior node, -1 for shared nodes
   for (int b = 0; b < nb; ++b) {
@@ -833,9 +1132,9 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
             Key key;
             key.fill(-1);
             for (int q = 0; q < np && q < 4; ++q) key[q] = (static_cast<long long>(pairs[q].first) << 32) | pairs[q].second;
-            auto [it, inserted] = shared.emplace(key, static_cast<int>(node_key.size()));
+            bool inserted = false;
+            id = shared.find_or_insert(key, static_cast<int>(node_key.size()), inserted);
             if (inserted) { node_key.push_back(key); node_block.push_back(-1); }
-            id = it->second;
           } else {
             id = static_cast<int>(node_key.size());
             Key none;
@@ -987,8 +1286,9 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
 
   tick("interior faces");
 
-  // Block interiors: transfinite interpolation (hex) or harmonic fill (prism, tet).
-  for (int b = 0; b < nb; ++b) {
+  // Block interiors: transfinite interpolation (hex) or harmonic fill (prism, tet). Each block
+  // writes only its own interior nodes and reads its (known) boundary: blocks run in parallel.
+  parallel_for(nb, nthreads, [&](int b) {
     const CellType t = T.type(b);
     const auto& L = lattice[b];
     if (t == CellType::Hex) {
@@ -1030,7 +1330,7 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
           }
       harmonic_fill(ids, nbrs);
     }
-  }
+  });
 
   tick("block interiors");
 
@@ -1041,20 +1341,21 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
   result.cells.setConstant(total_cells, 8, -1);
   result.types.resize(total_cells);
   result.region.resize(total_cells);
-  long long next_cell = 0;
-  struct {
+  // Block b writes rows [b n^3, (b+1) n^3): blocks run in parallel.
+  struct Out {
     mesh::Mesh& m;
-    long long& at;
+    long long at, end;
     void add(CellType t, const int* nodes, int region) {
-      if (at >= m.cells.rows()) throw MeshingError("generation: more cells than 8^level per block");
+      if (at >= end) throw MeshingError("generation: more cells than 8^level per block");
       int* row = m.cells.row(at).data();
       for (int i = 0; i < mesh::node_count(t); ++i) row[i] = nodes[i];
       m.types(at) = static_cast<int>(t);
       m.region(at) = region;
       ++at;
     }
-  } out{result, next_cell};
-  for (int b = 0; b < nb; ++b) {
+  };
+  parallel_for(nb, nthreads, [&](int b) {
+    Out out{result, b * N3, (b + 1) * N3};
     const CellType t = T.type(b);
     const auto& L = lattice[b];
     auto id = [&](int i, int j, int k) { return L[lidx(i, j, k)]; };
@@ -1116,13 +1417,16 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
             }
           }
     }
-  }
-  if (next_cell != total_cells) throw MeshingError("generation: made " + std::to_string(next_cell) + " cells, expected " + std::to_string(total_cells));
+    if (out.at != out.end)
+      throw MeshingError("generation: block " + std::to_string(b + 1) + " made " + std::to_string(out.at - b * N3) +
+                         " cells, expected " + std::to_string(N3));
+  });
   result.V = std::move(X);
   tick("cells");
 
   // ---- relaxation and untangling of the nodes inside the volume
   if (opt.relax_sweeps > 0) {
+    freedom.now = freedom.param;
     freedom.place = [&](int v, const double* q, double* x) {
       Vec3 p = freedom.kind[v] == NodeFreedom::Curve ? static_cast<const Curve*>(freedom.where[v])->at(q[0])
                                                      : evaluate(*static_cast<const PatchMap*>(freedom.where[v]), S, q[0], q[1]);
@@ -1144,8 +1448,22 @@ mesh::Mesh generate(const mesh::SurfaceMesh& S, const mesh::Mesh& T, const Gener
         q[1] -= shift;
       }
     };
-    if (opt.untangle) log(untangle_nodes(result, freedom, opt.relax_sweeps, 0.2, 0.2, 0.05, 0.45 / n));
-    else log(relax_poor(result, freedom.kind, opt.relax_sweeps, 0.2));
+    // Boundary nodes slid to enlarge the enclosed volume (an experiment, off by default: see
+    // GenerateOptions::volume_slide).
+    if (opt.volume_slide > 0) log(slide_for_volume(result, freedom, opt.volume_slide, 0.3, 0.45 / n));
+    // The plain relaxation, then the untangling of the cells it leaves inverted: first with
+    // surface nodes within a fifth of a lattice step of where they were made, then, for what is
+    // left, within 0.45 of a step. Nodes away from inverted cells keep the plain relaxation's
+    // positions exactly.
+    std::vector<int> left;
+    const Adjacency adj = node_cells(result);
+    log(relax_poor(result, adj, freedom.kind, opt.relax_sweeps, 0.2, nthreads, opt.untangle ? &left : nullptr, 0.0));
+    if (opt.untangle)
+      for (double box : {0.2, 0.45}) {
+        if (left.empty()) break;
+        const std::vector<int> candidates = left;
+        log(untangle_nodes(result, adj, freedom, opt.relax_sweeps, 0.0, 0.2, 0.0, box / n, &candidates, &left));
+      }
   }
   tick("relaxation");
   log(timing);
