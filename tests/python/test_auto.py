@@ -266,10 +266,11 @@ _CAD_DEFECT = {
     "s15o_cylinder": "issue 9: worst hex SJ 0.206 (pillowed, volume -0.44% against the tessellation; the layer "
                      "over the 4 polycube edges on the round side is thin)",
     "n11o_limit_cycle": "issue 9: worst hex SJ 0.152 (a polycube edge across a smooth blend)",
-    "i10o_simp": "issue 9: the labelling cannot be repaired at lambda 0.1, 1, 0.3 or 3 (relabelling cascades "
-                 "to one chart)",
-    "i11o_s1": "issue 9: after untangling, the polycube map still folds 9 triangles of two large charts (+X 268 "
-               "and -X 670 triangles, too large to relabel) at every lambda (1332 folded before the untangler)",
+    "i10o_simp": "issue 9: meshed since the band repair of the labelling (2 bands: a bend where the tilted hole "
+                 "leaves the -Z face), but the worst hex SJ is 0.003 before the snap (108 blocks, worst block SJ "
+                 "-0.199; 2 inverted after it, volume +1.85%)",
+    "i11o_s1": "issue 9: meshed since the touching-span plane separation (no more fold of the +X / -X charts), "
+               "but 7 inverted hexes remain (level 0, worst hex SJ -0.029, 1133 blocks with worst block SJ -0.141)",
 }
 
 
