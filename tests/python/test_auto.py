@@ -267,8 +267,8 @@ _CAD_DEFECT = {
                      "over the 4 polycube edges on the round side is thin)",
     "n11o_limit_cycle": "issue 9: worst hex SJ 0.152 (a polycube edge across a smooth blend)",
     "i10o_simp": "issue 9: meshed since the band repair of the labelling (2 bands: a bend where the tilted hole "
-                 "leaves the -Z face), but the worst hex SJ is 0.003 before the snap (108 blocks, worst block SJ "
-                 "-0.199; 2 inverted after it, volume +1.85%)",
+                 "leaves the -Z face), no inverted cell, but the worst hex SJ is 0.072 before the snap (1672 hexes "
+                 "after pillowing; 108 blocks, worst block SJ -0.246; volume +1.92%)",
     "i11o_s1": "issue 9: meshed since the touching-span plane separation (no more fold of the +X / -X charts), "
                "but 7 inverted hexes remain (level 0, worst hex SJ -0.029, 1133 blocks with worst block SJ -0.141)",
 }

@@ -260,7 +260,9 @@ double fit_loss(const mesh::SurfaceMesh& s, const Eigen::VectorXi& label) {
 // Triangle-level repair of two charts of opposite labels that share a curve: a band of triangles
 // along the curve, on either side, takes the best-fitting label of the other two axes (a bend of
 // the polycube between the two charts). The band that leaves the fewest problems wins, then the
-// one losing the least normal fit; an empty result when none leaves fewer than `problems`.
+// one losing the least normal fit per unit area (to 0.01), then the widest (a longer bend leaves
+// more material between a hole's wall and the face it leaves); an empty result when none leaves
+// fewer than `problems`.
 Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGraph& g, const ChartCurve& c, int problems,
                                      double width, std::string* what) {
   Eigen::VectorXi best;
@@ -268,11 +270,17 @@ Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGrap
   double best_loss = 0;
   mesh::SurfaceMesh t = s;
   for (int chart : {c.left, c.right})
-    for (double w : {0.5 * width, width, 2.0 * width}) {
+    for (double w : {0.5 * width, width, 2.0 * width, 4.0 * width}) {
       t.patch = relabel_band(s, g, chart, c.vertices, w);
       const ChartGraph tg = chart_graph(t);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
-      const double loss = fit_loss(s, t.patch);
+      double area = 0;
+      for (int f = 0; f < s.F.rows(); ++f)
+        if (t.patch(f) != s.patch(f)) {
+          const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), d = s.V.row(s.F(f, 2));
+          area += 0.5 * (b - a).cross(d - a).norm();
+        }
+      const double loss = std::round(100.0 * fit_loss(s, t.patch) / std::max(area, 1e-300)) - 1e-3 * w / width;
       if (n < best_n || (n == best_n && best.size() && loss < best_loss)) {
         best = t.patch;
         best_n = n;

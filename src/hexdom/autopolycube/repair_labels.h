@@ -59,8 +59,8 @@ struct RepairResult {
 
 /// Repairs triangles, not only whole charts. In each round, unless the smallest chart named by a
 /// problem is below band_width^2 in area (a sliver, relabelled whole): two opposite charts that share a curve,
-/// both of at least band_width^2 area, get a band (relabel_band, band_width / 2, band_width or
-/// 2 band_width wide, on either side: a bend of the polycube) when one leaves fewer problems; else a
+/// both of at least band_width^2 area, get a band (relabel_band, band_width / 2, 1, 2 or 4
+/// band_width wide, on either side: a bend of the polycube) when one leaves fewer problems; else a
 /// chart with a bad_turning problem that is folded over a crease (crease_angle, at least band_width long,
 /// e.g. a hole's wall labelled like the face it leaves) gets a band on one side of the crease when
 /// one leaves fewer problems; else the problem whose smallest chart has the least area gives that
