@@ -24,7 +24,7 @@ HAND = {  # model: (patch file, structure)
     "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k"),
 }
 CAD = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
-       "n11o_limit_cycle", "i10o_simp", "i11o_s1"]
+       "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
 
 
 def enclosed_volume(s):

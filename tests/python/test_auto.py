@@ -263,10 +263,12 @@ def test_mesh_missing_input_is_exit_1(tmp_path):
 CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
              "n11o_limit_cycle", "i10o_simp", "i11o_s1"]
 _CAD_DEFECT = {
-    "i10o_simp": "issue 9: the labelling cannot be repaired at lambda 0.1, 1, 0.3 or 3 (relabelling cascades "
-                 "to one chart)",
-    "i11o_s1": "issue 9: after untangling, the polycube map still folds 9 triangles of two large charts (+X 268 "
-               "and -X 670 triangles, too large to relabel) at every lambda (1332 folded before the untangler)",
+    "i10o_simp": "issue 9: meshed since the band repair of the labelling (2 bands: a bend where the tilted hole "
+                 "leaves the -Z face), no inverted cell, but the worst hex SJ is 0.201 (1672 hexes after "
+                 "pillowing; 108 blocks, worst block SJ -0.246; volume +1.9%)",
+    "i11o_s1": "issue 9: meshed since the touching-span plane separation (no more fold of the +X / -X charts), "
+               "no inverted cell, but the worst hex SJ is 0.046 (976 hexes, level 1; 122 blocks with worst block "
+               "SJ -0.398 where the R65 round meets the tube tangentially)",
 }
 
 

@@ -25,13 +25,23 @@ CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded
              "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
 # Parts the automatic polycube stage cannot mesh yet (another engineer's stage; see test_auto.py).
 _NOT_MESHED = {
-    "i10o_simp": "issue 9: autopolycube: the labelling cannot be repaired (relabelling cascades to one chart)",
-    "i11o_s1": "issue 9: autopolycube: the polycube map folds four charts",
-    "i01o_m1": "issue 9: autopolycube: the polycube map folds 267 triangles (charts 5 and 6, -Z / +Z)",
+    "i01o_m1": "issue 9: autopolycube: the polycube map folds 163 triangles after untangling (charts 6 +Z and 5 -Z, "
+               "1,120 and 1,422 triangles) at every lambda (267 before the touching-span separation)",
 }
 # Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
 _SJ_DEFECT = {}
-_VOLUME_DEFECT = {}
+_SJ_DEFECT.update({
+    "i10o_simp": "issue 9: worst hex SJ 0.074 after the snap (0.201 before it, mean 0.64; 108 blocks with a worst "
+                 "block SJ of -0.246 over the thin wedge under the tilted hole, rescued by the pillow layer)",
+    "i11o_s1": "issue 9: worst hex SJ 0.044 after the snap (0.046 before it, mean 0.83, 976 hexes; 122 blocks, "
+               "worst block SJ -0.398 where the R65 round meets the tube tangentially)",
+})
+# Parts meshed with inverted cells (hexdom mesh --allow-inverted), with the measured figure.
+_INVERTED_DEFECT = {}
+_VOLUME_DEFECT = {
+    "i10o_simp": "issue 9: volume +1.95% against the B-rep (1672 hexes, pillowed, of a 13.8 grid step over a "
+                 "tilted hole)",
+}
 
 
 def _marks(stem, extra):
@@ -125,7 +135,7 @@ def test_boundary_nodes_lie_on_the_brep(stem, meshed, Part):
     assert d.max() <= 1e-7 * diag, f"{stem}: a boundary node is {d.max() / diag:.2e} x diagonal off the B-rep"
 
 
-@pytest.mark.parametrize("stem", [_marks(s, {}) for s in CAD_PARTS])
+@pytest.mark.parametrize("stem", [_marks(s, _INVERTED_DEFECT) for s in CAD_PARTS])
 def test_snapped_mesh_has_no_inverted_cell(stem, meshed):
     _, g, _ = meshed(stem)
     sj, _ = oracle.verdict_metrics(g)

@@ -53,6 +53,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
   for (int attempt = 0;; ++attempt) {
     RepairOptions ro;
     ro.max_relabels = std::max(0, opt.max_relabels - r.relabelled);
+    ro.band_width = size;
     ro.log = opt.log;
     RepairResult rep = repair_labels(s, ro);
     s.patch = rep.label;
@@ -77,7 +78,15 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
     PolycubeMapOptions mo;
     mo.cell = r.cell;
     mo.log = opt.log;
-    const PolycubeMap map = polycube_map(s, g, pg, mo);
+    // Curves whose spans only touch are separated too, unless that orders the planes in a cycle.
+    PolycubeMap map;
+    try {
+      map = polycube_map(s, g, pg, mo);
+    } catch (const GeometryError& e) {
+      mo.separate_touching = false;
+      log(std::string(e.what()) + ": again without separating curves whose spans only touch");
+      map = polycube_map(s, g, pg, mo);
+    }
     r.polycube = polycube_surface(s, map);
     r.pushed = map.pushed;
 

@@ -321,7 +321,7 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
   for (int round = 0;; ++round) {
     m.pushed = 0;
     for (int a = 0; a < 3; ++a) quantize_axis(a, order[a], pg, m, weight, h, g);
-    // Two parallel segments of one chart whose spans overlap must keep their input order, at least
+    // Two parallel segments of one chart whose spans overlap or touch must keep their input order, at least
     // one cell apart: otherwise the chart pinches (a ring around a hole, a U-shaped face).
     int fresh = 0;
     for (int c = 0; c < g.num_charts(); ++c) {
@@ -333,7 +333,9 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
           if (u.axis != w.axis || u.at == w.at) continue;
           const int ulo = std::min(m.plane(u.from), m.plane(u.to)), uhi = std::max(m.plane(u.from), m.plane(u.to));
           const int wlo = std::min(m.plane(w.from), m.plane(w.to)), whi = std::max(m.plane(w.from), m.plane(w.to));
-          if (std::min(uhi, whi) <= std::max(ulo, wlo)) continue;  // spans do not overlap
+          // Spans that only touch count too: two holes' (or a hole's and the outer boundary's) sides
+          // that end at one grid line must not fall on one plane, or the chart pinches between them.
+          if (std::min(uhi, whi) < std::max(ulo, wlo) + (opt.separate_touching ? 0 : 1)) continue;  // spans apart
           if (u.mean == w.mean) continue;
           const int lo = u.mean < w.mean ? u.at : w.at, hi = u.mean < w.mean ? w.at : u.at;
           if (m.plane(hi) - m.plane(lo) >= 1) continue;

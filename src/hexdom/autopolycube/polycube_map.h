@@ -18,6 +18,9 @@ struct PolycubeMapOptions {
   double cell = 0;  ///< grid spacing h (model units); must be positive
   /// Extra orders: plane group `second` must lie at least one cell above plane group `first` (same axis).
   std::vector<std::pair<int, int>> separate;
+  /// Two parallel curves of one chart whose spans only touch (end at one grid line) are kept a cell
+  /// apart too, not only those whose spans overlap (e.g. a hole's side and the outer boundary's).
+  bool separate_touching = true;
   /// Untangle folded charts by the barrier energy of untangle_plane_map (otherwise only local moves).
   bool untangle = true;
   LogCallback log;

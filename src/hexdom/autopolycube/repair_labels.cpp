@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <cmath>
+#include <limits>
 #include <cstdint>
 #include <set>
 
 #include "hexdom/segmentation/axis_labels.h"
+#include "hexdom/segmentation/triangle_adjacency.h"
 
 namespace hexdom::autopolycube {
 
@@ -135,7 +138,10 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
     if (!bad) continue;
     if (blame.size() == 1)
       for (int ci : g.chart_curves[c]) blame.insert(g.curves[ci].left == c ? g.curves[ci].right : g.curves[ci].left);
-    out.push_back({ProblemKind::BadTurning, {blame.begin(), blame.end()}, g.loop_corners[c].empty() || g.loop_corners[c][0].empty() ? -1 : g.loop_corners[c][0][0],
+    std::vector<int> charts{c};  // the chart itself first, then the neighbours to blame
+    for (int b : blame)
+      if (b != c) charts.push_back(b);
+    out.push_back({ProblemKind::BadTurning, charts, g.loop_corners[c].empty() || g.loop_corners[c][0].empty() ? -1 : g.loop_corners[c][0][0],
                    name(c) + " cannot be a polycube face: its boundary " + what});
   }
   return out;
@@ -197,14 +203,193 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
   return label;
 }
 
+Eigen::VectorXi relabel_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int chart, const std::vector<int>& curve,
+                             double width) {
+  const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
+  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const int axis = (g.label[chart] - 1) / 2;
+  std::set<int> on_curve(curve.begin(), curve.end());
+  auto distance = [&](int f) {
+    double d = std::numeric_limits<double>::infinity();
+    for (int v : curve) d = std::min(d, (geo.centroid.row(f) - s.V.row(v)).norm());
+    return d;
+  };
+  Eigen::VectorXi label = s.patch;
+  std::vector<char> seen(s.F.rows(), 0);
+  std::vector<int> stack;
+  for (int f = 0; f < s.F.rows(); ++f)
+    if (g.chart(f) == chart)
+      for (int k = 0; k < 3; ++k)
+        if (on_curve.count(s.F(f, k)) && !seen[f]) { seen[f] = 1; stack.push_back(f); }
+  while (!stack.empty()) {
+    const int f = stack.back();
+    stack.pop_back();
+    int best = -1;
+    double best_fit = -std::numeric_limits<double>::infinity();
+    for (int l = 1; l <= 6; ++l) {
+      if ((l - 1) / 2 == axis) continue;
+      const double fit = geo.normal.row(f).dot(segmentation::label_axis(l));
+      if (fit > best_fit) { best_fit = fit; best = l; }
+    }
+    label(f) = best;
+    for (int k = 0; k < 3; ++k) {
+      const int h = TT(f, k);
+      if (h >= 0 && !seen[h] && g.chart(h) == chart && distance(h) <= width) { seen[h] = 1; stack.push_back(h); }
+    }
+  }
+  return label;
+}
+
+namespace {
+
+// Curves (or crease sides) tried per round of the band repairs.
+constexpr size_t kMaxBandCurves = 4;
+
+// Area-weighted loss of normal fit, sum of area * (n . axis(old) - n . axis(new)), of a relabelling.
+double fit_loss(const mesh::SurfaceMesh& s, const Eigen::VectorXi& label) {
+  double loss = 0;
+  for (int f = 0; f < s.F.rows(); ++f) {
+    if (label(f) == s.patch(f)) continue;
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), d = s.V.row(s.F(f, 2));
+    const Eigen::Vector3d n = 0.5 * (b - a).cross(d - a);
+    loss += n.dot(segmentation::label_axis(s.patch(f))) - n.dot(segmentation::label_axis(label(f)));
+  }
+  return loss;
+}
+
+// Triangle-level repair of two charts of opposite labels that share a curve: a band of triangles
+// along the curve, on either side, takes the best-fitting label of the other two axes (a bend of
+// the polycube between the two charts). The band that leaves the fewest problems wins, then the
+// one losing the least normal fit per unit area (to 0.01), then the widest (a longer bend leaves
+// more material between a hole's wall and the face it leaves); an empty result when none leaves
+// fewer than `problems`.
+Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGraph& g, const ChartCurve& c, int problems,
+                                     double width, std::string* what) {
+  Eigen::VectorXi best;
+  long best_n = problems;
+  double best_loss = 0;
+  mesh::SurfaceMesh t = s;
+  for (int chart : {c.left, c.right})
+    for (double w : {0.5 * width, width, 2.0 * width, 4.0 * width}) {
+      t.patch = relabel_band(s, g, chart, c.vertices, w);
+      const ChartGraph tg = chart_graph(t);
+      const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
+      double area = 0;
+      for (int f = 0; f < s.F.rows(); ++f)
+        if (t.patch(f) != s.patch(f)) {
+          const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), d = s.V.row(s.F(f, 2));
+          area += 0.5 * (b - a).cross(d - a).norm();
+        }
+      const double loss = std::round(100.0 * fit_loss(s, t.patch) / std::max(area, 1e-300)) - 1e-3 * w / width;
+      if (n < best_n || (n == best_n && best.size() && loss < best_loss)) {
+        best = t.patch;
+        best_n = n;
+        best_loss = loss;
+        if (what) *what = "a band of " + chart_name(g, chart) + " along its curve with " + chart_name(g, chart == c.left ? c.right : c.left);
+      }
+    }
+  return best;
+}
+
+// Triangle-level repair of a chart folded over a sharp crease (two of its triangles that share an
+// edge and whose normals differ by more than `crease_angle`, e.g. a hole's wall given the label of
+// the face it leaves): on one side of the creases, a band of the chart takes the best-fitting
+// label of the other two axes. Sides are the parts of the chart between its creases; the band that
+// leaves the fewest problems wins, then the one losing the least normal fit; an empty result when
+// none leaves fewer than `problems`. Only creases at least `width` long count, and only in the
+// charts marked in `only` when given.
+Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int problems, double width,
+                                   double crease_angle, std::string* what, const std::vector<char>* only) {
+  const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
+  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const double cos_crease = std::cos(crease_angle * M_PI / 180.0);
+  const int nf = static_cast<int>(s.F.rows());
+  auto crease = [&](int f, int k) {
+    const int h = TT(f, k);
+    return h >= 0 && g.chart(h) == g.chart(f) && geo.normal.row(f).dot(geo.normal.row(h)) < cos_crease;
+  };
+  // Sides: parts of each chart between its creases.
+  std::vector<int> side(nf, -1);
+  std::vector<std::vector<int>> side_crease_vertices;
+  std::vector<int> side_chart;
+  std::vector<double> side_crease_length;
+  for (int f0 = 0; f0 < nf; ++f0) {
+    if (side[f0] >= 0) continue;
+    const int id = static_cast<int>(side_chart.size());
+    side_chart.push_back(g.chart(f0));
+    side_crease_vertices.emplace_back();
+    side_crease_length.push_back(0);
+    std::vector<int> stack{f0};
+    side[f0] = id;
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const int h = TT(f, k);
+        if (h < 0 || g.chart(h) != g.chart(f)) continue;
+        if (crease(f, k)) {
+          side_crease_vertices[id].push_back(s.F(f, k));
+          side_crease_vertices[id].push_back(s.F(f, (k + 1) % 3));
+          side_crease_length[id] += (s.V.row(s.F(f, k)) - s.V.row(s.F(f, (k + 1) % 3))).norm();
+        } else if (side[h] < 0) {
+          side[h] = id;
+          stack.push_back(h);
+        }
+      }
+    }
+  }
+  // At most kMaxBandCurves sides, those with the longest creases (each try rebuilds the chart graph).
+  std::vector<std::pair<double, int>> sides;
+  for (size_t id = 0; id < side_chart.size(); ++id)
+    if (!side_crease_vertices[id].empty() && side_crease_length[id] >= width && (!only || (*only)[side_chart[id]]))
+      sides.emplace_back(-side_crease_length[id], static_cast<int>(id));
+  std::sort(sides.begin(), sides.end());
+  if (sides.size() > kMaxBandCurves) sides.resize(kMaxBandCurves);
+  Eigen::VectorXi best;
+  long best_n = problems;
+  double best_loss = 0;
+  mesh::SurfaceMesh t = s;
+  for (const auto& [key, id] : sides) {
+    // The band grows from the crease inside this side only: a chart made of the side's triangles.
+    ChartGraph sg = g;
+    for (int f = 0; f < nf; ++f)
+      if (g.chart(f) == side_chart[id] && side[f] != static_cast<int>(id)) sg.chart(f) = -1;
+    for (double w : {0.5 * width, width, 2.0 * width}) {
+      t.patch = relabel_band(s, sg, side_chart[id], side_crease_vertices[id], w);
+      const ChartGraph tg = chart_graph(t);
+      const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
+      const double loss = fit_loss(s, t.patch);
+      if (n < best_n || (n == best_n && best.size() && loss < best_loss)) {
+        best = t.patch;
+        best_n = n;
+        best_loss = loss;
+        if (what) *what = "a band of " + chart_name(g, side_chart[id]) + " along a crease inside it";
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions& opt) {
   mesh::SurfaceMesh s = labels;
   RepairResult r;
+  const double diag = s.V.rows() ? (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm() : 0.0;
+  const double width = opt.band_width > 0 ? opt.band_width : diag / 30.0;
+  // Labellings met so far (FNV-1a hashes): a repair that comes back to one of them cycles.
+  std::set<std::uint64_t> seen;
+  auto hash = [](const Eigen::VectorXi& l) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int i = 0; i < l.size(); ++i) h = (h ^ static_cast<std::uint64_t>(l(i))) * 1099511628211ull;
+    return h;
+  };
   for (;;) {
     const ChartGraph g = chart_graph(s);
     const PlaneGroups pg = plane_groups(s, g);
     auto problems = chart_problems(s, g, pg);
-    if (problems.empty() || r.relabelled >= opt.max_relabels) {
+    const bool fresh = seen.insert(hash(s.patch)).second;
+    if (problems.empty() || r.relabelled >= opt.max_relabels || !fresh) {
       r.remaining = std::move(problems);
       break;
     }
@@ -214,6 +399,52 @@ RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions&
     for (const auto& p : problems)
       for (int c : p.charts)
         if (chart < 0 || g.area[c] < g.area[chart]) { chart = c; why = &p; }
+    // Slivers narrower than a band are whole-chart repairs; between wider charts, bands first.
+    if (g.area[chart] >= width * width) {
+      // Opposite charts side by side: a band along their curve (a bend), not a whole chart.
+      // At most kMaxBandCurves curves per round, those between the widest charts (each try rebuilds
+      // the chart graph).
+      bool banded = false;
+      std::vector<std::pair<double, int>> opposite;
+      for (size_t ci = 0; ci < g.curves.size(); ++ci) {
+        const auto& c = g.curves[ci];
+        if (!segmentation::are_opposite(g.label[c.left], g.label[c.right])) continue;
+        const double narrow = std::min(g.area[c.left], g.area[c.right]);
+        if (narrow >= width * width) opposite.emplace_back(-narrow, static_cast<int>(ci));
+      }
+      std::sort(opposite.begin(), opposite.end());
+      if (opposite.size() > kMaxBandCurves) opposite.resize(kMaxBandCurves);
+      for (const auto& [key, ci] : opposite) {
+        const auto& c = g.curves[ci];
+        std::string what;
+        Eigen::VectorXi band = repair_opposite_band(s, g, c, static_cast<int>(problems.size()), width, &what);
+        if (band.size() == 0) continue;
+        if (opt.log) opt.log(0, "relabelling " + what);
+        s.patch = band;
+        banded = true;
+        break;
+      }
+      if (!banded) {
+        // A chart that cannot be a polycube face because it is folded over a crease: a band on one
+        // side of the crease.
+        std::string what;
+        std::vector<char> named(g.num_charts(), 0);
+        for (const auto& p : problems)
+          if (p.kind == ProblemKind::BadTurning) named[p.charts.front()] = 1;
+        Eigen::VectorXi band =
+            repair_crease_band(s, g, static_cast<int>(problems.size()), width, opt.crease_angle, &what, &named);
+        if (band.size()) {
+          if (opt.log) opt.log(0, "relabelling " + what);
+          s.patch = band;
+          banded = true;
+        }
+      }
+      if (banded) {
+        ++r.relabelled;
+        ++r.banded;
+        continue;
+      }
+    }
     if (opt.log) opt.log(0, "relabelling " + chart_name(g, chart) + ": " + why->message);
     s.patch = relabel_chart(s, g, chart, static_cast<int>(problems.size()));
     ++r.relabelled;

@@ -31,7 +31,7 @@ std::string kind_name(ProblemKind kind);
 
 struct ChartProblem {
   ProblemKind kind;
-  std::vector<int> charts;  ///< 0-based charts involved
+  std::vector<int> charts;  ///< 0-based charts involved (for bad_turning: the chart itself first)
   int vertex = -1;          ///< 0-based surface vertex at the place
   std::string message;      ///< names the charts (1-based) and the vertex (1-based)
 };
@@ -41,20 +41,39 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& labels, const 
                                          const PlaneGroups& groups);
 
 struct RepairOptions {
-  int max_relabels = 200;  ///< charts relabelled at most
+  int max_relabels = 200;  ///< charts (or bands) relabelled at most
+  /// Width (model units) of the bands relabelled between opposite charts or along creases; 0: the
+  /// bounding-box diagonal / 30 (autopolycube passes the element size).
+  double band_width = 0;
+  /// Degrees: two triangles of one chart whose normals differ by more than this meet at a crease.
+  double crease_angle = 35.0;
   LogCallback log;
 };
 
 struct RepairResult {
   Eigen::VectorXi label;  ///< #F repaired labels
-  int relabelled = 0;     ///< charts relabelled
+  int relabelled = 0;     ///< charts and bands relabelled
+  int banded = 0;         ///< of them, bands along a curve between opposite charts or a crease
   std::vector<ChartProblem> remaining;  ///< problems left (empty on success)
 };
 
-/// Repeatedly takes the problem whose smallest chart has the least area and gives that chart the
-/// label, among its neighbours' labels, that best fits its triangles' normals (area-weighted
-/// n . axis), so that it joins a neighbour. Never throws for problems: they are returned.
+/// Repairs triangles, not only whole charts. In each round, unless the smallest chart named by a
+/// problem is below band_width^2 in area (a sliver, relabelled whole): two opposite charts that share a curve,
+/// both of at least band_width^2 area, get a band (relabel_band, band_width / 2, 1, 2 or 4
+/// band_width wide, on either side: a bend of the polycube) when one leaves fewer problems; else a
+/// chart with a bad_turning problem that is folded over a crease (crease_angle, at least band_width long,
+/// e.g. a hole's wall labelled like the face it leaves) gets a band on one side of the crease when
+/// one leaves fewer problems; else the problem whose smallest chart has the least area gives that
+/// chart the label, among its neighbours' labels, that best fits its triangles' normals
+/// (relabel_chart). Stops when no problem is left, after max_relabels, or when a labelling comes back
+/// (a cycle). Never throws for problems: they are returned.
 RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions& options = {});
+
+/// The labels with the triangles of `chart` within `width` (centroid to the nearest vertex of
+/// `curve`, grown edge by edge from the curve inside the chart) given the label, of the two axes other
+/// than the chart's, that fits each triangle's normal best.
+Eigen::VectorXi relabel_band(const mesh::SurfaceMesh& labels, const ChartGraph& graph, int chart,
+                             const std::vector<int>& curve, double width);
 
 /// Relabels one chart (0-based) as repair_labels would; returns the new labels. With `problems` > 0
 /// (the current number of problems), every candidate label is tried and one that leaves fewer

@@ -1,4 +1,5 @@
 #include "hexdom/autopolycube/autopolycube.h"
+#include "hexdom/autopolycube/polycube_map.h"
 
 #include <map>
 
@@ -77,6 +78,38 @@ TEST(Autopolycube, RingWithAHoleWorks) {
   auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0}, {0, 2, 0}, {1, 2, 0}, {2, 2, 0}}, 2);
   auto r = autopolycube::autopolycube(s, cell_options(1.0, 0));
   EXPECT_EQ(r.blocks, 8);
+  EXPECT_EQ(r.inverted_blocks, 0);
+}
+
+TEST(Autopolycube, AHolesSideAndAnOuterSideWhoseSpansTouchStayACellApart) {
+  // A slab (one cell thick) with a square hole at cell (1, 1). On the +Z chart, the hole's side at
+  // x = 2 (y 1..2) and the outer side at x = 3 (y 0..1) are one unit apart and their spans along Y
+  // only touch at y = 1; on a grid of 2 units they must still lie on planes in their input order, at
+  // least a cell apart, and no chart may fold. (Here the other curves' orders already keep them
+  // apart; i11o_s1 is the part where only the touching-span separation does, see test_snap.py.)
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0},
+                               {0, 1, 0}, {2, 1, 0}, {3, 1, 0}, {4, 1, 0},
+                               {0, 2, 0}, {1, 2, 0}, {2, 2, 0}, {3, 2, 0}, {4, 2, 0}}, 2);
+  const auto g = autopolycube::chart_graph(s);
+  const auto pg = autopolycube::plane_groups(s, g);
+  auto group_at = [&](int label, double x) {  // plane group of the chart of `label` at coordinate x
+    for (int f = 0; f < s.F.rows(); ++f)
+      if (s.patch(f) == label && std::abs(s.V(s.F(f, 0), 0) - x) < 1e-9) return pg.of_chart[g.chart(f)];
+    return -1;
+  };
+  const int hole_side = group_at(2, 2.0), outer_side = group_at(1, 3.0);
+  ASSERT_GE(hole_side, 0);
+  ASSERT_GE(outer_side, 0);
+  autopolycube::PolycubeMapOptions mo;
+  mo.cell = 2.0;
+  const auto m = autopolycube::polycube_map(s, g, pg, mo);
+  EXPECT_GE(m.plane(outer_side) - m.plane(hole_side), 1);
+  int flipped = 0;
+  for (int n : m.flipped) flipped += n;
+  EXPECT_EQ(flipped, 0);
+  // The whole step gives blocks, none inverted.
+  auto r = autopolycube::autopolycube(s, cell_options(2.0, 1));
+  EXPECT_GT(r.blocks, 0);
   EXPECT_EQ(r.inverted_blocks, 0);
 }
 
