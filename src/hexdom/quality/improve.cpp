@@ -421,6 +421,9 @@ class Improver {
     for (double& f : floor_) f = only_above > 0 && f < w + only_above ? -2 : std::max(f, extra);
   }
   void clear_floors() { floor_[0] = floor_[1] = floor_[2] = -2; }
+  void raise_floors(double x) {
+    for (double& f : floor_) f = std::max(f, x);
+  }
   int type_slot(int q) const { return m_.type(q) == CellType::Hex ? 0 : m_.type(q) == CellType::Wedge ? 1 : 2; }
   bool try_move_mean(int v, const Vec& x) {
     if (negligible(v, x)) return false;
@@ -698,7 +701,7 @@ class Run {
   // Throws GeometryError when the layer cannot be made.
   Run(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow, const std::vector<char>* sharp_in,
       const Constraints& cons, const std::function<void(const std::string&)>& log, const std::vector<char>* layer = nullptr)
-      : with_pillow_(with_pillow), log_(log) {
+      : with_pillow_(with_pillow), floor_(opt.floor), log_(log) {
     m_ = input;
     std::vector<char> sharp;
     if (sharp_in) sharp = *sharp_in;
@@ -757,6 +760,7 @@ class Run {
   void update_floors() {
     if (imp_->inverted() == 0) imp_->set_floors(-2, 0.05);
     else imp_->clear_floors();
+    imp_->raise_floors(floor_);
   }
 
   // Smoothing and optimisation rounds until the worst cell stops improving.
@@ -787,6 +791,7 @@ class Run {
   void mean_stage(int max_passes, double min_gain) {
     const auto t0 = std::chrono::steady_clock::now();
     imp_->set_floors(0.0);
+    imp_->raise_floors(floor_);
     imp_->mark_all();
     const double mean0 = imp_->mean();
     double mean = mean0;
@@ -825,6 +830,7 @@ class Run {
 
  private:
   bool with_pillow_, partial_ = false;
+  double floor_;  // ImproveOptions::floor
   std::function<void(const std::string&)> log_;
   ImproveResult r_;
   mesh::Mesh m_;
