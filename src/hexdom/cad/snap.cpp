@@ -265,7 +265,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     int inverted_snapped = 0;
   };
   const bool restore = opt.smooth > 0 || opt.optimize > 0;
-  auto run = [&](int steps) {
+  auto run = [&](int steps, double floor) {
     Restored out;
     mesh::Mesh w = m;
     const Eigen::MatrixXd start = m.V;
@@ -275,7 +275,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
       quality::ImproveOptions io;
       io.smooth = opt.smooth;
       io.optimize = opt.optimize;
-      io.floor = keep;
+      io.floor = floor;
       io.fixed_nodes = boundary;
       w = quality::improve(w, io).mesh;
     }
@@ -285,7 +285,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
       quality::ImproveOptions io;
       io.smooth = opt.smooth;
       io.optimize = opt.optimize;
-      io.floor = keep;
+      io.floor = floor;
       for (int v : boundary)
         if (!opt.slide || r.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
       if (opt.slide)
@@ -314,18 +314,32 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
 
   const auto t1 = Clock::now();
   char line[320];
-  Restored best = run(1);
+  Restored best = run(1, keep);
   if (restore && opt.steps > 1) {
     // The progressive snap where the direct one costs quality: fewer inverted cells first, then
     // the better worst cell.
     int inv_best = 0;
     const double w_best = worst_sj(best.mesh, &inv_best);
     if (inv_best > 0 || w_best < rep.worst_sj_before - 1e-3) {
-      Restored other = run(opt.steps);
+      Restored other = run(opt.steps, keep);
       int inv_other = 0;
       const double w_other = worst_sj(other.mesh, &inv_other);
       std::snprintf(line, sizeof line, "snap: direct worst SJ %.4f (%d inverted), in %d steps %.4f (%d inverted)", w_best,
                     inv_best, opt.steps, w_other, inv_other);
+      say(line);
+      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
+    }
+  }
+  if (restore && keep > -2) {
+    // The floor can stall untangling (its path may need good cells to give way): then without it.
+    int inv_best = 0;
+    const double w_best = worst_sj(best.mesh, &inv_best);
+    if (inv_best > 0) {
+      Restored other = run(1, -2);
+      int inv_other = 0;
+      const double w_other = worst_sj(other.mesh, &inv_other);
+      std::snprintf(line, sizeof line, "snap: with the floor worst SJ %.4f (%d inverted), without %.4f (%d inverted)",
+                    w_best, inv_best, w_other, inv_other);
       say(line);
       if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
     }

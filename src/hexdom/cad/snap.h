@@ -34,10 +34,11 @@ struct SnapOptions {
   /// During the restoration, boundary nodes may slide along their own CAD face or edge (vertex
   /// nodes stay); false holds every boundary node where the projection put it.
   bool slide = true;
-  /// The restoration keeps every cell that gets worse at or above min(keep, worst SJ before the
-  /// snap), even while the cells the projection inverted are untangled (quality::ImproveOptions::
-  /// floor): without it, untangling a thin layer cell let cells the snap never touched drop to the
-  /// level of the worst (i10o_simp: 0.72 -> 0.07). Negative: no floor.
+  /// The restoration keeps every cell at or above min(keep, worst SJ before the snap) there, even
+  /// while the cells the projection inverted are untangled (quality::ImproveOptions::floor):
+  /// without it, untangling a thin layer cell let cells the snap never touched drop to the level of
+  /// the worst (i10o_simp: 0.72 -> 0.07). When that leaves cells inverted, the restoration is run
+  /// again without it and the better kept. Negative: no floor.
   double keep = 0.3;
   /// When the direct snap (all boundary nodes at once, then the restoration) ends with inverted
   /// cells or below the worst SJ before it, the snap is made again in this many equal steps, the

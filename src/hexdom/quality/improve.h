@@ -41,9 +41,10 @@ struct ImproveOptions {
   /// feature curves): returns where node `node` (0-based, input numbering) goes for a candidate
   /// position x, e.g. onto its exact CAD face or edge. Not used on a pillowed mesh.
   std::function<Eigen::Vector3d(int node, const Eigen::Vector3d& x)> project;
-  /// No cell that gets worse may end below this scaled Jacobian, not even while cells are inverted
-  /// (untangling otherwise lets any cell drop to the level of the worst): e.g. after the snap to the
-  /// B-rep, the cells it did not break keep the quality they had. -2: no such floor.
+  /// A cell at or above this scaled Jacobian may not drop below it, not even while cells are
+  /// inverted (untangling otherwise lets any cell drop to the level of the worst); cells below it
+  /// move freely, so untangling them is not held back. E.g. after the snap to the B-rep, the cells
+  /// it did not break keep the quality they had. -2: no such floor.
   double floor = -2;
   /// Pillow layer thickness as a fraction of the shortest boundary edge at each node.
   double pillow_depth = 0.2;
