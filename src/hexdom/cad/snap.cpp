@@ -286,6 +286,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
       io.smooth = opt.smooth;
       io.optimize = opt.optimize;
       io.floor = floor;
+      io.mean_after = true;  // the smoothing costs the mean improve reached
       for (int v : boundary)
         if (!opt.slide || r.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
       if (opt.slide)

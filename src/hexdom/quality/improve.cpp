@@ -882,6 +882,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     run.smooth(opt.smooth);
     run.optimize(opt.optimize);
     run.set_rounds(std::max(opt.smooth, opt.optimize));
+    if (opt.mean_after && opt.mean_passes > 0) run.mean_stage(opt.mean_passes, 3e-3);
     r = run.finish();
   } else {
     // Pillowing is preferred (no hex keeps two faces on the boundary). Where a polycube edge lies

@@ -27,6 +27,10 @@ struct ImproveOptions {
   /// node moves that raise the sum of their cells' scaled Jacobians while no cell that gets worse
   /// falls below the worst cell of its type, so the worst hex, prism and tet are kept (0: none).
   int mean_passes = 12;
+  /// With explicit stages (smooth / optimize), run the mean passes after them too (the recommended
+  /// sequence always does): smoothing lowers the mean of an optimised mesh (the snap's restoration:
+  /// i10o_simp 0.744 -> 0.613).
+  bool mean_after = false;
   /// Boundary edges whose faces meet at more than this angle (degrees between normals) are sharp.
   double feature_angle = 35.0;
   /// Sharp-feature nodes given by the user (0-based indices into the input mesh), used instead of
