@@ -31,16 +31,18 @@ _NOT_MESHED = {
 # Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
 _SJ_DEFECT = {}
 _SJ_DEFECT.update({
-    "i10o_simp": "issue 9: worst hex SJ 0.074 after the snap (0.201 before it, mean 0.64; 108 blocks with a worst "
-                 "block SJ of -0.246 over the thin wedge under the tilted hole, rescued by the pillow layer)",
-    "i11o_s1": "issue 9: worst hex SJ 0.044 after the snap (0.046 before it, mean 0.83, 976 hexes; 122 blocks, "
-               "worst block SJ -0.398 where the R65 round meets the tube tangentially)",
+    "i10o_simp": "issue 9: worst hex SJ 0.201 after the snap (0.201 before it, mean 0.74; 0.074 before the restoration "
+                 "kept a floor; 108 blocks with a worst block SJ of -0.246 over the thin wedge under the tilted "
+                 "hole, rescued by the pillow layer, whose improve stops at 0.201)",
+    "i11o_s1": "issue 9: worst hex SJ 0.048 after the snap (0.046 before it, mean 0.86, 976 hexes; 122 blocks, "
+               "worst block SJ -0.398 where the R65 round meets the tube tangentially: boundary quads there keep "
+               "corners of 3-14 degrees, and both pillowed runs stay inverted at -0.08 / -0.01)",
 })
 # Parts meshed with inverted cells (hexdom mesh --allow-inverted), with the measured figure.
 _INVERTED_DEFECT = {}
 _VOLUME_DEFECT = {
-    "i10o_simp": "issue 9: volume +1.95% against the B-rep (1672 hexes, pillowed, of a 13.8 grid step over a "
-                 "tilted hole)",
+    "i10o_simp": "issue 9: volume +2.00% against the B-rep (1672 hexes, pillowed, of a 13.8 grid step over a "
+                 "tilted hole: the structure, not the snap)",
 }
 
 
@@ -150,6 +152,20 @@ def test_snapped_worst_hex_sj_at_least_0_3(stem, meshed):
     hex_sj = sj[types == oracle.HEX]
     print(f"{stem}: hex SJ min {hex_sj.min():.3f} mean {hex_sj.mean():.3f} over {len(hex_sj)} hexes")
     assert hex_sj.min() >= 0.3
+
+
+@pytest.mark.parametrize("stem", [_marks(s, {}) for s in CAD_PARTS])
+def test_snap_keeps_the_worst_cell_it_was_given(stem, meshed):
+    """The snap may not cost more than 0.02 of the worst SJ that improve reached (hexdom's own
+    figure before the snap, from its progress line; the one after by Verdict). i10o_simp lost
+    0.201 -> 0.074 before the restoration kept a floor and the progressive snap."""
+    _, g, log = meshed(stem)
+    m = re.search(r"^hexdom: snap: .* worst SJ (\S+) -> (\S+), \d+ inverted", log, re.M)
+    assert m, log
+    before = float(m.group(1))
+    sj, _ = oracle.verdict_metrics(g)
+    print(f"{stem}: worst SJ {before:.3f} before the snap, {sj.min():.3f} after (Verdict)")
+    assert sj.min() >= before - 0.02
 
 
 @pytest.mark.parametrize("stem", [_marks(s, _VOLUME_DEFECT) for s in CAD_PARTS])

@@ -249,50 +249,111 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     rep.face_nodes += r.kind[v] == SnapKind::Face;
     rep.edge_nodes += r.kind[v] == SnapKind::Edge;
     rep.vertex_nodes += r.kind[v] == SnapKind::Vertex;
-    m.V.row(v) = target.row(v);
   }
-  rep.worst_sj_snapped = worst_sj(m, &rep.inverted_snapped);
   rep.seconds_project = since(t0);
+
+  // Restoration. Every cell that gets worse stays at or above min(keep, worst before the snap).
+  const double keep = opt.keep < 0 ? -2.0 : std::min(opt.keep, rep.worst_sj_before);
+  std::vector<std::unique_ptr<FaceProjector>> faces(nfaces + 1);
+  std::vector<EdgeCurve> curves(s.edges.Extent() + 1);
+  std::vector<char> have_curve(s.edges.Extent() + 1, 0);
+  // The mesh restored after moving the boundary to the B-rep in `steps` steps (see SnapOptions),
+  // with the worst SJ and inverted cells right after the last move.
+  struct Restored {
+    mesh::Mesh mesh;
+    double worst_snapped = 0;
+    int inverted_snapped = 0;
+  };
+  const bool restore = opt.smooth > 0 || opt.optimize > 0;
+  auto run = [&](int steps, double floor) {
+    Restored out;
+    mesh::Mesh w = m;
+    const Eigen::MatrixXd start = m.V;
+    for (int k = 1; restore && k < steps; ++k) {
+      const double a = static_cast<double>(k) / steps;
+      for (int v : boundary) w.V.row(v) = start.row(v) + a * (target.row(v) - start.row(v));
+      quality::ImproveOptions io;
+      io.smooth = opt.smooth;
+      io.optimize = opt.optimize;
+      io.floor = floor;
+      io.fixed_nodes = boundary;
+      w = quality::improve(w, io).mesh;
+    }
+    for (int v : boundary) w.V.row(v) = target.row(v);
+    out.worst_snapped = worst_sj(w, &out.inverted_snapped);
+    if (restore) {
+      quality::ImproveOptions io;
+      io.smooth = opt.smooth;
+      io.optimize = opt.optimize;
+      io.floor = floor;
+      io.mean_after = true;  // the smoothing costs the mean improve reached
+      for (int v : boundary)
+        if (!opt.slide || r.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
+      if (opt.slide)
+        io.project = [&](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+          const gp_Pnt p(x(0), x(1), x(2));
+          gp_Pnt q;
+          double d = std::numeric_limits<double>::infinity();
+          const int id = r.entity[v];
+          if (r.kind[v] == SnapKind::Face) {
+            if (!faces[id]) faces[id] = std::make_unique<FaceProjector>(TopoDS::Face(s.faces(id)));
+            gp_Pnt2d uv;
+            faces[id]->nearest(p, q, d, uv);
+          } else if (r.kind[v] == SnapKind::Edge) {
+            if (!have_curve[id]) curves[id] = edge_curve(TopoDS::Edge(s.edges(id))), have_curve[id] = 1;
+            double t;
+            if (!nearest_on_edge(curves[id], p, q, t, d)) d = std::numeric_limits<double>::infinity();
+          }
+          if (!std::isfinite(d)) return w.V.row(v).transpose();  // stays where it is
+          return Eigen::Vector3d(q.X(), q.Y(), q.Z());
+        };
+      w = quality::improve(w, io).mesh;
+    }
+    out.mesh = std::move(w);
+    return out;
+  };
+
+  const auto t1 = Clock::now();
   char line[320];
+  Restored best = run(1, keep);
+  if (restore && opt.steps > 1) {
+    // The progressive snap where the direct one costs quality: fewer inverted cells first, then
+    // the better worst cell.
+    int inv_best = 0;
+    const double w_best = worst_sj(best.mesh, &inv_best);
+    if (inv_best > 0 || w_best < rep.worst_sj_before - 1e-3) {
+      Restored other = run(opt.steps, keep);
+      int inv_other = 0;
+      const double w_other = worst_sj(other.mesh, &inv_other);
+      std::snprintf(line, sizeof line, "snap: direct worst SJ %.4f (%d inverted), in %d steps %.4f (%d inverted)", w_best,
+                    inv_best, opt.steps, w_other, inv_other);
+      say(line);
+      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
+    }
+  }
+  if (restore && keep > -2) {
+    // The floor can stall untangling (its path may need good cells to give way): then without it.
+    int inv_best = 0;
+    const double w_best = worst_sj(best.mesh, &inv_best);
+    if (inv_best > 0) {
+      Restored other = run(1, -2);
+      int inv_other = 0;
+      const double w_other = worst_sj(other.mesh, &inv_other);
+      std::snprintf(line, sizeof line, "snap: with the floor worst SJ %.4f (%d inverted), without %.4f (%d inverted)",
+                    w_best, inv_best, w_other, inv_other);
+      say(line);
+      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
+    }
+  }
+  m = std::move(best.mesh);
+  rep.worst_sj_snapped = best.worst_snapped;
+  rep.inverted_snapped = best.inverted_snapped;
   std::snprintf(line, sizeof line,
                 "snap: %d boundary nodes onto %d faces, %d edges, %d vertices (largest move %.3g); worst SJ %.4f -> %.4f, "
                 "%d inverted",
                 rep.boundary_nodes, rep.face_nodes, rep.edge_nodes, rep.vertex_nodes, rep.max_move, rep.worst_sj_before,
                 rep.worst_sj_snapped, rep.inverted_snapped);
   say(line);
-
-  // Untangling and optimisation: boundary nodes slide on their own CAD face or edge (or stay).
-  const auto t1 = Clock::now();
-  if (opt.smooth > 0 || opt.optimize > 0) {
-    quality::ImproveOptions io;
-    io.smooth = opt.smooth;
-    io.optimize = opt.optimize;
-    std::vector<std::unique_ptr<FaceProjector>> faces(nfaces + 1);
-    std::vector<EdgeCurve> curves(s.edges.Extent() + 1);
-    std::vector<char> have_curve(s.edges.Extent() + 1, 0);
-    for (int v : boundary)
-      if (!opt.slide || r.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
-    if (opt.slide)
-      io.project = [&](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d {
-        const gp_Pnt p(x(0), x(1), x(2));
-        gp_Pnt q;
-        double d = std::numeric_limits<double>::infinity();
-        const int id = r.entity[v];
-        if (r.kind[v] == SnapKind::Face) {
-          if (!faces[id]) faces[id] = std::make_unique<FaceProjector>(TopoDS::Face(s.faces(id)));
-          gp_Pnt2d uv;
-          faces[id]->nearest(p, q, d, uv);
-        } else if (r.kind[v] == SnapKind::Edge) {
-          if (!have_curve[id]) curves[id] = edge_curve(TopoDS::Edge(s.edges(id))), have_curve[id] = 1;
-          double t;
-          if (!nearest_on_edge(curves[id], p, q, t, d)) d = std::numeric_limits<double>::infinity();
-        }
-        if (!std::isfinite(d)) return m.V.row(v).transpose();  // stays where it is
-        return Eigen::Vector3d(q.X(), q.Y(), q.Z());
-      };
-    quality::ImproveResult ir = quality::improve(m, io);
-    m = std::move(ir.mesh);
-  }
   rep.seconds_restore = since(t1);
   rep.worst_sj = worst_sj(m, &rep.inverted);
 

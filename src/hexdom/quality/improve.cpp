@@ -337,7 +337,7 @@ class Improver {
       const double sj = cell_sj(m_, q);
       trial_.push_back(sj);
       after = std::min(after, sj);
-      below_floor |= sj < sj_[q] && sj < floor_[type_slot(q)];
+      below_floor |= sj < sj_[q] && (sj < floor_[type_slot(q)] || crosses_keep(q, sj));
     }
     if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
     if (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0)) {
@@ -421,6 +421,10 @@ class Improver {
     for (double& f : floor_) f = only_above > 0 && f < w + only_above ? -2 : std::max(f, extra);
   }
   void clear_floors() { floor_[0] = floor_[1] = floor_[2] = -2; }
+  // ImproveOptions::floor: a cell at or above it may not get worse than it. Cells already below
+  // it (the inverted ones being untangled) are free, or untangling would stall.
+  void set_keep(double x) { keep_ = x; }
+  bool crosses_keep(int q, double sj) const { return sj_[q] >= keep_ && sj < keep_; }
   int type_slot(int q) const { return m_.type(q) == CellType::Hex ? 0 : m_.type(q) == CellType::Wedge ? 1 : 2; }
   bool try_move_mean(int v, const Vec& x) {
     if (negligible(v, x)) return false;
@@ -436,7 +440,7 @@ class Improver {
       trial_.push_back(sj);
       before_sum += sj_[q];
       after_sum += sj;
-      if (sj < sj_[q] && (sj < floor_[type_slot(q)] || sj <= 0)) { ok = false; break; }
+      if (sj < sj_[q] && (sj < floor_[type_slot(q)] || sj <= 0 || crosses_keep(q, sj))) { ok = false; break; }
     }
     if (ok && after_sum > before_sum + 1e-7) {
       for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
@@ -532,6 +536,7 @@ class Improver {
   std::vector<double> sj_, edge_, trial_;
   std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
   std::vector<char> climb_;  // nodes worth another optimisation step
+  double keep_ = -2;  // ImproveOptions::floor
   double floor_[3] = {-2, -2, -2};  // lowest scaled Jacobian a worsened hex, prism, tet may reach
 };
 
@@ -737,6 +742,7 @@ class Run {
       unhooked_->project = nullptr;
     }
     imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
+    imp_->set_keep(opt.floor);
     log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +
          ": worst scaled Jacobian " + std::to_string(imp_->worst()) + "; " + std::to_string(r_.feature_nodes) +
          " feature-curve nodes, " + std::to_string(r_.corner_nodes) + " corners");
@@ -876,6 +882,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     run.smooth(opt.smooth);
     run.optimize(opt.optimize);
     run.set_rounds(std::max(opt.smooth, opt.optimize));
+    if (opt.mean_after && opt.mean_passes > 0) run.mean_stage(opt.mean_passes, 3e-3);
     r = run.finish();
   } else {
     // Pillowing is preferred (no hex keeps two faces on the boundary). Where a polycube edge lies
