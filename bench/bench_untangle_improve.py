@@ -20,18 +20,12 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
 import hexdom_oracles as O  # noqa: E402
+import hexdom_test_support as support  # noqa: E402
 
 DATA = os.environ.get("HEXDOM_DATA", os.path.join(ROOT, "..", "shared", "data"))
 BUILD = os.environ.get("HEXDOM_BUILD_DIR", os.path.join(ROOT, "build"))
 HEXDOM = os.path.join(BUILD, "bin", "hexdom")
-MODELS = {
-    "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_polycube_withtet.k"),
-    "mount1": ("mount1_patch_hexdom.k", "mount1_polycube_hexdom_withtet.k"),
-    "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k"),
-    "fertility": ("fertility_indexPatch_hexdom.k", "fertility_polycube_hexdom_withtet.k"),
-    "ant": ("ant_indexPatch_hexdom.k", "ant_polycube_withtet.k"),
-    "mountwithhole": ("mountwithhole_patch_hexdom.k", "mountwithhole_polycube_withtet.k"),
-}
+MODELS = support.PAPER_MODELS
 NAMES = {O.HEX: "hex", O.WEDGE: "prism", O.TET: "tet"}
 
 

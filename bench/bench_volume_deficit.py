@@ -19,14 +19,10 @@ from vtk.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.environ.get("HEXDOM_DATA", os.path.join(ROOT, "..", "shared", "data"))
-MODELS = {
-    "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_polycube_withtet.k"),
-    "mount1": ("mount1_patch_hexdom.k", "mount1_polycube_hexdom_withtet.k"),
-    "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k"),
-    "fertility": ("fertility_indexPatch_hexdom.k", "fertility_polycube_hexdom_withtet.k"),
-    "ant": ("ant_indexPatch_hexdom.k", "ant_polycube_withtet.k"),
-    "mountwithhole": ("mountwithhole_patch_hexdom.k", "mountwithhole_polycube_withtet.k"),
-}
+sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+import hexdom_test_support as support  # noqa: E402
+
+MODELS = support.PAPER_MODELS
 FACES = {  # VTK local faces, outward
     12: [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)],
     13: [(0, 1, 2), (3, 5, 4), (0, 3, 4, 1), (1, 4, 5, 2), (2, 5, 3, 0)],

@@ -27,6 +27,18 @@ DATA_ROOT = Path(os.environ.get("HEXDOM_DATA") or REPO.parent / "shared" / "data
 HEXDOM_DATA = DATA_ROOT / "hexdom"
 
 
+# The paper models with a hand-built structure: model -> (segmented patch file, structure with
+# prism and tet blocks), both under HEXDOM_DATA/<model>/.
+PAPER_MODELS = {
+    "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_polycube_withtet.k"),
+    "mount1": ("mount1_patch_hexdom.k", "mount1_polycube_hexdom_withtet.k"),
+    "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k"),
+    "fertility": ("fertility_indexPatch_hexdom.k", "fertility_polycube_hexdom_withtet.k"),
+    "ant": ("ant_indexPatch_hexdom.k", "ant_polycube_withtet.k"),
+    "mountwithhole": ("mountwithhole_patch_hexdom.k", "mountwithhole_polycube_withtet.k"),
+}
+
+
 def missing(path):
     return f"shared data missing: {path} (set HEXDOM_DATA)"
 

@@ -14,6 +14,20 @@ using mesh::CellType;
 
 namespace {
 
+// Hexes (VTK order) of an nx x nx x nz grid of cells whose node (i, j, l) is row i + mx (j + my l) of V.
+mesh::Mesh grid_hexes(const Eigen::MatrixXd& V, int nx, int nz, int mx, int my) {
+  auto id = [&](int i, int j, int l) { return i + mx * (j + my * l); };
+  mesh::MeshBuilder b;
+  for (int l = 0; l < nz; ++l)
+    for (int j = 0; j < nx; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int h[8] = {id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l),
+                          id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
+        b.add(CellType::Hex, h, 1);
+      }
+  return b.finish(V);
+}
+
 // n x n x n unit-cube grid of hexes, VTK order; interior nodes jittered by up to `jitter` cells.
 mesh::Mesh cube_grid(int n, double jitter, unsigned seed = 7) {
   const int k = n + 1;
@@ -29,15 +43,7 @@ mesh::Mesh cube_grid(int n, double jitter, unsigned seed = 7) {
         if (interior) p += Eigen::RowVector3d(u(rng), u(rng), u(rng));
         V.row(id(i, j, l)) = p / n;
       }
-  mesh::MeshBuilder b;
-  for (int l = 0; l < n; ++l)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int h[8] = {id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l),
-                          id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
-        b.add(CellType::Hex, h, 1);
-      }
-  return b.finish(V);
+  return grid_hexes(V, n, n, n + 1, n + 1);
 }
 
 Eigen::VectorXd sj_of(const mesh::Mesh& m) { return quality::compute_metrics(m).scaled_jacobian; }
@@ -56,15 +62,7 @@ mesh::Mesh polycube_cylinder(int n, int k) {
         const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
         V.row(id(i, j, l)) << x * std::sqrt(1 - y * y / 2), y * std::sqrt(1 - x * x / 2), static_cast<double>(l) / k;
       }
-  mesh::MeshBuilder b;
-  for (int l = 0; l < k; ++l)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int h[8] = {id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l),
-                          id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
-        b.add(CellType::Hex, h, 1);
-      }
-  return b.finish(V);
+  return grid_hexes(V, n, k, n + 1, n + 1);
 }
 
 }  // namespace
