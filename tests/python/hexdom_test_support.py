@@ -39,6 +39,31 @@ PAPER_MODELS = {
 }
 
 
+def thin_wedge(layers=3):
+    """A thin wedge prism (cross-section a 15 degree kite-like hexagon in xy, apex at x = 10, 4
+    high in z) whose two long sides, patches 1 and 2 (normals 165 degrees apart, nearest +Y and
+    -Y), share the apex edge; patch 3 the back, 4 the top fan, 5 the bottom fan.
+    Returns V (#V x 3 float), F (#F x 3), patch id per triangle."""
+    import numpy as np
+    h = 10 * np.tan(np.radians(7.5))
+    ring = [(0, -h), (5, -h / 2), (10, 0), (5, h / 2), (0, h), (0, 0)]
+    side = [1, 1, 2, 2, 3, 3]
+    n = len(ring)
+    V = [(x, y, 4.0 * k / layers) for k in range(layers + 1) for x, y in ring]
+    V += [(10 / 3, 0, 0), (10 / 3, 0, 4.0)]
+    tris = []
+    for k in range(layers):
+        for i in range(n):
+            j = (i + 1) % n
+            a, b, c, d = k * n + i, k * n + j, (k + 1) * n + j, (k + 1) * n + i
+            tris += [(side[i], (a, b, c)), (side[i], (a, c, d))]
+    bottom, top = len(V) - 2, len(V) - 1
+    for i in range(n):
+        j = (i + 1) % n
+        tris += [(4, (layers * n + i, layers * n + j, top)), (5, (j, i, bottom))]
+    return np.array(V, float), np.array([t for _, t in tris]), np.array([p for p, _ in tris])
+
+
 def missing(path):
     return f"shared data missing: {path} (set HEXDOM_DATA)"
 

@@ -10,7 +10,6 @@ skip naming its path.
 
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +23,6 @@ CAD_DATA = support.DATA_ROOT / "cad"
 STEP_PARTS = ["i01o_m1.step", "i10o_simp.step", "i11o_s1.step", "n11o_limit_cycle.stp",
               "s09o_bridge.step", "s11o_cube_cyl.stp", "s12o_cube_rounded_1.stp",
               "s14o_cube_corner_sub_sphere.stp", "s15o_cylinder.stp"]
-FREECAD_PATHS = ["/usr/lib/freecad-python3/lib", "/usr/share/freecad/Mod", "/usr/share/freecad/Ext"]
 
 
 @pytest.fixture(scope="module")
@@ -33,20 +31,6 @@ def hx(core):
     if not core._hexdom.has_opencascade():
         pytest.skip("_hexdom was built without OpenCASCADE (HEXDOM_WITH_CAD=OFF)")
     return core._hexdom
-
-
-@pytest.fixture(scope="module")
-def freecad():
-    """(FreeCAD, Part), or a skip when FreeCAD's Python modules are not installed."""
-    for p in FREECAD_PATHS:
-        if p not in sys.path:
-            sys.path.append(p)
-    try:
-        import FreeCAD
-        import Part
-    except ImportError as e:
-        pytest.skip(f"FreeCAD not importable from {FREECAD_PATHS}: {e}")
-    return FreeCAD, Part
 
 
 def step_part(name):

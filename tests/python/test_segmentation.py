@@ -13,6 +13,8 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
+import hexdom_test_support as support
+
 MODELS = ["rockerarm", "mount1", "hepta", "fertility", "ant", "mountwithhole"]
 PAPER_PATCHES = {  # model: (accepted patch file, the original's initial polycube)
     "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_initialpolycube.k"),
@@ -336,28 +338,13 @@ def test_check_finds_a_two_patch_corner(hexdom_bin, tmp_path):
 
 def test_check_finds_opposite_patches_touching(hexdom_bin, tmp_path):
     # A thin wedge: its two long sides (normals 165 degrees apart, nearest +Y and -Y) share the apex edge.
-    h = 10 * np.tan(np.radians(7.5))
-    ring = [(0, -h), (5, -h / 2), (10, 0), (5, h / 2), (0, h), (0, 0)]
-    side = [1, 1, 2, 2, 3, 3]
-    n, layers = len(ring), 3
-    V = [(x, y, 4.0 * k / layers) for k in range(layers + 1) for x, y in ring]
-    V += [(10 / 3, 0, 0), (10 / 3, 0, 4.0)]
-    tris = []
-    for k in range(layers):
-        for i in range(n):
-            j = (i + 1) % n
-            a, b, c, d = k * n + i, k * n + j, (k + 1) * n + j, (k + 1) * n + i
-            tris += [(side[i], (a, b, c)), (side[i], (a, c, d))]
-    bottom, top = len(V) - 2, len(V) - 1
-    for i in range(n):
-        j = (i + 1) % n
-        tris += [(4, (layers * n + i, layers * n + j, top)), (5, (j, i, bottom))]
+    V, F, P = support.thin_wedge()
     path = tmp_path / "wedge.k"
     with open(path, "w") as f:
         f.write("*KEYWORD\n*ELEMENT_SHELL\n")
-        for e, (pid, t) in enumerate(tris):
+        for e, (pid, t) in enumerate(zip(P.tolist(), F.tolist())):
             f.write(f"{e + 1},{pid},{t[0] + 1},{t[1] + 1},{t[2] + 1},{t[2] + 1}\n")
-        f.write("*NODE\n" + "".join(f"{i + 1},{x!r},{y!r},{z!r}\n" for i, (x, y, z) in enumerate(V)) + "*END\n")
+        f.write("*NODE\n" + "".join(f"{i + 1},{x!r},{y!r},{z!r}\n" for i, (x, y, z) in enumerate(V.tolist())) + "*END\n")
     r, report = check_json(hexdom_bin, path)
     assert r.returncode == 1
     opp = [v for v in report["violations"] if v["kind"] == "opposite_orientations"]

@@ -8,7 +8,6 @@ boundary nodes, Verdict through vtkMeshQuality for the scaled Jacobians)."""
 import glob
 import re
 import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -19,7 +18,6 @@ import hexdom_oracles as oracle
 import hexdom_test_support as support
 
 DATA = support.DATA_ROOT
-FREECAD_PATHS = ["/usr/lib/freecad-python3/lib", "/usr/share/freecad/Mod", "/usr/share/freecad/Ext"]
 
 CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
              "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
@@ -55,16 +53,8 @@ def _marks(stem, extra):
 
 
 @pytest.fixture(scope="module")
-def Part():
-    for p in FREECAD_PATHS:
-        if p not in sys.path:
-            sys.path.append(p)
-    try:
-        import FreeCAD  # noqa: F401
-        import Part
-    except ImportError as e:
-        pytest.skip(f"FreeCAD not importable from {FREECAD_PATHS}: {e}")
-    return Part
+def Part(freecad):
+    return freecad[1]
 
 
 def _cad(stem):

@@ -3,6 +3,7 @@ PolycubeBuilder classes the panels' widgets call, and the Segmentation's patch e
 Edit Patches panel writes on OK."""
 
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -17,6 +18,10 @@ from HexDomWorkbench.taskpanels.polycube_building import PolycubeBuilder, order_
 
 import fc_testdata
 from conftest import reopen
+
+sys.path.insert(0, os.path.join(os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "..", "python"))
+import hexdom_test_support as support  # noqa: E402  (the thin wedge, shared with tests/python)
 
 PATCHES = fc_testdata.example_path("lbracket_patches.k")
 STRUCTURE = fc_testdata.example_path("lbracket_structure.k")
@@ -200,25 +205,7 @@ def test_opposite_orientations_touching_are_listed_highlighted_and_cut_apart():
     """A thin wedge (its long sides' normals 165 degrees apart, +Y and -Y, meet at the apex
     edge): the editor lists the opposite orientations touching, the problem's facets are the two
     sides, and a +X strip made at the apex separates them."""
-    h = 10 * np.tan(np.radians(7.5))
-    ring = [(0, -h), (5, -h / 2), (10, 0), (5, h / 2), (0, h), (0, 0)]
-    side = [1, 1, 2, 2, 3, 3]
-    n, layers = len(ring), 3
-    V = [(x, y, 4.0 * k / layers) for k in range(layers + 1) for x, y in ring]
-    V += [(10 / 3, 0, 0), (10 / 3, 0, 4.0)]
-    tris = []
-    for k in range(layers):
-        for i in range(n):
-            j = (i + 1) % n
-            a, b, c, d = k * n + i, k * n + j, (k + 1) * n + j, (k + 1) * n + i
-            tris += [(side[i], (a, b, c)), (side[i], (a, c, d))]
-    bottom, top = len(V) - 2, len(V) - 1
-    for i in range(n):
-        j = (i + 1) % n
-        tris += [(4, (layers * n + i, layers * n + j, top)), (5, (j, i, bottom))]
-    V = np.array(V, float)
-    F = np.array([t for _, t in tris])
-    P = np.array([p for p, _ in tris])
+    V, F, P = support.thin_wedge()
     e = PatchEditor(V, F, P)
     problems = e.problems()
     assert [p.kind for p in problems] == ["opposite_orientations"]

@@ -13,12 +13,10 @@ import numpy as np
 import pytest
 
 import FreeCAD
-import ObjectsFem
-from femtools import ccxtools
-
 from HexDomWorkbench import core, make
 from HexDomWorkbench.convert import fem_setup
 
+import fc_fem
 import fc_testdata
 
 L, W, H = 100.0, 10.0, 10.0  # mm
@@ -55,24 +53,9 @@ def solve(doc, tmp_path, wedge_layers, load):
     box = doc.addObject("Part::Box", "Box")
     box.Length, box.Width, box.Height = L, W, H
     doc.recompute()
-    analysis = ObjectsFem.makeAnalysis(doc, "Analysis")
-    solver = ObjectsFem.makeSolverCalculixCcxTools(doc, "Solver")
-    analysis.addObject(solver)
-    material = ObjectsFem.makeMaterialSolid(doc, "Steel")
-    mat = material.Material
-    mat.update({"Name": "Steel", "YoungsModulus": "{} MPa".format(E), "PoissonRatio": str(NU)})
-    material.Material = mat
-    analysis.addObject(material)
-    fixed = ObjectsFem.makeConstraintFixed(doc, "ConstraintFixed")
-    fixed.References = [(box, "Face1")]  # x = 0
-    analysis.addObject(fixed)
-    force = ObjectsFem.makeConstraintForce(doc, "ConstraintForce")
-    force.References = [(box, "Face2")]  # x = L
-    force.Force = F
-    force.Direction = (box, ["Face2"] if load == "axial" else ["Face6"])  # +x or +z
-    force.Reversed = False
-    analysis.addObject(force)
-
+    analysis, solver, _ = fc_fem.static_analysis(
+        doc, E, NU, [(box, "Face1")], [(box, "Face2")], F,  # fixed at x = 0, loaded at x = L
+        (box, ["Face2"] if load == "axial" else ["Face6"]))  # +x or +z
     V, cells, types = fc_testdata.box_mesh(L, W, H, NX, NY, NZ, wedge_layers)
     mesh = core.Mesh(V, cells, types, np.zeros(len(types), np.int32))
     obj = make.make_hex_mesh(doc, mesh, "HexDomMesh")
@@ -82,18 +65,8 @@ def solve(doc, tmp_path, wedge_layers, load):
 
     work = tmp_path / "ccx"
     work.mkdir()
-    fea = ccxtools.FemToolsCcx(analysis=analysis, solver=solver)
-    fea.update_objects()
-    fea.setup_working_dir(str(work))
-    assert fea.check_prerequisites() == ""
-    fea.write_inp_file()
-    assert fea.inp_file_name
-    fea.setup_ccx()
-    assert fea.ccx_run() == 0, fea.ccx_stdout
-    fea.load_results()
-    results = [o for o in analysis.Group if o.isDerivedFrom("Fem::FemResultObject")]
-    assert len(results) == 1, "no CalculiX results loaded"
-    disp = dict(zip(results[0].NodeNumbers, results[0].DisplacementVectors))
+    fea = fc_fem.write_inp(analysis, solver, work)
+    disp = fc_fem.solve(fea, analysis)
     tip = [i + 1 for i, p in enumerate(V) if p[0] == L]
     axis = 0 if load == "axial" else 2
     u = float(np.mean([disp[n][axis] for n in tip]))

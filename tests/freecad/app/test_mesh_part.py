@@ -260,31 +260,15 @@ def test_boundary_nodes_snapped_onto_the_cad_faces(doc):
 def test_mesh_part_bar_solves_in_calculix(doc, tmp_path):
     """A bar meshed by Mesh Part, fixed at x = 0 and pulled at x = L through FEM constraints on
     its CAD faces: CalculiX's end displacement within 2% of F L / (E A)."""
-    import ObjectsFem
-    from femtools import ccxtools
+    import fc_fem
     from HexDomWorkbench.convert import fem_setup
     L, W, H, E, F = 100.0, 10.0, 10.0, 210000.0, 1000.0
     box = _box(doc, L, W, H)
     objs = hexdom.mesh_part(doc, box, size=2.5, level=1)
     mesh = objs["mesh"]
     assert mesh.InvertedCount == 0 and mesh.HexCount > 0
-    analysis = ObjectsFem.makeAnalysis(doc, "Analysis")
-    solver = ObjectsFem.makeSolverCalculixCcxTools(doc, "Solver")
-    analysis.addObject(solver)
-    material = ObjectsFem.makeMaterialSolid(doc, "Steel")
-    mat = material.Material
-    mat.update({"Name": "Steel", "YoungsModulus": "{} MPa".format(E), "PoissonRatio": "0.3"})
-    material.Material = mat
-    analysis.addObject(material)
-    fixed = ObjectsFem.makeConstraintFixed(doc, "Fixed")
-    fixed.References = [(box, "Face1")]
-    analysis.addObject(fixed)
-    force = ObjectsFem.makeConstraintForce(doc, "Force")
-    force.References = [(box, "Face2")]
-    force.Force = F
-    force.Direction = (box, ["Face2"])
-    force.Reversed = False
-    analysis.addObject(force)
+    analysis, solver, _ = fc_fem.static_analysis(doc, E, 0.3, [(box, "Face1")], [(box, "Face2")], F,
+                                                 (box, ["Face2"]))
     fem_setup.add_to_analysis(analysis, mesh)
     doc.recompute()
     n_fixed = len(mesh.FemMesh.getNodesByFace(box.Shape.Faces[0]))
@@ -292,17 +276,7 @@ def test_mesh_part_bar_solves_in_calculix(doc, tmp_path):
     assert n_fixed > 0 and n_load > 0
     work = tmp_path / "ccx"
     work.mkdir()
-    fea = ccxtools.FemToolsCcx(analysis=analysis, solver=solver)
-    fea.update_objects()
-    fea.setup_working_dir(str(work))
-    assert fea.check_prerequisites() == ""
-    fea.write_inp_file()
-    fea.setup_ccx()
-    assert fea.ccx_run() == 0, fea.ccx_stdout
-    fea.load_results()
-    results = [o for o in analysis.Group if o.isDerivedFrom("Fem::FemResultObject")]
-    assert len(results) == 1
-    disp = dict(zip(results[0].NodeNumbers, results[0].DisplacementVectors))
+    disp = fc_fem.solve(fc_fem.write_inp(analysis, solver, work), analysis)
     tip = mesh.FemMesh.getNodesByFace(box.Shape.Faces[1])
     u = float(np.mean([disp[n][0] for n in tip]))
     theory = F * L / (E * W * H)
