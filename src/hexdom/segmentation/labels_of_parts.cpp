@@ -17,9 +17,10 @@ Eigen::VectorXi labels_of_parts(const mesh::SurfaceMesh& s, bool* relabelled) {
   std::map<int, int> count;
   for (int t = 0; t < s.F.rows(); ++t) {
     const Eigen::Vector3d a = s.V.row(s.F(t, 0)), b = s.V.row(s.F(t, 1)), c = s.V.row(s.F(t, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
     auto [it, fresh] = normal.emplace(s.patch(t), Eigen::Vector3d::Zero());
-    it->second += (b - a).cross(c - a);
-    area[s.patch(t)] += (b - a).cross(c - a).norm();
+    it->second += n;
+    area[s.patch(t)] += n.norm();
     ++count[s.patch(t)];
   }
   bool are_labels = true;
