@@ -77,6 +77,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
 
     PolycubeMapOptions mo;
     mo.cell = r.cell;
+    mo.keep_widths = opt.keep_widths;
     mo.log = opt.log;
     // Curves whose spans only touch are separated too, unless that orders the planes in a cycle.
     PolycubeMap map;

@@ -30,6 +30,9 @@ struct AutoPolycubeOptions {
   /// of the surface's; otherwise autopolycube gives up and names it.
   double max_relabel_area = 0.03;
   int untangle_rounds = 50;  ///< rounds of local moves of interior block vertices
+  /// Walls of a hole or a slot (charts of opposite labels facing each other across a void) get planes
+  /// as many cells apart as they are in the input, not just one (PolycubeMapOptions::keep_widths).
+  bool keep_widths = true;
   LogCallback log;
 };
 

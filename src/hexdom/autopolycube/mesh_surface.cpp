@@ -19,10 +19,107 @@ std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 
 }
 }  // namespace
 
+namespace {
+
+int inverted_cells(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+
+double worst_sj(const quality::QualityReport& q) {
+  double w = 1;
+  for (const auto* t : {&q.hex, &q.prism, &q.tet})
+    if (t->count > 0) w = std::min(w, t->sj_min);
+  return w;
+}
+
+// Relative volume error of a run against the input surface's enclosed volume.
+double volume_error(const MeshSurfaceRun& r, double reference) {
+  return reference != 0 ? std::abs(r.quality.total_volume - reference) / std::abs(reference) : 0.0;
+}
+
+bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& opt) {
+  return inverted_cells(r.quality) == 0 && worst_sj(r.quality) >= opt.target_sj && volume_error(r, reference) <= opt.target_volume;
+}
+
+// Whether run b is better than run a: fewer inverted cells; then the one whose worst SJ meets the
+// target; then the one whose volume does; then the higher worst SJ.
+bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& opt) {
+  const int ib = inverted_cells(b.quality), ia = inverted_cells(a.quality);
+  if (ib != ia) return ib < ia;
+  const bool sb = worst_sj(b.quality) >= opt.target_sj, sa = worst_sj(a.quality) >= opt.target_sj;
+  if (sb != sa) return sb;
+  const bool vb = volume_error(b, reference) <= opt.target_volume, va = volume_error(a, reference) <= opt.target_volume;
+  if (vb != va) return vb;
+  return worst_sj(b.quality) > worst_sj(a.quality);
+}
+
+// segment -> autopolycube -> generate -> improve at one level, one polycube option set.
+void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
+
+}  // namespace
+
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
   r = MeshSurfaceRun{};
+  auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  mesh_once(surface, opt, r);
+  double reference = 0;
+  for (int f = 0; f < surface.F.rows(); ++f) {
+    const Eigen::Vector3d p = surface.V.row(surface.F(f, 0)), q = surface.V.row(surface.F(f, 1)), w = surface.V.row(surface.F(f, 2));
+    reference += p.dot(q.cross(w)) / 6.0;
+  }
+  // A polycube that keeps the widths of holes is tried first; when its mesh misses a target, the one
+  // with the least-squares plane offsets is tried too and the better kept (see `better`).
+  if (opt.polycube.keep_widths && opt.try_without_widths && !meets_targets(r, reference, opt)) {
+    say(fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%%: again without keeping the widths of holes", r.level,
+            worst_sj(r.quality), inverted_cells(r.quality), 100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)));
+    MeshSurfaceOptions other = opt;
+    other.polycube.keep_widths = false;
+    other.segment.edge_weight = r.edge_weight;
+    other.retry_edge_weights.clear();
+    MeshSurfaceRun again;
+    try {
+      mesh_once(surface, other, again);
+      if (better(again, r, reference, opt)) {
+        say("kept the polycube without the widths of holes: its mesh is better");
+        for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
+        again.segmentations += r.segmentations;
+        r = std::move(again);
+      } else {
+        say("kept the polycube with the widths of holes: its mesh is better");
+        for (int k = 0; k < 4; ++k) r.seconds[k] += again.seconds[k];
+      }
+    } catch (const Error& e) {
+      say(std::string("without the widths of holes: ") + e.what() + "; keeping the first polycube");
+    }
+  }
+  const int inverted = inverted_cells(r.quality);
+  if (inverted > 0 && opt.level > 0 && opt.refine_when_inverted) {
+    say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
+            opt.level - 1));
+    MeshSurfaceOptions finer = opt;
+    finer.level = opt.level - 1;
+    finer.segment.edge_weight = r.edge_weight;
+    MeshSurfaceRun again;
+    try {
+      mesh_surface(surface, finer, &again);
+    } catch (const Error& e) {
+      say(std::string("level ") + std::to_string(finer.level) + ": " + e.what() + "; keeping level " + std::to_string(opt.level));
+      return progress ? *progress : local;
+    }
+    const int inverted2 = inverted_cells(again.quality);
+    if (inverted2 < inverted) {
+      for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
+      r = std::move(again);
+    } else {
+      say(fmt("level %.0f is no better (%.0f inverted); keeping level %.0f", finer.level, inverted2, opt.level));
+    }
+  }
+  return progress ? *progress : local;
+}
+
+namespace {
+
+void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   const LogCallback inner = opt.verbose ? opt.log : LogCallback();
   const double diag = surface.V.rows() ? (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() : 0.0;
@@ -113,29 +210,9 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
       fmt(", in %.2f s", r.seconds[3]));
   r.level = opt.level;
   r.stage = "done";
-  if (inverted > 0 && opt.level > 0 && opt.refine_when_inverted) {
-    say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
-            opt.level - 1));
-    MeshSurfaceOptions finer = opt;
-    finer.level = opt.level - 1;
-    finer.segment.edge_weight = r.edge_weight;
-    MeshSurfaceRun again;
-    try {
-      mesh_surface(surface, finer, &again);
-    } catch (const Error& e) {
-      say(std::string("level ") + std::to_string(finer.level) + ": " + e.what() + "; keeping level " + std::to_string(opt.level));
-      return progress ? *progress : local;
-    }
-    const int inverted2 = again.quality.hex.inverted + again.quality.prism.inverted + again.quality.tet.inverted;
-    if (inverted2 < inverted) {
-      for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
-      r = std::move(again);
-    } else {
-      say(fmt("level %.0f is no better (%.0f inverted); keeping level %.0f", finer.level, inverted2, opt.level));
-    }
-  }
-  return progress ? *progress : local;
 }
+
+}  // namespace
 
 std::string to_text(const MeshSurfaceRun& r) {
   std::string s;

@@ -30,6 +30,14 @@ struct MeshSurfaceOptions {
   /// with level s - 1 (the same element size, a grid of half the spacing, so thin features such as
   /// rockerarm's bore wall get their own cells) and keep the better result.
   bool refine_when_inverted = true;
+  /// The polycube keeps the widths of holes (AutoPolycubeOptions::keep_widths, on in `polycube`);
+  /// when the mesh then misses a target (an inverted cell, a worst scaled Jacobian below target_sj,
+  /// a volume off the input surface's by more than target_volume), run again with the least-squares
+  /// plane offsets and keep the better mesh: fewer inverted cells; then the one whose worst SJ meets
+  /// target_sj; then the one whose volume meets target_volume; then the higher worst SJ.
+  bool try_without_widths = true;
+  double target_sj = 0.3;       ///< worst scaled Jacobian the candidates are measured against
+  double target_volume = 0.01;  ///< relative volume error the candidates are measured against
   /// One line per stage (level 0); with `verbose` also the stages' own messages.
   LogCallback log;
   bool verbose = false;

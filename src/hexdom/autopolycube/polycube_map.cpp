@@ -24,8 +24,13 @@ using Triplets = std::vector<Eigen::Triplet<double>>;
 // are snapped onto the line, so that cutting along the grid never leaves slivers thinner than this.
 constexpr double kSnap = 1e-6;
 
-struct Order {  // plane group hi lies at least one cell above plane group lo
+// Two charts face each other (or away from each other) when their mean normals are opposite within
+// 20 degrees: only then is the distance between their centroids a width (a wedge has none).
+const double kFacing = std::cos(20.0 * M_PI / 180.0);
+
+struct Order {  // plane group hi lies at least `gap` cells above plane group lo
   int lo, hi;
+  int gap = 1;
 };
 
 struct Edge {
@@ -149,12 +154,12 @@ int untangle_chart(Eigen::MatrixXd& D, const Eigen::MatrixXi& F, const std::vect
 }
 
 // Puts the plane groups of axis a on integers: least squares toward the continuous offsets (area
-// weighted) subject to x_hi - x_lo >= 1 for every order (Hildreth's method), then a push along the
-// order graph for exact feasibility and rounding (which keeps differences >= 1).
+// weighted) subject to x_hi - x_lo >= gap for every order (Hildreth's method), then a push along the
+// order graph for exact feasibility and rounding (which keeps differences >= gap, gaps being integers).
 void quantize_axis(int a, const std::vector<Order>& ord, const PlaneGroups& pg, PolycubeMap& m,
                    const std::vector<double>& weight, double h, const ChartGraph& g) {
   const int ng = pg.num_groups();
-  // Least squares toward the continuous offsets subject to x_hi - x_lo >= 1 (Hildreth's method).
+  // Least squares toward the continuous offsets subject to x_hi - x_lo >= gap (Hildreth's method).
   std::vector<double> x(ng, 0);
   for (int gi = 0; gi < ng; ++gi) x[gi] = (m.offset(gi) - m.origin(a)) / h;
   const std::vector<double> target = x;
@@ -170,7 +175,7 @@ void quantize_axis(int a, const std::vector<Order>& ord, const PlaneGroups& pg, 
     double worst = 0;
     for (size_t k = 0; k < ord.size(); ++k) {
       const int lo = ord[k].lo, hi = ord[k].hi;
-      const double slack = x[hi] - x[lo] - 1.0;
+      const double slack = x[hi] - x[lo] - ord[k].gap;
       worst = std::max(worst, -slack);
       const double nl = std::max(0.0, lambda[k] - slack / (1.0 / w[hi] + 1.0 / w[lo]));
       const double dl = nl - lambda[k];
@@ -181,9 +186,9 @@ void quantize_axis(int a, const std::vector<Order>& ord, const PlaneGroups& pg, 
     if (worst < 1e-9) break;
   }
   // Exact feasibility: push along the order graph in topological order (a cycle is an error).
-  std::vector<std::vector<int>> succ(ng);
+  std::vector<std::vector<std::pair<int, int>>> succ(ng);  // (hi, gap)
   std::vector<int> indeg(ng, 0);
-  for (const auto& o : ord) { succ[o.lo].push_back(o.hi); ++indeg[o.hi]; }
+  for (const auto& o : ord) { succ[o.lo].push_back({o.hi, o.gap}); ++indeg[o.hi]; }
   std::queue<int> ready;
   for (int gi = 0; gi < ng; ++gi)
     if (pg.axis[gi] == a && indeg[gi] == 0) ready.push(gi);
@@ -192,8 +197,8 @@ void quantize_axis(int a, const std::vector<Order>& ord, const PlaneGroups& pg, 
     const int u = ready.front();
     ready.pop();
     ++seen;
-    for (int v : succ[u]) {
-      x[v] = std::max(x[v], x[u] + 1.0);
+    for (const auto& [v, gap] : succ[u]) {
+      x[v] = std::max(x[v], x[u] + gap);
       if (--indeg[v] == 0) ready.push(v);
     }
   }
@@ -299,7 +304,8 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
   // The straight segment each curve becomes, seen from one of its charts: it lies at the plane of the
   // other chart (`at`) and spans the planes of its end corners along its own axis.
   struct Segment {
-    int chart, at, axis, from, to;  // plane groups: `at` (position), `from` / `to` (ends along `axis`)
+    int chart, other;                // the chart it bounds and the chart on the other side of the curve
+    int at, axis, from, to;          // plane groups: `at` (position), `from` / `to` (ends along `axis`)
     double mean;                     // mean input coordinate of the curve along at's axis
   };
   std::vector<Segment> segments;
@@ -311,18 +317,46 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
       const int pa = (g.label[other] - 1) / 2;
       double mean = 0;
       for (int v : c.vertices) mean += s.V(v, pa);
-      segments.push_back({chart, pg.of_chart[other], ax, pg.of_vertex(p, ax), pg.of_vertex(q, ax), mean / c.vertices.size()});
+      segments.push_back({chart, other, pg.of_chart[other], ax, pg.of_vertex(p, ax), pg.of_vertex(q, ax), mean / c.vertices.size()});
     }
   }
   std::vector<std::vector<int>> chart_segments(g.num_charts());
   for (size_t i = 0; i < segments.size(); ++i) chart_segments[segments[i].chart].push_back(static_cast<int>(i));
+  // Per chart: area centroid and mean unit normal (input), for the widths of opposite charts below.
+  std::vector<Eigen::Vector3d> centroid(g.num_charts(), Eigen::Vector3d::Zero()), normal(g.num_charts(), Eigen::Vector3d::Zero());
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d p = s.V.row(s.F(f, 0)), q = s.V.row(s.F(f, 1)), r = s.V.row(s.F(f, 2));
+    const Eigen::Vector3d n = (q - p).cross(r - p);  // twice the area, outward
+    centroid[g.chart(f)] += 0.5 * n.norm() * (p + q + r) / 3.0;
+    normal[g.chart(f)] += 0.5 * n;
+  }
+  for (int c = 0; c < g.num_charts(); ++c) {
+    if (g.area[c] > 0) centroid[c] /= g.area[c];
+    if (normal[c].norm() > 0) normal[c].normalize();
+  }
+  // Cells between the planes of two charts of opposite labels that bound one chart from opposite
+  // sides and face each other across a void (a hole's two walls): their input distance along their
+  // common normal, centroid to centroid, in cells, at least 1. Along the normal and not along the axis,
+  // so that a tilted hole keeps its width (its walls' centroids are offset along its axis as well).
+  // A slab's faces (normals pointing away from each other) and a wedge's (normals not opposite)
+  // keep 1: their least-squares offsets stand.
+  auto width_gap = [&](int a, int b) {
+    if (!opt.keep_widths || g.label[a] == g.label[b] || normal[a].dot(normal[b]) > -kFacing) return 1;
+    if ((centroid[b] - centroid[a]).dot(normal[a]) <= 0 || (centroid[a] - centroid[b]).dot(normal[b]) <= 0) return 1;
+    const Eigen::Vector3d n = (normal[a] - normal[b]).normalized();
+    const double d = std::abs((centroid[b] - centroid[a]).dot(n));
+    return std::max(1, static_cast<int>(std::floor(d / h + 0.5)));
+  };
   m.plane = Eigen::VectorXi::Zero(ng);
-  std::set<std::pair<int, int>> added;
+  std::map<std::pair<int, int>, std::pair<int, size_t>> added;  // (lo, hi) -> (axis, index in order[axis])
   for (int round = 0;; ++round) {
     m.pushed = 0;
     for (int a = 0; a < 3; ++a) quantize_axis(a, order[a], pg, m, weight, h, g);
     // Two parallel segments of one chart whose spans overlap or touch must keep their input order, at least
-    // one cell apart: otherwise the chart pinches (a ring around a hole, a U-shaped face).
+    // one cell apart: otherwise the chart pinches (a ring around a hole, a U-shaped face). When the spans
+    // overlap and the segments lie on charts of opposite labels, as many cells apart as the input width
+    // between those charts (width_gap): the least-squares offsets of curved charts (the quarters of a
+    // round hole) shrink a hole or a slab to fewer cells than its width, and its boundary to too few nodes.
     int fresh = 0;
     for (int c = 0; c < g.num_charts(); ++c) {
       const auto& cs = chart_segments[c];
@@ -338,9 +372,18 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
           if (std::min(uhi, whi) < std::max(ulo, wlo) + (opt.separate_touching ? 0 : 1)) continue;  // spans apart
           if (u.mean == w.mean) continue;
           const int lo = u.mean < w.mean ? u.at : w.at, hi = u.mean < w.mean ? w.at : u.at;
-          if (m.plane(hi) - m.plane(lo) >= 1) continue;
-          if (!added.insert({lo, hi}).second) continue;
-          order[pg.axis[lo]].push_back({lo, hi});
+          const bool overlap = std::min(uhi, whi) > std::max(ulo, wlo);
+          const int gap = overlap ? width_gap(u.other, w.other) : 1;
+          if (m.plane(hi) - m.plane(lo) >= gap) continue;
+          const auto it = added.find({lo, hi});
+          if (it == added.end()) {
+            added[{lo, hi}] = {pg.axis[lo], order[pg.axis[lo]].size()};
+            order[pg.axis[lo]].push_back({lo, hi, gap});
+          } else {
+            Order& o = order[it->second.first][it->second.second];
+            if (o.gap >= gap) continue;
+            o.gap = gap;
+          }
           ++fresh;
         }
     }

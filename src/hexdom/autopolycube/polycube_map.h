@@ -21,6 +21,12 @@ struct PolycubeMapOptions {
   /// Two parallel curves of one chart whose spans only touch (end at one grid line) are kept a cell
   /// apart too, not only those whose spans overlap (e.g. a hole's side and the outer boundary's).
   bool separate_touching = true;
+  /// Two charts of opposite labels that bound one chart from opposite sides and face each other across
+  /// a void (a hole's or a slot's two walls: opposite mean normals within 20 degrees, each pointing to
+  /// the other's centroid) get planes as many cells apart as their input distance (centroid to centroid
+  /// along their mean normal, rounded, at least 1), not only one: the least-squares offsets of curved
+  /// charts shrink a round hole to a narrower tunnel than its width, a tilted one most.
+  bool keep_widths = true;
   /// Untangle folded charts by the barrier energy of untangle_plane_map (otherwise only local moves).
   bool untangle = true;
   LogCallback log;

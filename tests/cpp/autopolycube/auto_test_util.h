@@ -125,6 +125,57 @@ inline mesh::SurfaceMesh cylinder_surface(double r, double h, int seg, int rows,
   return s;
 }
 
+/// Closed surface of a square bar with a round hole through it: the bar is x in [0, length],
+/// |y|, |z| <= half_side, the hole of radius r runs along x. `m` segments per quarter turn, `rows`
+/// rows along x, `rings` rings on each end between the circle and the square. Then the whole is turned
+/// by `tilt` radians about the y axis (a hole whose axis is (cos tilt, 0, sin tilt)). Labels from normals.
+inline mesh::SurfaceMesh holed_bar_surface(double half_side, double r, double length, int m, int rows, int rings,
+                                           double tilt = 0) {
+  const int n = 4 * m;
+  std::map<std::array<int, 3>, int> id;
+  std::vector<Eigen::RowVector3d> V;
+  auto point = [&](int i, int k, int j) {  // row i, angle k, ring j (0: circle, rings: square)
+    const double t = -M_PI / 4 + 2 * M_PI * k / n, c = std::cos(t), s = std::sin(t);
+    const double sq = half_side / std::max(std::abs(c), std::abs(s)), rr = r + (sq - r) * j / rings;
+    return Eigen::RowVector3d(length * i / rows, rr * c, rr * s);
+  };
+  auto vertex = [&](int i, int k, int j) {
+    auto [it, fresh] = id.emplace(std::array<int, 3>{i, k % n, j}, static_cast<int>(V.size()));
+    if (fresh) V.push_back(point(i, k % n, j));
+    return it->second;
+  };
+  std::vector<std::array<int, 3>> F;
+  // A quad a b c d as two triangles whose normal points along `out`.
+  auto quad = [&](int a, int b, int c, int d, const Eigen::Vector3d& out) {
+    for (const auto& t : {std::array<int, 3>{a, b, c}, std::array<int, 3>{a, c, d}}) {
+      const Eigen::Vector3d p = V[t[0]], q = V[t[1]], w = V[t[2]];
+      F.push_back((q - p).cross(w - p).dot(out) >= 0 ? t : std::array<int, 3>{t[0], t[2], t[1]});
+    }
+  };
+  for (int i = 0; i < rows; ++i)
+    for (int k = 0; k < n; ++k)
+      for (int j : {rings, 0}) {  // the bar's sides face away from the axis, the hole's wall toward it
+        const int a = vertex(i, k, j), b = vertex(i + 1, k, j), c = vertex(i + 1, k + 1, j), d = vertex(i, k + 1, j);
+        Eigen::Vector3d out = 0.5 * (V[a] + V[c]).transpose();
+        out(0) = 0;
+        quad(a, b, c, d, j == 0 ? Eigen::Vector3d(-out) : out);
+      }
+  for (int i : {0, rows})
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < rings; ++j)
+        quad(vertex(i, k, j), vertex(i, k, j + 1), vertex(i, k + 1, j + 1), vertex(i, k + 1, j),
+             Eigen::Vector3d(i == 0 ? -1 : 1, 0, 0));
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  const double c = std::cos(tilt), sn = std::sin(tilt);
+  for (size_t i = 0; i < V.size(); ++i)
+    s.V.row(i) << c * V[i](0) - sn * V[i](2), V[i](1), sn * V[i](0) + c * V[i](2);
+  s.F.resize(static_cast<int>(F.size()), 3);
+  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
+  s.patch = labels_from_normals(s);
+  return s;
+}
+
 /// Volume enclosed by a closed, outward-oriented triangle surface (divergence theorem).
 inline double enclosed_volume(const mesh::SurfaceMesh& s) {
   double v = 0;
