@@ -170,8 +170,8 @@ def test_autopolycube_errors_write_nothing(tmp_path):
 # hexdom mesh on the paper's raw surfaces
 
 _RAW_VOLUME = {
-    "mount1": "issue 9: volume -1.35% at size = diagonal / 30 (chords of the 16-facet ear holes and rounds; "
-              "worst hex SJ 0.133, mean 0.68, 1328 hex)",
+    "mount1": "issue 9: volume -1.03% at size = diagonal / 30 (chords of the 16-facet ear holes and rounds; "
+              "worst hex SJ 0.330, mean 0.77, 1392 hex)",
     "rockerarm": "issue 9: volume -5.15% at size = diagonal / 30, level 0 after level 1 left 21 inverted cells "
                  "(401 hex of one cell each; worst hex SJ 0.016, mean 0.70; the 24-chart polycube is a box "
                  "around the rounded head)",
@@ -263,9 +263,6 @@ def test_mesh_missing_input_is_exit_1(tmp_path):
 CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
              "n11o_limit_cycle", "i10o_simp", "i11o_s1"]
 _CAD_DEFECT = {
-    "i10o_simp": "issue 9: meshed since the band repair of the labelling (2 bands: a bend where the tilted hole "
-                 "leaves the -Z face), no inverted cell, but the worst hex SJ is 0.201 (1672 hexes after "
-                 "pillowing; 108 blocks, worst block SJ -0.246; volume +1.9%)",
     "i11o_s1": "issue 9: meshed since the touching-span plane separation (no more fold of the +X / -X charts), "
                "no inverted cell, but the worst hex SJ is 0.046 (976 hexes, level 1; 122 blocks with worst block "
                "SJ -0.398 where the R65 round meets the tube tangentially)",

@@ -29,19 +29,13 @@ _NOT_MESHED = {
 # Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
 _SJ_DEFECT = {}
 _SJ_DEFECT.update({
-    "i10o_simp": "issue 9: worst hex SJ 0.201 after the snap (0.201 before it, mean 0.74; 0.074 before the restoration "
-                 "kept a floor; 108 blocks with a worst block SJ of -0.246 over the thin wedge under the tilted "
-                 "hole, rescued by the pillow layer, whose improve stops at 0.201)",
     "i11o_s1": "issue 9: worst hex SJ 0.048 after the snap (0.046 before it, mean 0.86, 976 hexes; 122 blocks, "
                "worst block SJ -0.398 where the R65 round meets the tube tangentially: boundary quads there keep "
                "corners of 3-14 degrees, and both pillowed runs stay inverted at -0.08 / -0.01)",
 })
 # Parts meshed with inverted cells (hexdom mesh --allow-inverted), with the measured figure.
 _INVERTED_DEFECT = {}
-_VOLUME_DEFECT = {
-    "i10o_simp": "issue 9: volume +2.00% against the B-rep (1672 hexes, pillowed, of a 13.8 grid step over a "
-                 "tilted hole: the structure, not the snap)",
-}
+_VOLUME_DEFECT = {}
 
 
 def _marks(stem, extra):
