@@ -372,8 +372,11 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
           if (std::min(uhi, whi) < std::max(ulo, wlo) + (opt.separate_touching ? 0 : 1)) continue;  // spans apart
           if (u.mean == w.mean) continue;
           const int lo = u.mean < w.mean ? u.at : w.at, hi = u.mean < w.mean ? w.at : u.at;
+          // Across a void the wall below faces up (label +axis); otherwise the input order is not the
+          // walls' and the width does not apply.
+          const int clo = u.mean < w.mean ? u.other : w.other, chi = u.mean < w.mean ? w.other : u.other;
           const bool overlap = std::min(uhi, whi) > std::max(ulo, wlo);
-          const int gap = overlap ? width_gap(u.other, w.other) : 1;
+          const int gap = overlap && g.label[clo] % 2 == 1 ? width_gap(clo, chi) : 1;
           if (m.plane(hi) - m.plane(lo) >= gap) continue;
           const auto it = added.find({lo, hi});
           if (it == added.end()) {
