@@ -86,3 +86,37 @@ def test_prisms_do_not_lower_the_worst_cell(knife_edge):
     runs, _ = knife_edge
     assert np.sum(~(runs["prism"]["sj"] > 0)) <= np.sum(~(runs["hex"]["sj"] > 0))
     assert runs["prism"]["sj"].min() >= runs["hex"]["sj"].min() - 1e-9
+
+
+def test_polycube_auto_writes_prism_blocks_that_generate_takes(knife_edge, tmp_path):
+    """`hexdom polycube --auto` on the knife edge's labels (written by `mesh --keep`) writes prism
+    blocks as collapsed hexes and a patch file with one patch per boundary block face (the prisms'
+    end triangles included); `generate` takes the pair unchanged: 8 prisms per prism block, no cell
+    inverted, the volume kept."""
+    runs, volume = knife_edge
+    labels = runs["prism"]["out"].parent / "prism_labels.k"
+    r = _run("polycube", "--auto", "-i", labels, "-o", tmp_path / "s.k")
+    blocks = oracle.parse_k(tmp_path / "s.k")["solids"]
+    prisms = sum(len(set(b[2])) == 6 for b in blocks)
+    assert prisms > 0 and f"blocks:             {len(blocks) - prisms} hex, {prisms} prism, 0 tet" in r.stdout
+    patches = oracle.parse_k(tmp_path / "s_patches.k")
+    npatches = len({s[1] for s in patches["shells"]})
+    assert f"({npatches} patches" in r.stdout
+    # One patch per boundary face of the blocks (faces of collapsed hexes by distinct nodes).
+    hex_faces = [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    faces = {}
+    for b in blocks:
+        for f in hex_faces:
+            key = frozenset(b[2][i] for i in f)
+            if len(key) >= 3:
+                faces[key] = faces.get(key, 0) + 1
+    assert max(faces.values()) <= 2
+    boundary = [k for k, n in faces.items() if n == 1]
+    assert len(boundary) == npatches and any(len(k) == 3 for k in boundary)
+    _run("generate", "-i", tmp_path / "s_patches.k", "-p", tmp_path / "s.k", "-s", 1, "-o", tmp_path / "m.vtk")
+    g, _ = oracle.read_legacy_vtk(tmp_path / "m.vtk")
+    sj, _ = oracle.verdict_metrics(g)
+    types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+    assert int(np.sum(types == oracle.WEDGE)) == 8 * prisms
+    assert np.all(sj > 0), f"inverted cells: {int(np.sum(~(sj > 0)))}"
+    assert float(oracle.signed_volumes(g).sum()) == pytest.approx(volume, rel=0.01)
