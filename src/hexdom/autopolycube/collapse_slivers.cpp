@@ -41,6 +41,7 @@ struct Strip {
 
 struct State {
   std::vector<int> rep;    // union-find over structure vertices
+  std::vector<int> at;     // the vertex whose position and grid point a class takes (its corner)
   std::vector<int> owner;  // square -> the square whose patch its triangles join
   int find(int v) {
     while (rep[v] != v) v = rep[v] = rep[rep[v]];
@@ -151,7 +152,8 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
 
   State state;
   state.rep.resize(nv);
-  for (int v = 0; v < nv; ++v) state.rep[v] = v;
+  state.at.resize(nv);
+  for (int v = 0; v < nv; ++v) state.rep[v] = state.at[v] = v;
   state.owner.resize(nsq);
   for (int q = 0; q < nsq; ++q) state.owner[q] = q;
   Eigen::MatrixXd P = T.V;  // class positions (at the representative)
@@ -215,7 +217,10 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
       if (!patch_of.count(vs)) { *why = "a boundary face that matches no patch"; return false; }
     }
     if (boundary != layout.patches.size()) { *why = "patches that match no boundary face"; return false; }
-    for (const auto& [cls, v] : corner_of_class) pos.row(cls) = T.V.row(v);
+    for (const auto& [cls, v] : corner_of_class) {
+      pos.row(cls) = T.V.row(v);
+      s.at[cls] = v;
+    }
     return true;
   };
 
@@ -240,7 +245,7 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
     Eigen::MatrixXd best_pos;
     double best_after = -1e300, best_volume = 0;
     std::string last_why;
-    int best_prisms = 0, best_tets = 0;
+    int best_prisms = 0;
     for (int side = 0; side < (st.nt == 1 ? 2 : 1); ++side) {
       State s = state;
       bool ok = true;
@@ -273,12 +278,11 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
         continue;
       }
       double after = 1e300, volume = 0;
-      int prisms = 0, tets = 0;
+      int prisms = 0;
       for (int b : touched) {
         mesh::DegenerateHex d;
         block_shape(s, b, &d);
         prisms += d.type == mesh::CellType::Wedge;
-        tets += d.type == mesh::CellType::Tet;
         after = std::min(after, shape_quality(d, pos));
         volume += quality::volume(d.type, points(d, pos));
       }
@@ -292,7 +296,6 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
         best_state = std::move(s);
         best_pos = std::move(pos);
         best_prisms = prisms;
-        best_tets = tets;
       }
     }
     const std::string what = fmt("slivers: chart %.0f (%.0f x %.0f squares, across / along %.3f)", st.chart + 1, st.nt, st.nl, st.ratio);
@@ -310,7 +313,6 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
     state = std::move(best_state);
     P = std::move(best_pos);
     ++out.collapsed;
-    (void)best_tets;
   }
   if (out.collapsed == 0) return out;
 
@@ -335,7 +337,7 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
   std::vector<GP> g2(used.size());
   for (size_t i = 0; i < used.size(); ++i) {
     V.row(i) = P.row(used[i]);
-    g2[i] = grid_of[used[i]];
+    g2[i] = grid_of[state.at[used[i]]];
   }
   T = builder.finish(V);
   grid_of = std::move(g2);
