@@ -317,11 +317,12 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
 
 @dataclass
 class AutoPolycube:
-    """Result of autopolycube: ``structure`` (hex blocks over the grid cells), ``patches`` (the
-    input geometry re-split along the grid, one patch per boundary square: give both to generate),
-    ``labels`` (the repaired labelling on the surface the map used), ``polycube`` (that surface at its
-    polycube positions) and ``info`` (cell, charts, relabelled, chords, planes, pushed, squares, blocks,
-    boundary_vertices, interior_vertices, min_block_quality, inverted_blocks)."""
+    """Result of autopolycube: ``structure`` (hex blocks over the grid cells; prisms under a strip
+    chart along a knife edge), ``patches`` (the input geometry re-split along the grid, one patch per
+    boundary block face: give both to generate), ``labels`` (the repaired labelling on the surface the
+    map used), ``polycube`` (that surface at its polycube positions) and ``info`` (cell, charts,
+    relabelled, chords, planes, pushed, squares, blocks, boundary_vertices, interior_vertices,
+    min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks)."""
 
     structure: Mesh
     patches: Surface
@@ -340,8 +341,9 @@ def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
                  max_relabel_area=0.03, untangle_rounds=50):
     """Polycube structure of a labelled Surface (patch = label 1..6 per triangle, e.g. from
     segment()) with no manual step: blocks are the grid cells of spacing h = size * 2^level
-    (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto; the
-    surface is cut along the grid lines into one patch per boundary square, so that
+    (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto (prism
+    blocks where a strip chart runs along a knife edge); the surface is cut along the grid lines
+    into one patch per boundary block face, so that
     generate(result.patches, result.structure, level) takes the pair unchanged. Raises
     GeometryError naming the charts when the labelling cannot be repaired. Returns an AutoPolycube."""
     return _auto_polycube(_hexdom.autopolycube(labels.V, labels.F, labels.patch, float(size),

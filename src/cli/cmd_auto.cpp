@@ -27,6 +27,10 @@ void add_autopolycube_options(CLI::App& cmd, AutoPolycubeArgs& a) {
   cmd.add_option("--max-attempts", a.opt.max_attempts, "relabel-and-retry rounds when the map folds or the cells do not match")
       ->capture_default_str();
   cmd.add_option("--untangle", a.opt.untangle_rounds, "rounds of local moves of interior block vertices")->capture_default_str();
+  cmd.add_option("--sliver-ratio", a.opt.sliver_ratio,
+                 "strip charts (1 or 2 squares wide) whose width across is at most this share of their length along "
+                 "become prism blocks (the knife edge of a wedge-like feature); 0: hex blocks only")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
 }
 
 void run_autopolycube(AutoPolycubeArgs& a) {
@@ -66,8 +70,13 @@ void run_autopolycube(AutoPolycubeArgs& a) {
   std::cout << "planes:             " << r.planes << " (" << r.pushed << " moved by more than a cell)\n";
   std::snprintf(line, sizeof line, "cell size h:        %.6g\n", r.cell);
   std::cout << line;
-  std::cout << "blocks:             " << r.blocks << " hex\n";
-  std::cout << "boundary squares:   " << r.squares << " (patches)\n";
+  std::cout << "blocks:             " << r.blocks - r.prism_blocks - r.tet_blocks << " hex, " << r.prism_blocks << " prism, "
+            << r.tet_blocks << " tet\n";
+  if (r.slivers == 0)
+    std::cout << "boundary squares:   " << r.squares << " (patches)\n";
+  else
+    std::cout << "boundary squares:   " << r.squares << " (" << r.patches.patch.maxCoeff() << " patches: the squares of " << r.slivers
+              << " sliver strips joined their neighbours)\n";
   std::cout << "block vertices:     " << r.boundary_vertices << " on the surface, " << r.interior_vertices << " inside\n";
   std::snprintf(line, sizeof line, "worst block SJ:     %.4f (%d inverted)\n", r.min_block_quality, r.inverted_blocks);
   std::cout << line;
@@ -81,14 +90,16 @@ void add_autopolycube(CLI::App& app) {
       "Polycube structure from a labelled surface, with no manual step: the charts (regions of one label\n"
       "1..6) are flattened onto axis-aligned planes on a grid of spacing h = size * 2^level, every grid cell\n"
       "inside becomes a hex block, and the surface is re-split along the grid lines into one patch per\n"
-      "boundary square. `hexdom generate -i PATCHES -p STRUCTURE -s LEVEL` takes the two files unchanged.\n"
+      "boundary square. Where a thin strip chart runs along a wedge-like feature (a knife edge), its blocks\n"
+      "become prisms (--sliver-ratio) and its squares join the neighbouring patches.\n"
+      "`hexdom generate -i PATCHES -p STRUCTURE -s LEVEL` takes the two files unchanged.\n"
       "Also `hexdom polycube --auto`.");
   auto a = std::make_shared<AutoPolycubeArgs>();
   cmd->add_option("-i,--input", a->in, "labelled surface: label 1..6 (+X, -X, +Y, -Y, +Z, -Z) per triangle as part id (hexdom segment); "
                   "a surface whose part ids are patches gets each patch's nearest axis")
       ->required();
-  cmd->add_option("-o,--output", a->out, "structure to write: hex blocks (.k; .vtk, .vtu also work)")->required();
-  cmd->add_option("--patches-out", a->patches, "patch surface to write (.k, .obj, .vtk): one patch per boundary square")->required();
+  cmd->add_option("-o,--output", a->out, "structure to write: hex and prism blocks (.k; .vtk, .vtu also work)")->required();
+  cmd->add_option("--patches-out", a->patches, "patch surface to write (.k, .obj, .vtk): one patch per boundary face of the structure")->required();
   add_autopolycube_options(*cmd, *a);
   cmd->callback([a] { run_autopolycube(*a); });
 }
@@ -111,7 +122,8 @@ void add_mesh(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "mesh",
       "Hex mesh of a closed surface or a CAD part with no manual step: segment -> autopolycube -> generate ->\n"
-      "improve, one progress line per stage, then the quality summary. CAD files (.step/.stp, .iges/.igs,\n"
+      "improve, one progress line per stage, then the quality summary. The structure has hex blocks, and\n"
+      "prism blocks along wedge-like features (knife edges; --sliver-ratio). CAD files (.step/.stp, .iges/.igs,\n"
       ".brep/.brp) are tessellated first (hexdom tessellate, CAD faces kept for the segmentation), and the\n"
       "final boundary nodes are put exactly on the B-rep (stage snap: faces, edges, vertices; interior\n"
       "untangled and optimised with the boundary held).\n"
@@ -137,6 +149,10 @@ void add_mesh(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(0, 6));
   cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
   cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
+  cmd->add_option("--sliver-ratio", a->opt.polycube.sliver_ratio,
+                  "strip charts whose width across is at most this share of their length along become prism blocks; "
+                  "0: hex blocks only")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--no-improve", a->no_improve, "skip the improvement stage");
   cmd->add_flag("--no-snap", a->no_snap, "CAD files: leave the boundary nodes on the tessellation instead of the B-rep");
   cmd->add_option("--solid", a->solid, "CAD files: which solid (1-based); default: the first")->check(CLI::PositiveNumber);

@@ -112,7 +112,7 @@ void add_polycube(CLI::App& app) {
       "Polycube boundary of a segmented surface, as the original's initial polycube files: the corners\n"
       "(vertices where 3 or more patches meet) as nodes and one shell per patch over its 3 or 4 corners\n"
       "(part id = patch number, in the order of each patch's first triangle).\n"
-      "With --auto: the polycube STRUCTURE built automatically (hexdom autopolycube): hex blocks written to -o,\n"
+      "With --auto: the polycube STRUCTURE built automatically (hexdom autopolycube): hex and prism blocks to -o,\n"
       "the surface re-split into one patch per block face to --patches-out (default <output stem>_patches.k);\n"
       "`hexdom generate -i PATCHES -p STRUCTURE -s LEVEL` takes both unchanged.");
   struct Args {

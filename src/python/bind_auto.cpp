@@ -34,20 +34,24 @@ py::dict polycube_dict(const autopolycube::AutoPolycube& r) {
   d["interior_vertices"] = r.interior_vertices;
   d["min_block_quality"] = r.min_block_quality;
   d["inverted_blocks"] = r.inverted_blocks;
+  d["slivers"] = r.slivers;
+  d["prism_blocks"] = r.prism_blocks;
+  d["tet_blocks"] = r.tet_blocks;
   return d;
 }
 
 const char* kAutopolycubeDoc =
     "Automatic polycube structure from a labelled surface (label 1..6 = +X, -X, +Y, -Y, +Z, -Z per\n"
     "triangle, as segment() gives): the charts are flattened onto axis-aligned planes on a grid of spacing\n"
-    "h = size * 2^level (size 0: bounding-box diagonal / 30), every grid cell inside becomes a hex block, and\n"
-    "the surface is re-split along the grid lines into one patch per boundary square, so that generate()\n"
+    "h = size * 2^level (size 0: bounding-box diagonal / 30), every grid cell inside becomes a hex block (a\n"
+    "prism under a sliver strip chart along a knife edge), and the surface is re-split along the grid lines\n"
+    "into one patch per boundary face of the blocks, so that generate()\n"
     "takes the pair unchanged. Labellings that cannot be a polycube are repaired by relabelling the smallest\n"
     "chart involved (at most max_relabels; charts blamed for a fold only up to max_relabel_area of the\n"
     "surface). Returns a dict: structure (V, cells, types, region), patches (V, F, patch), labels (the\n"
     "repaired labelling on the surface the map used), polycube (V, F, label at polycube positions), and the\n"
     "figures cell, charts, relabelled, chords, planes, pushed, squares, blocks, boundary_vertices,\n"
-    "interior_vertices, min_block_quality, inverted_blocks. Raises GeometryError naming the charts when\n"
+    "interior_vertices, min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks. Raises GeometryError naming the charts when\n"
     "the labelling cannot be repaired.";
 
 const char* kMeshSurfaceDoc =

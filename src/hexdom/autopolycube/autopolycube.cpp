@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/collapse_slivers.h"
 #include "hexdom/autopolycube/cut_along_grid.h"
 #include "hexdom/autopolycube/grid_structure.h"
 #include "hexdom/autopolycube/plane_groups.h"
@@ -11,6 +12,7 @@
 #include "hexdom/autopolycube/polycube_map.h"
 #include "hexdom/autopolycube/repair_labels.h"
 #include "hexdom/autopolycube/split_chords.h"
+#include "hexdom/quality/metrics.h"
 #include "hexdom/segmentation/axis_labels.h"
 
 namespace hexdom::autopolycube {
@@ -129,12 +131,35 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
     so.untangle_rounds = opt.untangle_rounds;
     so.log = opt.log;
     GridStructure st = grid_structure(grid, cut.grid_vertex, cut.patches.V, so);
-    r.patches = std::move(cut.patches);
-    r.structure = std::move(st.structure);
     r.boundary_vertices = st.boundary_vertices;
     r.interior_vertices = st.interior_vertices;
     r.min_block_quality = st.min_quality;
     r.inverted_blocks = st.inverted;
+    if (opt.sliver_ratio > 0) {
+      CollapseSliversOptions co;
+      co.max_ratio = opt.sliver_ratio;
+      co.log = opt.log;
+      const int before = st.structure.num_nodes();
+      const CollapseSlivers cs = collapse_slivers(grid, st.structure, st.grid, cut.patches, cut.grid_vertex, co);
+      r.slivers = cs.collapsed;
+      r.prism_blocks = cs.prisms;
+      r.tet_blocks = cs.tets;
+      if (cs.collapsed > 0) {
+        r.boundary_vertices -= before - st.structure.num_nodes();
+        r.min_block_quality = 1.0;
+        r.inverted_blocks = 0;
+        for (int b = 0; b < st.structure.num_cells(); ++b) {
+          const double sj = quality::scaled_jacobian(st.structure.type(b), quality::cell_points(st.structure, b));
+          const double q = std::isfinite(sj) && sj < 2 ? sj : -1.0;
+          r.min_block_quality = std::min(r.min_block_quality, q);
+          r.inverted_blocks += q <= 0;
+        }
+        log("slivers: " + std::to_string(cs.collapsed) + " strips collapsed, " + std::to_string(cs.prisms) + " prism and " +
+            std::to_string(cs.tets) + " tet blocks, " + std::to_string(cs.merged_squares) + " squares joined a neighbouring patch");
+      }
+    }
+    r.patches = std::move(cut.patches);
+    r.structure = std::move(st.structure);
     break;
   }
   return progress ? *progress : local;

@@ -11,7 +11,9 @@
 // coordinates), and block vertices on the surface sit at those grid points' input positions.
 // Labellings that cannot be a polycube (opposite labels side by side, islands, pinches, faces with
 // fewer than 4 corners, zero-length edges, folds of the map) are repaired by joining the smallest
-// offending chart to a neighbour.
+// offending chart to a neighbour. Where the repair left a thin strip chart along a wedge-like
+// feature (a knife edge), the blocks under the strip become prisms: the strip's short edges collapse
+// and its squares join the neighbouring patches (collapse_slivers.h).
 #pragma once
 
 #include "hexdom/common/error.h"
@@ -33,17 +35,26 @@ struct AutoPolycubeOptions {
   /// Walls of a hole or a slot (charts of opposite labels facing each other across a void) get planes
   /// as many cells apart as they are in the input, not just one (PolycubeMapOptions::keep_widths).
   bool keep_widths = true;
+  /// Strip charts (1 or 2 squares wide) whose real width across is at most this share of their
+  /// squares' length along, or whose hex blocks are poor, become prism blocks where that does not
+  /// lower the worst block (see collapse_slivers.h); 0: hex blocks only.
+  double sliver_ratio = 0.35;
   LogCallback log;
 };
 
 struct AutoPolycube {
-  mesh::Mesh structure;        ///< hex blocks over the grid cells (VTK order), region = block number
-  mesh::SurfaceMesh patches;   ///< input geometry re-split along the grid; patch = boundary square
+  /// Blocks over the grid cells (VTK order), region = block number: hexes, and prisms where a
+  /// sliver strip collapsed (see AutoPolycubeOptions::sliver_ratio).
+  mesh::Mesh structure;
+  /// Input geometry re-split along the grid; patch = boundary square (a sliver strip's squares
+  /// joined to a neighbouring square's patch), one patch per boundary face of the structure.
+  mesh::SurfaceMesh patches;
   mesh::SurfaceMesh labels;    ///< the repaired labels on the surface the map used (chords split)
   mesh::SurfaceMesh polycube;  ///< the polycube (labels' triangles at their polycube positions)
   double cell = 0;             ///< h
   int charts = 0, relabelled = 0, chords = 0, planes = 0, pushed = 0;
   int squares = 0, blocks = 0, boundary_vertices = 0, interior_vertices = 0;
+  int slivers = 0, prism_blocks = 0, tet_blocks = 0;  ///< strips collapsed; blocks that are not hexes
   double min_block_quality = 0;  ///< worst block scaled Jacobian after untangling
   int inverted_blocks = 0;
 };

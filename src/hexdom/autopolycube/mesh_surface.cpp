@@ -176,6 +176,9 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   }
   say(fmt("autopolycube: %.0f charts (%.0f relabelled), %.0f blocks of %g", r.polycube.charts, r.polycube.relabelled,
           r.polycube.blocks, r.polycube.cell) +
+      (r.polycube.prism_blocks + r.polycube.tet_blocks > 0
+           ? fmt(" (%.0f prism, %.0f tet)", r.polycube.prism_blocks, r.polycube.tet_blocks)
+           : std::string()) +
       fmt(", worst block SJ %.3f, in %.2f s", r.polycube.min_block_quality, r.seconds[1]));
 
   r.stage = "generate";

@@ -1,7 +1,9 @@
 // Test surfaces for the automatic polycube: unions of unit cells (polycubes whose faces are split
-// into n x n squares of two triangles), a triangulated cylinder, and labels from normals.
+// into n x n squares of two triangles), a triangulated cylinder, an extruded polygon (a wedge with a
+// strip along its knife edge), and labels from normals.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -173,6 +175,87 @@ inline mesh::SurfaceMesh holed_bar_surface(double half_side, double r, double le
   s.F.resize(static_cast<int>(F.size()), 3);
   for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
   s.patch = labels_from_normals(s);
+  return s;
+}
+
+/// Closed surface of the convex polygon `poly` (counter-clockwise in xy) extruded over z in
+/// [0, height]: side j (poly[j] -> poly[j + 1]) split into segments of about `edge` and labelled
+/// side_label[j]; caps of concentric rings toward the centroid labelled +Z (5) and -Z (6).
+inline mesh::SurfaceMesh extruded_polygon(const std::vector<Eigen::Vector2d>& poly, const std::vector<int>& side_label,
+                                          double height, double edge) {
+  std::vector<Eigen::Vector2d> ring;
+  std::vector<int> ring_label;
+  for (size_t j = 0; j < poly.size(); ++j) {
+    const Eigen::Vector2d a = poly[j], b = poly[(j + 1) % poly.size()];
+    const int n = std::max(1, static_cast<int>(std::lround((b - a).norm() / edge)));
+    for (int k = 0; k < n; ++k) {
+      ring.push_back(a + (b - a) * k / n);
+      ring_label.push_back(side_label[j]);
+    }
+  }
+  const int seg = static_cast<int>(ring.size());
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& p : poly) centre += p / static_cast<double>(poly.size());
+  double reach = 0;
+  for (const auto& p : ring) reach = std::max(reach, (p - centre).norm());
+  const int rows = std::max(1, static_cast<int>(std::lround(height / edge)));
+  const int rings = std::max(1, static_cast<int>(std::lround(reach / edge)));
+  std::vector<Eigen::RowVector3d> V;
+  std::vector<std::array<int, 3>> F;
+  std::vector<int> L;
+  std::vector<std::vector<int>> circle(rows + 1);
+  for (int i = 0; i <= rows; ++i)
+    for (int k = 0; k < seg; ++k) {
+      circle[i].push_back(static_cast<int>(V.size()));
+      V.push_back(Eigen::RowVector3d(ring[k](0), ring[k](1), height * i / rows));
+    }
+  for (int i = 0; i < rows; ++i)
+    for (int k = 0; k < seg; ++k) {
+      const int a = circle[i][k], b = circle[i][(k + 1) % seg], c = circle[i + 1][(k + 1) % seg], d = circle[i + 1][k];
+      F.push_back({a, b, c});
+      F.push_back({a, c, d});
+      L.push_back(ring_label[k]);
+      L.push_back(ring_label[k]);
+    }
+  for (int top = 0; top < 2; ++top) {
+    const double z = top ? height : 0;
+    std::vector<int> outer = top ? circle[rows] : circle[0];
+    for (int q = rings - 1; q >= 0; --q) {
+      std::vector<int> inner;
+      if (q == 0) {
+        inner.assign(seg, static_cast<int>(V.size()));
+        V.push_back(Eigen::RowVector3d(centre(0), centre(1), z));
+      } else {
+        for (int k = 0; k < seg; ++k) {
+          const Eigen::Vector2d p = centre + (ring[k] - centre) * q / rings;
+          inner.push_back(static_cast<int>(V.size()));
+          V.push_back(Eigen::RowVector3d(p(0), p(1), z));
+        }
+      }
+      for (int k = 0; k < seg; ++k) {
+        const int a = outer[k], b = outer[(k + 1) % seg], c = inner[(k + 1) % seg], d = inner[k];
+        if (top) {
+          F.push_back({a, b, c});
+          if (q > 0) F.push_back({a, c, d});
+        } else {
+          F.push_back({a, c, b});
+          if (q > 0) F.push_back({a, d, c});
+        }
+        L.push_back(top ? 5 : 6);
+        if (q > 0) L.push_back(top ? 5 : 6);
+      }
+      outer = inner;
+    }
+  }
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
+  s.F.resize(static_cast<int>(F.size()), 3);
+  s.patch.resize(static_cast<int>(F.size()));
+  for (size_t i = 0; i < F.size(); ++i) {
+    s.F.row(i) << F[i][0], F[i][1], F[i][2];
+    s.patch(i) = L[i];
+  }
   return s;
 }
 
