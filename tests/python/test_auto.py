@@ -276,17 +276,38 @@ def _cad(stem):
     return paths[0]
 
 
+@pytest.fixture(scope="module")
+def cad_mesh(tmp_path_factory, core):
+    """hexdom mesh --no-snap on a CAD part, once per part: (part, mesh, patches surface V, F)."""
+    runs = {}
+
+    def run(stem):
+        if not core._hexdom.has_opencascade():
+            pytest.skip("_hexdom built without OpenCASCADE")
+        if stem not in runs:
+            part = _cad(stem)
+            d = tmp_path_factory.mktemp(stem)
+            out = d / f"{stem}.vtk"
+            # The automatic path itself, boundary on the tessellation; test_snap.py checks the final
+            # mesh, whose boundary nodes are on the B-rep instead.
+            _run("mesh", part, "-o", out, "--keep", "--no-snap")
+            V, F, _ = _k_surface(d / f"{stem}_patches.k")
+            runs[stem] = (part, out, V, F)
+        return runs[stem]
+    return run
+
+
+@pytest.mark.parametrize("stem", CAD_PARTS)
+def test_mesh_cad_part_is_conforming_and_on_the_surface(stem, cad_mesh):
+    _, out, V, F = cad_mesh(stem)
+    sj, _ = _check_hex_mesh(out, V, F)
+    assert sj.min() > 0
+
+
 @pytest.mark.parametrize("stem", [pytest.param(s, marks=pytest.mark.xfail(strict=True, reason=_CAD_DEFECT[s]))
                                   if s in _CAD_DEFECT else s for s in CAD_PARTS])
-def test_mesh_cad_part(stem, tmp_path, core):
-    if not core._hexdom.has_opencascade():
-        pytest.skip("_hexdom built without OpenCASCADE")
-    part = _cad(stem)
-    out = tmp_path / f"{stem}.vtk"
-    # The automatic path itself, boundary on the tessellation; test_snap.py checks the final mesh,
-    # whose boundary nodes are on the B-rep instead.
-    _run("mesh", part, "-o", out, "--keep", "--no-snap")
-    V, F, _ = _k_surface(tmp_path / f"{stem}_patches.k")
+def test_mesh_cad_part(stem, cad_mesh, core):
+    part, out, V, F = cad_mesh(stem)
     sj, volume = _check_hex_mesh(out, V, F)
     assert sj.min() >= 0.3
     assert volume == pytest.approx(core._hexdom.cad_volume(part), rel=0.01)
