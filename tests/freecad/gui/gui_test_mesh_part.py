@@ -13,6 +13,8 @@
    with "cancelled", no later stage ran (the Mesh holds no node); a plain recompute afterwards
    makes every object valid: the document was left consistent.
 3. Cancel during HexDom_GenerateMesh: the command's transaction is aborted, nothing is added.
+4. Mesh Part on a 15 degree knife edge: the automatic Polycube has prism blocks; Build Polycube opens
+   on it with no problem and OK keeps them (hex, prism, tet counts and corner positions).
 Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
 """
 
@@ -79,6 +81,38 @@ def toolbar_action(toolbar_title, text):
                 if action.text().replace("&", "") == text:
                     return action
     return None
+
+
+def edit_automatic_polycube(poly, mesh):
+    """The automatic Polycube opens in Build Polycube against its own patches with no problem; OK
+    switches it to Manual and keeps its blocks (hex, prism and tet), and the Mesh recomputes."""
+    from HexDomWorkbench.taskpanels import task_polycube
+
+    def block_set(obj):  # blocks as sets of corner positions: independent of the numbering
+        P = [tuple(round(c, 6) for c in p) for p in obj.Points]
+        B = list(obj.Blocks)
+        return sorted(tuple(sorted(P[v] for v in B[i:i + 8] if v >= 0))
+                      for i in range(0, len(B), 8))
+
+    import FreeCADGui
+    blocks = block_set(poly)
+    counts = {"hex": poly.HexBlocks, "prism": poly.PrismBlocks, "tet": poly.TetBlocks}
+    FreeCADGui.ActiveDocument.setEdit(poly.Name, 0)
+    g.process_events()
+    panel = task_polycube.active_panel()
+    check(panel is not None, "Build Polycube opens on the automatic Polycube {}".format(counts))
+    if panel is None:
+        return
+    problems = [str(p) for p in panel.problems()]
+    check(not problems, "its blocks fit its patches, no problem listed: {}".format(problems[:3]))
+    check(panel.counts() == counts, "the panel holds the Polycube's blocks: {} for {}".format(
+        panel.counts(), counts))
+    panel.accept()
+    g.process_events()
+    check(poly.Mode == "Manual", "OK switched the Polycube to Manual ({})".format(poly.Mode))
+    check(block_set(poly) == blocks, "and kept its blocks")
+    check("Invalid" not in mesh.State and mesh.InvertedCount == 0,
+          "the Mesh recomputed from the kept blocks")
 
 
 def run():
@@ -163,30 +197,7 @@ def run():
     drawn, _ = colour_shares(path, {})
     check(drawn > 0.05, "the segmentation shows")
 
-    # The automatic Polycube opens in Build Polycube against its own patches with no problem;
-    # OK switches it to Manual and keeps the blocks.
-    from HexDomWorkbench.taskpanels import task_polycube
-    def block_set(obj):  # blocks as sets of corner positions: independent of the numbering
-        P = [tuple(round(c, 6) for c in p) for p in obj.Points]
-        B = list(obj.Blocks)
-        return sorted(tuple(sorted(P[v] for v in B[i:i + 8] if v >= 0))
-                      for i in range(0, len(B), 8))
-
-    blocks = block_set(poly)
-    FreeCADGui.ActiveDocument.setEdit(poly.Name, 0)
-    g.process_events()
-    panel = task_polycube.active_panel()
-    check(panel is not None, "Build Polycube opens on the automatic Polycube")
-    if panel is not None:
-        problems = [str(p) for p in panel.problems()]
-        check(not problems, "its blocks fit its patches, no problem listed: {}".format(problems[:3]))
-        check(panel.counts()["hex"] == poly.HexBlocks, "the panel holds the Polycube's blocks")
-        panel.accept()
-        g.process_events()
-        check(poly.Mode == "Manual", "OK switched the Polycube to Manual ({})".format(poly.Mode))
-        check(block_set(poly) == blocks, "and kept its blocks")
-        check("Invalid" not in mesh.State and mesh.InvertedCount == 0,
-              "the Mesh recomputed from the kept blocks")
+    edit_automatic_polycube(poly, mesh)
     FreeCAD.closeDocument(doc.Name)
     g.process_events()
 
@@ -254,6 +265,26 @@ def run():
           "cancelled Generate mesh added nothing and showed no message box: {}".format(errors))
     check(all("Invalid" not in o.State and "Error" not in o.State for o in objs.values()),
           "the document's objects are still valid")
+    FreeCAD.closeDocument(doc.Name)
+
+    # 4. A 15 degree knife edge: its automatic Polycube has prism blocks, and Build Polycube takes
+    # them as they are.
+    import math
+    from HexDomWorkbench import api
+    doc = FreeCAD.newDocument("MeshPartKnife")
+    V = FreeCAD.Vector
+    h = 40 * math.tan(math.radians(15))
+    knife = doc.addObject("Part::Feature", "Knife")
+    knife.Shape = Part.Face(Part.makePolygon([V(0, 0, 0), V(40, 0, 0), V(0, 0, h), V(0, 0, 0)])).extrude(
+        V(0, 30, 0))
+    doc.recompute()
+    objs = api.mesh_part(doc, knife, level=1)
+    poly, mesh = objs["polycube"], objs["mesh"]
+    check(poly.PrismBlocks > 0 and mesh.PrismCount > 0 and mesh.InvertedCount == 0,
+          "knife edge: {} hex and {} prism blocks, mesh {} hex {} prism, {} inverted".format(
+              poly.HexBlocks, poly.PrismBlocks, mesh.HexCount, mesh.PrismCount, mesh.InvertedCount))
+    edit_automatic_polycube(poly, mesh)
+    check(not errors, "no message box on the knife edge: {}".format(errors))
     FreeCAD.closeDocument(doc.Name)
 
 
