@@ -32,20 +32,12 @@ PAPER = ["hepta", "mount1", "rockerarm", "mountwithhole"]
 NAMES = {oracle.HEX: "hex", oracle.WEDGE: "prism", oracle.TET: "tet"}
 
 
-def write_k(path, V, F, P):
-    with open(path, "w") as f:
-        f.write("*KEYWORD\n*ELEMENT_SHELL\n")
-        for e, (pid, t) in enumerate(zip(P.tolist(), F.tolist())):
-            f.write(f"{e + 1},{pid},{t[0] + 1},{t[1] + 1},{t[2] + 1},{t[2] + 1}\n")
-        f.write("*NODE\n" + "".join(f"{i + 1},{x!r},{y!r},{z!r}\n" for i, (x, y, z) in enumerate(V.tolist())) + "*END\n")
-
-
 def thin_wedge(d):
     """The tests' thin wedge (15 degree knife edge), remeshed to triangles of 0.15 (its own
     triangles are 5 long: no band along the edge could be narrow)."""
     V, F, P = support.thin_wedge()
     raw = os.path.join(d, "thin_wedge_raw.k")
-    write_k(raw, V, F, P)
+    support.write_k_surface(raw, V, F, P)
     out = os.path.join(d, "thin_wedge.k")
     subprocess.run([HEXDOM, "remesh", "-i", raw, "-o", out, "--size", "0.15"], check=True, capture_output=True)
     return out

@@ -64,6 +64,18 @@ def thin_wedge(layers=3):
     return np.array(V, float), np.array([t for _, t in tris]), np.array([p for p, _ in tris])
 
 
+def write_k_surface(path, V, F, part):
+    """Writes triangles F over vertices V as an LS-DYNA keyword file, one *ELEMENT_SHELL line per
+    triangle (part id `part[i]`, the last node repeated) and the *NODE block; returns path."""
+    with open(path, "w") as f:
+        f.write("*KEYWORD\n*ELEMENT_SHELL\n")
+        for e, (pid, t) in enumerate(zip([int(x) for x in part], [[int(i) for i in t] for t in F])):
+            f.write(f"{e + 1},{pid},{t[0] + 1},{t[1] + 1},{t[2] + 1},{t[2] + 1}\n")
+        f.write("*NODE\n" + "".join(f"{i + 1},{float(x)!r},{float(y)!r},{float(z)!r}\n"
+                                    for i, (x, y, z) in enumerate(V)) + "*END\n")
+    return path
+
+
 def missing(path):
     return f"shared data missing: {path} (set HEXDOM_DATA)"
 

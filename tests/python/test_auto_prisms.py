@@ -19,14 +19,6 @@ def _run(*args):
     return r
 
 
-def _write_k(path, V, F, P):
-    with open(path, "w") as f:
-        f.write("*KEYWORD\n*ELEMENT_SHELL\n")
-        for e, (pid, t) in enumerate(zip(P.tolist(), F.tolist())):
-            f.write(f"{e + 1},{pid},{t[0] + 1},{t[1] + 1},{t[2] + 1},{t[2] + 1}\n")
-        f.write("*NODE\n" + "".join(f"{i + 1},{x!r},{y!r},{z!r}\n" for i, (x, y, z) in enumerate(V.tolist())) + "*END\n")
-
-
 def _enclosed(V, F):
     a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
@@ -38,7 +30,7 @@ def knife_edge(tmp_path_factory):
     (--sliver-ratio 0) and with the default (prisms along the knife edge)."""
     d = tmp_path_factory.mktemp("knife_edge")
     V, F, P = support.thin_wedge()
-    _write_k(d / "raw.k", V, F, P)
+    support.write_k_surface(d / "raw.k", V, F, P)
     _run("remesh", "-i", d / "raw.k", "-o", d / "wedge.k", "--size", 0.15)
     runs = {}
     for name, extra in (("hex", ["--sliver-ratio", 0]), ("prism", [])):

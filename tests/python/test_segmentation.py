@@ -286,17 +286,8 @@ def box_k(path, m=2, relabel=None):
                     tris += [(label, (a, b, c)), (label, (a, c, d))] if sign > 0 else \
                         [(label, (a, c, b)), (label, (a, d, c))]
     V = np.array(verts, float) / m
-    with open(path, "w") as f:
-        f.write("*KEYWORD\n*ELEMENT_SHELL\n")
-        for e, (label, t) in enumerate(tris):
-            if relabel:
-                label = relabel(label, V[list(t)].mean(axis=0))
-            f.write(f"{e + 1},{label},{t[0] + 1},{t[1] + 1},{t[2] + 1},{t[2] + 1}\n")
-        f.write("*NODE\n")
-        for i, p in enumerate(V):
-            f.write(f"{i + 1},{p[0]!r},{p[1]!r},{p[2]!r}\n")
-        f.write("*END\n")
-    return path
+    labels = [relabel(label, V[list(t)].mean(axis=0)) if relabel else label for label, t in tris]
+    return support.write_k_surface(path, V, [t for _, t in tris], labels)
 
 
 def check_json(hexdom_bin, path):

@@ -25,6 +25,16 @@ inline Eigen::VectorXi labels_from_normals(const mesh::SurfaceMesh& s) {
   return l;
 }
 
+/// The surface of triangles F over vertices V (no labels).
+inline mesh::SurfaceMesh surface_of(const std::vector<Eigen::RowVector3d>& V, const std::vector<std::array<int, 3>>& F) {
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
+  s.F.resize(static_cast<int>(F.size()), 3);
+  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
+  return s;
+}
+
 /// Closed surface of the union of unit cells (lower corners `cells`), scaled by `scale`; every unit
 /// face is split into n x n squares of two triangles; labels from normals.
 inline mesh::SurfaceMesh cell_surface(const std::vector<std::array<int, 3>>& cells, int n, double scale = 1.0) {
@@ -60,13 +70,43 @@ inline mesh::SurfaceMesh cell_surface(const std::vector<std::array<int, 3>>& cel
             else { F.push_back({q[0], q[2], q[1]}); F.push_back({q[0], q[3], q[2]}); }
           }
       }
-  mesh::SurfaceMesh s;
-  s.V.resize(static_cast<int>(V.size()), 3);
-  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
-  s.F.resize(static_cast<int>(F.size()), 3);
-  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
+  mesh::SurfaceMesh s = surface_of(V, F);
   s.patch = labels_from_normals(s);
   return s;
+}
+
+/// Fills the plane cap z = const inside the ring of vertices `outer` (positions in V) with `rings`
+/// concentric rings scaled toward `centre` and a centre vertex; outward normal +z when `top`, -z
+/// otherwise (clockwise seen from above).
+inline void add_cap(std::vector<Eigen::RowVector3d>& V, std::vector<std::array<int, 3>>& F, std::vector<int> outer,
+                    const Eigen::Vector2d& centre, double z, bool top, int rings) {
+  const int seg = static_cast<int>(outer.size());
+  std::vector<Eigen::Vector2d> ring;
+  for (int k = 0; k < seg; ++k) ring.emplace_back(V[outer[k]](0), V[outer[k]](1));
+  for (int q = rings - 1; q >= 0; --q) {
+    std::vector<int> inner;
+    if (q == 0) {
+      inner.assign(seg, static_cast<int>(V.size()));
+      V.push_back(Eigen::RowVector3d(centre(0), centre(1), z));
+    } else {
+      for (int k = 0; k < seg; ++k) {
+        const Eigen::Vector2d p = centre + (ring[k] - centre) * q / rings;
+        inner.push_back(static_cast<int>(V.size()));
+        V.push_back(Eigen::RowVector3d(p(0), p(1), z));
+      }
+    }
+    for (int k = 0; k < seg; ++k) {
+      const int a = outer[k], b = outer[(k + 1) % seg], c = inner[(k + 1) % seg], d = inner[k];
+      if (top) {
+        F.push_back({a, b, c});
+        if (q > 0) F.push_back({a, c, d});
+      } else {
+        F.push_back({a, c, b});
+        if (q > 0) F.push_back({a, d, c});
+      }
+    }
+    outer = inner;
+  }
 }
 
 /// Closed cylinder of radius r and height h along z: `seg` segments around, `rows` rows along z,
@@ -89,40 +129,9 @@ inline mesh::SurfaceMesh cylinder_surface(double r, double h, int seg, int rows,
       F.push_back({a, c, d});
     }
   // Caps: concentric circles down to a centre vertex.
-  for (int top = 0; top < 2; ++top) {
-    const double z = top ? h : 0;
-    std::vector<int> outer = top ? circle[rows] : circle[0];
-    for (int q = rings - 1; q >= 0; --q) {
-      std::vector<int> inner;
-      if (q == 0) {
-        inner.assign(seg, static_cast<int>(V.size()));
-        V.push_back(Eigen::RowVector3d(0, 0, z));
-      } else {
-        for (int k = 0; k < seg; ++k) {
-          const double t = 2 * M_PI * k / seg, rr = r * q / rings;
-          inner.push_back(static_cast<int>(V.size()));
-          V.push_back(Eigen::RowVector3d(rr * std::cos(t), rr * std::sin(t), z));
-        }
-      }
-      for (int k = 0; k < seg; ++k) {
-        const int a = outer[k], b = outer[(k + 1) % seg], c = inner[(k + 1) % seg], d = inner[k];
-        // Outward: -z at the bottom (clockwise seen from above), +z at the top.
-        if (top) {
-          F.push_back({a, b, c});
-          if (q > 0) F.push_back({a, c, d});
-        } else {
-          F.push_back({a, c, b});
-          if (q > 0) F.push_back({a, d, c});
-        }
-      }
-      outer = inner;
-    }
-  }
-  mesh::SurfaceMesh s;
-  s.V.resize(static_cast<int>(V.size()), 3);
-  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
-  s.F.resize(static_cast<int>(F.size()), 3);
-  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
+  add_cap(V, F, circle[0], Eigen::Vector2d::Zero(), 0.0, false, rings);
+  add_cap(V, F, circle[rows], Eigen::Vector2d::Zero(), h, true, rings);
+  mesh::SurfaceMesh s = surface_of(V, F);
   s.patch = labels_from_normals(s);
   return s;
 }
@@ -167,13 +176,10 @@ inline mesh::SurfaceMesh holed_bar_surface(double half_side, double r, double le
       for (int j = 0; j < rings; ++j)
         quad(vertex(i, k, j), vertex(i, k, j + 1), vertex(i, k + 1, j + 1), vertex(i, k + 1, j),
              Eigen::Vector3d(i == 0 ? -1 : 1, 0, 0));
-  mesh::SurfaceMesh s;
-  s.V.resize(static_cast<int>(V.size()), 3);
+  mesh::SurfaceMesh s = surface_of(V, F);
   const double c = std::cos(tilt), sn = std::sin(tilt);
   for (size_t i = 0; i < V.size(); ++i)
     s.V.row(i) << c * V[i](0) - sn * V[i](2), V[i](1), sn * V[i](0) + c * V[i](2);
-  s.F.resize(static_cast<int>(F.size()), 3);
-  for (size_t i = 0; i < F.size(); ++i) s.F.row(i) << F[i][0], F[i][1], F[i][2];
   s.patch = labels_from_normals(s);
   return s;
 }
@@ -218,44 +224,11 @@ inline mesh::SurfaceMesh extruded_polygon(const std::vector<Eigen::Vector2d>& po
       L.push_back(ring_label[k]);
     }
   for (int top = 0; top < 2; ++top) {
-    const double z = top ? height : 0;
-    std::vector<int> outer = top ? circle[rows] : circle[0];
-    for (int q = rings - 1; q >= 0; --q) {
-      std::vector<int> inner;
-      if (q == 0) {
-        inner.assign(seg, static_cast<int>(V.size()));
-        V.push_back(Eigen::RowVector3d(centre(0), centre(1), z));
-      } else {
-        for (int k = 0; k < seg; ++k) {
-          const Eigen::Vector2d p = centre + (ring[k] - centre) * q / rings;
-          inner.push_back(static_cast<int>(V.size()));
-          V.push_back(Eigen::RowVector3d(p(0), p(1), z));
-        }
-      }
-      for (int k = 0; k < seg; ++k) {
-        const int a = outer[k], b = outer[(k + 1) % seg], c = inner[(k + 1) % seg], d = inner[k];
-        if (top) {
-          F.push_back({a, b, c});
-          if (q > 0) F.push_back({a, c, d});
-        } else {
-          F.push_back({a, c, b});
-          if (q > 0) F.push_back({a, d, c});
-        }
-        L.push_back(top ? 5 : 6);
-        if (q > 0) L.push_back(top ? 5 : 6);
-      }
-      outer = inner;
-    }
+    add_cap(V, F, top ? circle[rows] : circle[0], centre, top ? height : 0.0, top, rings);
+    L.resize(F.size(), top ? 5 : 6);
   }
-  mesh::SurfaceMesh s;
-  s.V.resize(static_cast<int>(V.size()), 3);
-  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) = V[i];
-  s.F.resize(static_cast<int>(F.size()), 3);
-  s.patch.resize(static_cast<int>(F.size()));
-  for (size_t i = 0; i < F.size(); ++i) {
-    s.F.row(i) << F[i][0], F[i][1], F[i][2];
-    s.patch(i) = L[i];
-  }
+  mesh::SurfaceMesh s = surface_of(V, F);
+  s.patch = Eigen::Map<const Eigen::VectorXi>(L.data(), static_cast<int>(L.size()));
   return s;
 }
 
