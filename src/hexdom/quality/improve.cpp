@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
@@ -279,6 +280,16 @@ class Improver {
     return n;
   }
   double worst() const { return sj_.empty() ? 1.0 : *std::min_element(sj_.begin(), sj_.end()); }
+  // " at (x, y, z)": the centroid of the worst cell, for the log.
+  std::string worst_place() const {
+    if (sj_.empty()) return "";
+    const int q = static_cast<int>(std::min_element(sj_.begin(), sj_.end()) - sj_.begin());
+    const auto P = cell_points(m_, q);
+    const Vec c = P.topRows(mesh::node_count(m_.type(q))).colwise().mean().transpose();
+    char b[96];
+    std::snprintf(b, sizeof b, " at (%.4g, %.4g, %.4g)", c(0), c(1), c(2));
+    return b;
+  }
   double local_min(int v) const {
     double w = 2;
     for (int q : t_.node_cells[v]) w = std::min(w, sj_[q]);
@@ -784,7 +795,7 @@ class Run {
       worst = std::max(worst, w);
       r_.rounds = round + 1;
     }
-    log_(name() + ": worst scaled Jacobian " + std::to_string(imp_->worst()) + " after " + std::to_string(r_.rounds) +
+    log_(name() + ": worst scaled Jacobian " + std::to_string(imp_->worst()) + imp_->worst_place() + " after " + std::to_string(r_.rounds) +
          " rounds (" + std::to_string(seconds_since(t0)) + " s)");
   }
 
