@@ -266,7 +266,8 @@ _CAD_DEFECT = {
     "i10o_simp": "issue 9: meshed since the band repair of the labelling (2 bands: a bend where the tilted hole "
                  "leaves the -Z face), no inverted cell, but the worst hex SJ is 0.201 (1672 hexes after "
                  "pillowing; 108 blocks, worst block SJ -0.246; volume +1.9%)",
-    "i11o_s1": "issue 9: no inverted cell, but the worst hex SJ is 0.220 (952 hexes, level 1; 119 blocks, worst "
+    "i11o_s1": "issue 9: no inverted cell, but the worst hex SJ is 0.270 (952 hexes, level 1; 0.220 before the "
+               "pattern search of the run without a layer; 119 blocks, worst "
                "block SJ 0.179 where the R65 round's -Y / +Z label boundary meets the plate's faces; 0.046 and "
                "-0.398 before the band repair of the curve of mixed convexity at the cusp)",
 }
