@@ -435,6 +435,7 @@ class Improver {
   // ImproveOptions::floor: a cell at or above it may not get worse than it. Cells already below
   // it (the inverted ones being untangled) are free, or untangling would stall.
   void set_keep(double x) { keep_ = x; }
+  void set_pattern(bool on) { pattern_ = on; }
   bool crosses_keep(int q, double sj) const { return sj_[q] >= keep_ && sj < keep_; }
   int type_slot(int q) const { return m_.type(q) == CellType::Hex ? 0 : m_.type(q) == CellType::Wedge ? 1 : 2; }
   bool try_move_mean(int v, const Vec& x) {
@@ -575,10 +576,7 @@ class Improver {
   std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
   std::vector<char> climb_;  // nodes worth another optimisation step
   double keep_ = -2;  // ImproveOptions::floor
- public:
   bool pattern_ = false;  // optimisation rounds also search a pattern of directions (optimize_round)
-
- private:
   double floor_[3] = {-2, -2, -2};  // lowest scaled Jacobian a worsened hex, prism, tet may reach
 };
 
@@ -869,7 +867,7 @@ class Run {
   // worst cell has two faces there, and their corners tie (i11o_s1: 0.220 -> 0.270 before the
   // snap). The pillowed runs keep the gradient alone: a pillowed run lifted past the bar of the
   // sequence would stop it before a better run without a layer (s09o_bridge 0.577, not 0.905).
-  void search_pattern() { imp_->pattern_ = true; }
+  void search_pattern() { imp_->set_pattern(true); }
 
   ImproveResult finish() {
     r_.mesh = std::move(m_);
