@@ -29,9 +29,10 @@ _NOT_MESHED = {
 # Targets not met after the snap, with the measured figure (size = diagonal / 30, level 1).
 _SJ_DEFECT = {}
 _SJ_DEFECT.update({
-    "i11o_s1": "issue 9: worst hex SJ 0.048 after the snap (0.046 before it, mean 0.86, 976 hexes; 122 blocks, "
-               "worst block SJ -0.398 where the R65 round meets the tube tangentially: boundary quads there keep "
-               "corners of 3-14 degrees, and both pillowed runs stay inverted at -0.08 / -0.01)",
+    "i11o_s1": "issue 9: worst hex SJ 0.267 after the snap (0.270 before it, mean 0.86, 952 hexes, no pillow "
+               "layer; 0.216 before the pattern search of the run without a layer; 119 blocks, worst block SJ "
+               "0.179 where the R65 round's -Y / +Z label boundary meets the plate's faces at x = 0 and 16; 0.048 "
+               "before the cusp's mixed-convexity band repair)",
 })
 # Parts meshed with inverted cells (hexdom mesh --allow-inverted), with the measured figure.
 _INVERTED_DEFECT = {}

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <cstdint>
+#include <cstdio>
 #include <set>
 
 #include "hexdom/segmentation/axis_labels.h"
@@ -22,6 +23,7 @@ std::string kind_name(ProblemKind k) {
     case ProblemKind::MissingAxis: return "missing_axis";
     case ProblemKind::ZeroLengthEdge: return "zero_length_edge";
     case ProblemKind::BadTurning: return "bad_turning";
+    case ProblemKind::MixedConvexity: return "mixed_convexity";
   }
   return "?";
 }
@@ -32,6 +34,53 @@ std::string vertex_text(const mesh::SurfaceMesh& s, int v) {
   char b[160];
   std::snprintf(b, sizeof b, "vertex %d (%g, %g, %g)", v + 1, s.V(v, 0), s.V(v, 1), s.V(v, 2));
   return b;
+}
+
+// Normals more than this far apart make a sharp edge for MixedConvexity.
+constexpr double kSharpAngleDegrees = 35.0;
+// Each of the convex and the concave part of a mixed curve is at least this share of its length
+// (and at least the minimum length given).
+constexpr double kMixedShare = 0.1;
+
+// The sharp edges of a curve between two charts: the vertices of its convex and of its concave
+// edges, and their lengths. Convex: the right chart's triangle lies below the left one's plane.
+struct CurveConvexity {
+  std::vector<int> convex, concave;  // vertices of the convex / concave sharp edges
+  double convex_length = 0, concave_length = 0, length = 0;
+  bool mixed(double min_length) const {
+    const double least = std::max(kMixedShare * length, min_length);
+    return length > 0 && convex_length >= least && concave_length >= least;
+  }
+};
+
+CurveConvexity curve_convexity(const mesh::SurfaceMesh& s, const ChartGraph& g, const std::vector<std::vector<int>>& vt,
+                               const ChartCurve& c) {
+  CurveConvexity out;
+  const double cos_sharp = std::cos(kSharpAngleDegrees * M_PI / 180.0);
+  auto normal = [&](int f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), d = s.V.row(s.F(f, 2));
+    return Eigen::Vector3d((b - a).cross(d - a).normalized());
+  };
+  for (size_t i = 0; i + 1 < c.vertices.size(); ++i) {
+    const int u = c.vertices[i], v = c.vertices[i + 1];
+    int fl = -1, fr = -1;
+    for (int f : vt[u])
+      if (s.F(f, 0) == v || s.F(f, 1) == v || s.F(f, 2) == v) (g.chart(f) == c.left ? fl : fr) = f;
+    const double len = (s.V.row(u) - s.V.row(v)).norm();
+    out.length += len;
+    if (fl < 0 || fr < 0) continue;
+    const Eigen::Vector3d nl = normal(fl), nr = normal(fr);
+    if (nl.dot(nr) >= cos_sharp) continue;
+    int opposite = s.F(fr, 0);
+    for (int k = 0; k < 3; ++k)
+      if (s.F(fr, k) != u && s.F(fr, k) != v) opposite = s.F(fr, k);
+    const bool convex = nl.dot(s.V.row(opposite).transpose() - s.V.row(u).transpose()) < 0;
+    (convex ? out.convex_length : out.concave_length) += len;
+    auto& part = convex ? out.convex : out.concave;
+    part.push_back(u);
+    part.push_back(v);
+  }
+  return out;
 }
 
 // Charts of the triangles around vertex v.
@@ -143,6 +192,25 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
       if (b != c) charts.push_back(b);
     out.push_back({ProblemKind::BadTurning, charts, g.loop_corners[c].empty() || g.loop_corners[c][0].empty() ? -1 : g.loop_corners[c][0][0],
                    name(c) + " cannot be a polycube face: its boundary " + what});
+  }
+  return out;
+}
+
+std::vector<ChartProblem> mixed_convexity_problems(const mesh::SurfaceMesh& s, const ChartGraph& g, double min_length) {
+  std::vector<ChartProblem> out;
+  if (min_length <= 0 && s.V.rows()) min_length = (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm() / 30.0;
+  std::vector<std::vector<int>> vt(s.V.rows());
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) vt[s.F(f, k)].push_back(f);
+  for (const auto& c : g.curves) {
+    const CurveConvexity cc = curve_convexity(s, g, vt, c);
+    if (!cc.mixed(min_length)) continue;
+    char b[120];
+    std::snprintf(b, sizeof b, " (%.3g convex, %.3g concave of %.3g)", cc.convex_length, cc.concave_length, cc.length);
+    out.push_back({ProblemKind::MixedConvexity, {c.left, c.right}, cc.concave.front(),
+                   "the curve between " + chart_name(g, c.left) + " and " + chart_name(g, c.right) +
+                       " is a convex edge in part and a concave one in part" + b + ", concave from " +
+                       vertex_text(s, cc.concave.front())});
   }
   return out;
 }
@@ -370,6 +438,93 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
   return best;
 }
 
+// Triangle-level repair of a curve that is convex in part and concave in part (see MixedConvexity):
+// a band of one of its two charts along one of the two parts takes the other chart's label. The
+// band grows from the part inside the chart, over triangles within `width` of the part's vertices,
+// nearer to them than to the chart's other curves and touching none of those, so that it ends where
+// the part ends (at a cusp it takes the tip of the chart that the other wraps around). Bands that leave more than
+// `problems` chart problems are refused; of the others, the one leaving the fewest chart problems,
+// then the fewest mixed curves, then losing the least normal fit wins; an empty result when none
+// leaves fewer chart problems or as many and fewer than `mixed_curves` mixed curves.
+Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int problems, int mixed_curves,
+                                  double width, std::string* what) {
+  std::vector<std::vector<int>> vt(s.V.rows());
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) vt[s.F(f, k)].push_back(f);
+  std::vector<std::pair<double, int>> mixed;  // the longest curves first
+  std::vector<CurveConvexity> parts(g.curves.size());
+  for (size_t ci = 0; ci < g.curves.size(); ++ci) {
+    parts[ci] = curve_convexity(s, g, vt, g.curves[ci]);
+    if (parts[ci].mixed(width)) mixed.emplace_back(-parts[ci].length, static_cast<int>(ci));
+  }
+  std::sort(mixed.begin(), mixed.end());
+  if (mixed.size() > kMaxBandCurves) mixed.resize(kMaxBandCurves);
+  const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
+  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  auto distance = [&](int f, const std::vector<int>& vs) {
+    double d = std::numeric_limits<double>::infinity();
+    for (int v : vs) d = std::min(d, (geo.centroid.row(f) - s.V.row(v)).norm());
+    return d;
+  };
+  Eigen::VectorXi best;
+  long best_n = problems, best_m = mixed_curves;
+  double best_loss = 0;
+  mesh::SurfaceMesh t = s;
+  for (const auto& [key, ci] : mixed) {
+    const ChartCurve& c = g.curves[ci];
+    const std::set<int> on_curve(c.vertices.begin(), c.vertices.end());
+    for (int chart : {c.left, c.right}) {
+      const int other = chart == c.left ? c.right : c.left;
+      std::vector<int> others;  // vertices of the chart's other curves
+      for (int cj : g.chart_curves[chart])
+        if (cj != ci)
+          for (int v : g.curves[cj].vertices)
+            if (!on_curve.count(v)) others.push_back(v);
+      const std::set<int> blocked(others.begin(), others.end());
+      auto touches_others = [&](int f) {
+        return blocked.count(s.F(f, 0)) || blocked.count(s.F(f, 1)) || blocked.count(s.F(f, 2));
+      };
+      for (const std::vector<int>* part : {&parts[ci].concave, &parts[ci].convex})
+        for (double w : {width, 2.0 * width}) {
+          const std::set<int> seeds(part->begin(), part->end());
+          t.patch = s.patch;
+          std::vector<char> seen(s.F.rows(), 0);
+          std::vector<int> stack;
+          for (int f = 0; f < s.F.rows(); ++f)
+            if (g.chart(f) == chart)
+              for (int k = 0; k < 3; ++k)
+                if (seeds.count(s.F(f, k)) && !seen[f] && !touches_others(f)) { seen[f] = 1; stack.push_back(f); }
+          while (!stack.empty()) {
+            const int f = stack.back();
+            stack.pop_back();
+            t.patch(f) = g.label[other];
+            for (int k = 0; k < 3; ++k) {
+              const int h = TT(f, k);
+              if (h < 0 || seen[h] || g.chart(h) != chart || touches_others(h)) continue;
+              const double d = distance(h, *part);
+              if (d <= w && d < distance(h, others)) { seen[h] = 1; stack.push_back(h); }
+            }
+          }
+          const ChartGraph tg = chart_graph(t);
+          const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
+          if (n > problems) continue;
+          const long m = static_cast<long>(mixed_convexity_problems(t, tg, width).size());
+          const double loss = fit_loss(s, t.patch);
+          if (n < best_n || (n == best_n && m < best_m) || (n == best_n && m == best_m && best.size() && loss < best_loss)) {
+            best = t.patch;
+            best_n = n;
+            best_m = m;
+            best_loss = loss;
+            if (what)
+              *what = "a band of " + chart_name(g, chart) + " along the " + (part == &parts[ci].concave ? "concave" : "convex") +
+                      " part of its curve with " + chart_name(g, other);
+          }
+        }
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions& opt) {
@@ -389,6 +544,21 @@ RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions&
     const PlaneGroups pg = plane_groups(s, g);
     auto problems = chart_problems(s, g, pg);
     const bool fresh = seen.insert(hash(s.patch)).second;
+    if (problems.empty() && fresh && r.relabelled < opt.max_relabels) {
+      // A labelling that is otherwise a polycube's: curves of mixed convexity get a band.
+      const auto mixed = mixed_convexity_problems(s, g, width);
+      std::string what;
+      Eigen::VectorXi band =
+          mixed.empty() ? Eigen::VectorXi() : repair_mixed_band(s, g, 0, static_cast<int>(mixed.size()), width, &what);
+      if (band.size()) {
+        if (opt.log) opt.log(0, "relabelling " + what + ": " + mixed.front().message);
+        s.patch = band;
+        ++r.relabelled;
+        ++r.banded;
+        continue;
+      }
+      if (!mixed.empty() && opt.log) opt.log(0, "no band repairs " + mixed.front().message);
+    }
     if (problems.empty() || r.relabelled >= opt.max_relabels || !fresh) {
       r.remaining = std::move(problems);
       break;

@@ -24,9 +24,17 @@ enum class ProblemKind {
   /// directions in the input (the sign of their axis coordinate from corner to corner), it doubles
   /// back or does not turn by +-360 degrees, or the chart's loops are not one outer and the rest holes.
   BadTurning,
+  /// A curve between two charts that runs along a convex sharp edge in part and along a concave one
+  /// in part (each at least a tenth of its length and a minimum length, e.g. the element size;
+  /// sharp: normals more than 35 degrees apart), as
+  /// where two tangent surfaces part at a cusp and one chart wraps around the tip of the other. A
+  /// polycube edge is either convex or concave, so the map must fold there. Reported by
+  /// mixed_convexity_problems, not chart_problems: a labelling with such a curve still gives a
+  /// polycube (folds that the map untangles, poor blocks there).
+  MixedConvexity,
 };
 /// "opposite_neighbours", "closed_curve", "pinch", "few_corners", "missing_axis", "zero_length_edge",
-/// "bad_turning".
+/// "bad_turning", "mixed_convexity".
 std::string kind_name(ProblemKind kind);
 
 struct ChartProblem {
@@ -39,6 +47,12 @@ struct ChartProblem {
 /// Every problem of the labelled surface (patch = label 1..6 per triangle), in a fixed order.
 std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& labels, const ChartGraph& graph,
                                          const PlaneGroups& groups);
+
+/// The curves of the labelled surface that are convex in part and concave in part (MixedConvexity),
+/// each part at least `min_length` long (0: the bounding-box diagonal / 30). Shorter parts lie
+/// within a cell or two and do not fold the map beyond what its untangling mends.
+std::vector<ChartProblem> mixed_convexity_problems(const mesh::SurfaceMesh& labels, const ChartGraph& graph,
+                                                   double min_length = 0);
 
 struct RepairOptions {
   int max_relabels = 200;  ///< charts (or bands) relabelled at most
@@ -65,8 +79,14 @@ struct RepairResult {
 /// e.g. a hole's wall labelled like the face it leaves) gets a band on one side of the crease when
 /// one leaves fewer problems; else the problem whose smallest chart has the least area gives that
 /// chart the label, among its neighbours' labels, that best fits its triangles' normals
-/// (relabel_chart). Stops when no problem is left, after max_relabels, or when a labelling comes back
-/// (a cycle). Never throws for problems: they are returned.
+/// (relabel_chart). When no problem is left, a curve of mixed convexity (mixed_convexity_problems,
+/// each part at least band_width long)
+/// gets a band of one of its charts along its concave or its convex part, given the other chart's
+/// label and limited to the triangles within band_width or 2 band_width of that part and nearer to it than
+/// to the chart's other curves (at a cusp: the tip of the chart that the other wraps around), when one
+/// leaves no problem and fewer such curves, the least normal fit lost first; such curves that no band
+/// repairs are left (not returned). Stops when no problem is left, after max_relabels, or when a
+/// labelling comes back (a cycle). Never throws for problems: they are returned.
 RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions& options = {});
 
 /// The labels with the triangles of `chart` within `width` (centroid to the nearest vertex of
