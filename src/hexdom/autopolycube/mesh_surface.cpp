@@ -93,9 +93,14 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
     }
   }
   const int inverted = inverted_cells(r.quality);
-  if (inverted > 0 && opt.level > 0 && opt.refine_when_inverted) {
-    say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
-            opt.level - 1));
+  const bool nearly = inverted == 0 && worst_sj(r.quality) < opt.refine_below_sj;
+  if ((inverted > 0 || nearly) && opt.level > 0 && opt.refine_when_inverted) {
+    if (nearly)
+      say(fmt("worst SJ %.3f at level %.0f (below %.2f): again with level %.0f (grid of half the spacing)", worst_sj(r.quality),
+              opt.level, opt.refine_below_sj, opt.level - 1));
+    else
+      say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
+              opt.level - 1));
     MeshSurfaceOptions finer = opt;
     finer.level = opt.level - 1;
     finer.segment.edge_weight = r.edge_weight;
@@ -107,11 +112,12 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
       return progress ? *progress : local;
     }
     const int inverted2 = inverted_cells(again.quality);
-    if (inverted2 < inverted) {
+    if (nearly ? better(again, r, reference, opt) : inverted2 < inverted) {
       for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
       r = std::move(again);
     } else {
-      say(fmt("level %.0f is no better (%.0f inverted); keeping level %.0f", finer.level, inverted2, opt.level));
+      say(fmt("level %.0f is no better (%.0f inverted, worst SJ %.3f); keeping level %.0f", finer.level, inverted2,
+              worst_sj(again.quality), opt.level));
     }
   }
   return progress ? *progress : local;

@@ -307,6 +307,7 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
     int chart, other;                // the chart it bounds and the chart on the other side of the curve
     int at, axis, from, to;          // plane groups: `at` (position), `from` / `to` (ends along `axis`)
     double mean;                     // mean input coordinate of the curve along at's axis
+    int curve;                       // index into g.curves
   };
   std::vector<Segment> segments;
   for (const auto& c : g.curves) {
@@ -317,9 +318,52 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
       const int pa = (g.label[other] - 1) / 2;
       double mean = 0;
       for (int v : c.vertices) mean += s.V(v, pa);
-      segments.push_back({chart, other, pg.of_chart[other], ax, pg.of_vertex(p, ax), pg.of_vertex(q, ax), mean / c.vertices.size()});
+      segments.push_back({chart, other, pg.of_chart[other], ax, pg.of_vertex(p, ax), pg.of_vertex(q, ax), mean / c.vertices.size(),
+                          static_cast<int>(&c - g.curves.data())});
     }
   }
+  // Input order of two parallel segments u, w (same axis): w's position minus u's (along their plane
+  // axis), averaged over the input range of `axis` that both curves span, where the polylines are
+  // interpolated; the difference of the whole curves' means when their ranges do not overlap. The
+  // means alone misorder a curved curve and a short one beside it: a round rim's quarter (mean x
+  // 0.90 R) and the outer wall of a bolt hole 5 from the rim on the quarter's middle (mean x 0.91 R).
+  auto input_order = [&](const Segment& u, const Segment& w) {
+    const auto& cu = g.curves[u.curve].vertices;
+    const auto& cw = g.curves[w.curve].vertices;
+    const int ax = u.axis, pa = pg.axis[u.at];
+    auto range = [&](const std::vector<int>& vs) {
+      double lo = 1e300, hi = -1e300;
+      for (int v : vs) { lo = std::min(lo, s.V(v, ax)); hi = std::max(hi, s.V(v, ax)); }
+      return std::make_pair(lo, hi);
+    };
+    const auto [ulo, uhi] = range(cu);
+    const auto [wlo, whi] = range(cw);
+    const double lo = std::max(ulo, wlo), hi = std::min(uhi, whi);
+    // Mean position of the polyline's crossings of the line at coordinate t along `ax` (NaN: none).
+    auto at = [&](const std::vector<int>& vs, double t) {
+      double sum = 0;
+      int n = 0;
+      for (size_t i = 0; i + 1 < vs.size(); ++i) {
+        const double a = s.V(vs[i], ax), b = s.V(vs[i + 1], ax);
+        if (std::min(a, b) > t || std::max(a, b) < t || a == b) continue;
+        const double f = (t - a) / (b - a);
+        sum += (1 - f) * s.V(vs[i], pa) + f * s.V(vs[i + 1], pa);
+        ++n;
+      }
+      return n ? sum / n : std::nan("");
+    };
+    double diff = 0;
+    int n = 0;
+    if (hi > lo) {
+      constexpr int kSamples = 16;
+      for (int k = 0; k < kSamples; ++k) {
+        const double t = lo + (hi - lo) * (k + 0.5) / kSamples;
+        const double a = at(cu, t), b = at(cw, t);
+        if (std::isfinite(a) && std::isfinite(b)) { diff += b - a; ++n; }
+      }
+    }
+    return n ? diff / n : w.mean - u.mean;
+  };
   std::vector<std::vector<int>> chart_segments(g.num_charts());
   for (size_t i = 0; i < segments.size(); ++i) chart_segments[segments[i].chart].push_back(static_cast<int>(i));
   // Per chart: area centroid and mean unit normal (input), for the widths of opposite charts below.
@@ -370,11 +414,12 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
           // Spans that only touch count too: two holes' (or a hole's and the outer boundary's) sides
           // that end at one grid line must not fall on one plane, or the chart pinches between them.
           if (std::min(uhi, whi) < std::max(ulo, wlo) + (opt.separate_touching ? 0 : 1)) continue;  // spans apart
-          if (u.mean == w.mean) continue;
-          const int lo = u.mean < w.mean ? u.at : w.at, hi = u.mean < w.mean ? w.at : u.at;
+          const double d = input_order(u, w);
+          if (d == 0) continue;
+          const int lo = d > 0 ? u.at : w.at, hi = d > 0 ? w.at : u.at;
           // Across a void the wall below faces up (label +axis); otherwise the input order is not the
           // walls' and the width does not apply.
-          const int clo = u.mean < w.mean ? u.other : w.other, chi = u.mean < w.mean ? w.other : u.other;
+          const int clo = d > 0 ? u.other : w.other, chi = d > 0 ? w.other : u.other;
           const bool overlap = std::min(uhi, whi) > std::max(ulo, wlo);
           const int gap = overlap && g.label[clo] % 2 == 1 ? width_gap(clo, chi) : 1;
           if (m.plane(hi) - m.plane(lo) >= gap) continue;
