@@ -132,7 +132,8 @@ void add_mesh(CLI::App& app) {
       "cell, a worst scaled Jacobian below 0.3 or a volume more than 1% off the input surface's, the\n"
       "polycube with the least-squares plane offsets is meshed too, and the better kept: fewer inverted\n"
       "cells, then a worst SJ >= 0.3, then a volume within 1%, then the higher worst SJ. When inverted\n"
-      "cells remain at level s > 0, the same again at level s - 1, kept if it has fewer inverted cells.");
+      "cells remain at level s > 0 or the worst SJ is below 0.3, the same again at level s - 1 (a grid of\n"
+      "half the spacing), the better kept by the same order.");
   struct Args {
     std::string in, out, report;
     bool keep = false, allow_inverted = false, no_improve = false, no_snap = false;

@@ -96,7 +96,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   const bool nearly = inverted == 0 && worst_sj(r.quality) < opt.refine_below_sj;
   if ((inverted > 0 || nearly) && opt.level > 0 && opt.refine_when_inverted) {
     if (nearly)
-      say(fmt("worst SJ %.3f at level %.0f (below %.2f): again with level %.0f (grid of half the spacing)", worst_sj(r.quality),
+      say(fmt("worst SJ %.3f at level %.0f (below %.2f): again with level %.0f (grid of half the spacing), the better kept", worst_sj(r.quality),
               opt.level, opt.refine_below_sj, opt.level - 1));
     else
       say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
@@ -112,7 +112,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
       return progress ? *progress : local;
     }
     const int inverted2 = inverted_cells(again.quality);
-    if (nearly ? better(again, r, reference, opt) : inverted2 < inverted) {
+    if (better(again, r, reference, opt)) {
       for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
       r = std::move(again);
     } else {
