@@ -53,25 +53,36 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
   mesh::SurfaceMesh s = drop_unused_vertices(labels);
   r.labels = s;
   for (int attempt = 0;; ++attempt) {
-    RepairOptions ro;
-    ro.max_relabels = std::max(0, opt.max_relabels - r.relabelled);
-    ro.band_width = size;
-    ro.log = opt.log;
-    RepairResult rep = repair_labels(s, ro);
-    s.patch = rep.label;
-    r.labels = s;
-    r.relabelled += rep.relabelled;
-    if (!rep.remaining.empty()) {
-      std::string m = std::to_string(rep.remaining.size()) + " problem" + (rep.remaining.size() == 1 ? "" : "s") +
-                      " of the labelling remain after relabelling " + std::to_string(r.relabelled) + " charts:";
-      for (size_t i = 0; i < rep.remaining.size() && i < 5; ++i) m += "\n  " + rep.remaining[i].message;
-      throw GeometryError(m);
+    if (attempt == 0 && opt.repaired) {
+      if (opt.repaired->labels.F.rows() < s.F.rows() || opt.repaired->labels.V.rows() < s.V.rows())
+        throw GeometryError("the repaired labelling given has fewer triangles or vertices than the labels");
+      s = opt.repaired->labels;
+      r.relabelled = opt.repaired->relabelled;
+      r.chords = opt.repaired->chords;
+      log("labels: the repair of an earlier run (" + std::to_string(r.relabelled) + " charts relabelled, " +
+          std::to_string(r.chords) + " chords split)");
+    } else {
+      RepairOptions ro;
+      ro.max_relabels = std::max(0, opt.max_relabels - r.relabelled);
+      ro.band_width = size;
+      ro.log = opt.log;
+      RepairResult rep = repair_labels(s, ro);
+      s.patch = rep.label;
+      r.labels = s;
+      r.relabelled += rep.relabelled;
+      if (!rep.remaining.empty()) {
+        std::string m = std::to_string(rep.remaining.size()) + " problem" + (rep.remaining.size() == 1 ? "" : "s") +
+                        " of the labelling remain after relabelling " + std::to_string(r.relabelled) + " charts:";
+        for (size_t i = 0; i < rep.remaining.size() && i < 5; ++i) m += "\n  " + rep.remaining[i].message;
+        throw GeometryError(m);
+      }
+      const ChartGraph g0 = chart_graph(s);
+      int chords = 0;
+      s = split_chords(s, g0, &chords);
+      r.chords += chords;
     }
-    const ChartGraph g0 = chart_graph(s);
-    int chords = 0;
-    s = split_chords(s, g0, &chords);
-    r.chords += chords;
     r.labels = s;
+    if (attempt == 0) r.repaired = RepairedLabels{s, r.relabelled, r.chords};
     const ChartGraph g = chart_graph(s);
     const PlaneGroups pg = plane_groups(s, g);
     r.charts = g.num_charts();

@@ -74,6 +74,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
             worst_sj(r.quality), inverted_cells(r.quality), 100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)));
     MeshSurfaceOptions other = opt;
     other.polycube.keep_widths = false;
+    other.polycube.repaired = &r.polycube.repaired;  // the same labelling: repaired once
     other.segment.edge_weight = r.edge_weight;
     other.retry_edge_weights.clear();
     MeshSurfaceRun again;
@@ -104,6 +105,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
     MeshSurfaceOptions finer = opt;
     finer.level = opt.level - 1;
     finer.segment.edge_weight = r.edge_weight;
+    finer.polycube.repaired = &r.polycube.repaired;  // the repair does not depend on the level
     MeshSurfaceRun again;
     try {
       mesh_surface(surface, finer, &again);
@@ -159,6 +161,9 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
 
     r.stage = "autopolycube";
     t = Clock::now();
+    // A repair handed down by the caller belongs to the first edge weight's labelling only.
+    ao.repaired = attempt == 0 && opt.polycube.repaired && opt.polycube.repaired->labels.F.rows() > 0 ? opt.polycube.repaired
+                                                                                                      : nullptr;
     try {
       autopolycube(r.labels, ao, &r.polycube);
     } catch (const Error& e) {  // GeometryError (labelling) or MeshingError (cutting)

@@ -18,7 +18,10 @@ struct MeshSurfaceOptions {
   double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30
   int level = 1;    ///< subdivision level s: blocks are grid cells of h = H * 2^s, 2^s cells per block edge
   segmentation::CvtOptions segment;   ///< segmentation (its log is replaced by `log` when `verbose`)
-  AutoPolycubeOptions polycube;       ///< its size and level are taken from above
+  /// Its size and level are taken from above. The candidates after the first (without the widths of
+  /// holes, level s - 1) get the first one's repaired labelling (AutoPolycubeOptions::repaired) for
+  /// the edge weight it took, so the label repair runs once per run, not once per candidate.
+  AutoPolycubeOptions polycube;
   /// When autopolycube cannot use the segmentation, segment again with these edge weights (lambda)
   /// in turn, then give up with the first attempt's error. Smoother labellings have fewer small
   /// charts for the label repair to merge (mount1's ears need lambda 1).

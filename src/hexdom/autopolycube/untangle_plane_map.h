@@ -19,6 +19,8 @@ struct UntangleResult {
   int folded_before = 0, folded_after = 0;  ///< triangles with orientation <= 0 in the plane
   int folded_fixed = 0;  ///< of folded_after: triangles without a free vertex (no move can help)
   int rounds = 0;
+  int iterations = 0;   ///< L-BFGS steps taken, over all rounds
+  int evaluations = 0;  ///< passes over the triangles (energy, with or without its gradient)
 };
 
 /// Moves the vertices with `free_vertex[v]` of the triangles `tris` of F within the plane of axis

@@ -146,6 +146,43 @@ TEST(Autopolycube, ProgressKeepsTheLabelsAndThePolycubeWhenItFails) {
   EXPECT_EQ(progress.labels.F.rows(), s.F.rows());
 }
 
+// The first repair depends on the labels and the size only: a run at another level handed the first
+// run's repair relabels nothing again and builds the same polycube as a run that repairs by itself.
+TEST(Autopolycube, ARepairHandedDownIsNotDoneAgain) {
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}}, 4);
+  for (int f = 0; f < s.F.rows(); f += 7) s.patch(f) = s.patch(f) == 1 ? 3 : 1;  // islands to relabel
+  auto o = cell_options(0.5, 1);
+  int relabels = 0;
+  o.log = [&](int, const std::string& m) { relabels += m.rfind("relabelling", 0) == 0; };
+  const auto first = autopolycube::autopolycube(s, o);
+  ASSERT_GT(relabels, 0);
+  EXPECT_GT(first.repaired.relabelled, 0);
+  EXPECT_LE(first.repaired.relabelled, first.relabelled);
+  EXPECT_EQ(first.repaired.labels.F.rows(), first.labels.F.rows());
+
+  auto fine = o;
+  fine.level = 0;
+  fine.size = o.size;  // the same element size, a grid of half the spacing
+  relabels = 0;
+  const auto alone = autopolycube::autopolycube(s, fine);
+  EXPECT_GT(relabels, 0);
+  relabels = 0;
+  fine.repaired = &first.repaired;
+  const auto handed = autopolycube::autopolycube(s, fine);
+  EXPECT_EQ(relabels, 0);
+  EXPECT_EQ(handed.relabelled, alone.relabelled);
+  EXPECT_EQ(handed.blocks, alone.blocks);
+  EXPECT_EQ(handed.squares, alone.squares);
+  ASSERT_EQ(handed.structure.num_nodes(), alone.structure.num_nodes());
+  EXPECT_LT((handed.structure.V - alone.structure.V).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_TRUE((handed.labels.patch.array() == alone.labels.patch.array()).all());
+
+  // A repaired labelling with fewer triangles than the labels cannot be theirs.
+  autopolycube::RepairedLabels small{test::cell_surface({{0, 0, 0}}, 1), 0, 0};
+  fine.repaired = &small;
+  EXPECT_THROW(autopolycube::autopolycube(s, fine), GeometryError);
+}
+
 TEST(Autopolycube, BadArgumentsAreGeometryErrors) {
   auto s = test::cell_surface({{0, 0, 0}}, 1);
   auto o = cell_options(0.5, 1);

@@ -56,3 +56,25 @@ TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
   EXPECT_NE(log.find("kept the polycube with the widths of holes"), std::string::npos) << log;
   EXPECT_LT(volume_error(r, reference), 0.015);
 }
+
+// The second candidate (without the widths of holes) and a finer level take the first candidate's
+// label repair instead of repairing the same labelling again.
+TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
+  auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
+  autopolycube::MeshSurfaceOptions o;
+  o.size = 1.0;
+  o.level = 1;
+  o.target_sj = 2.0;  // no mesh meets it: both candidates are meshed
+  o.verbose = true;
+  std::string log;
+  int repairs = 0, handed = 0;
+  o.log = [&](int, const std::string& m) {
+    log += m + "\n";
+    handed += m.rfind("labels: the repair of an earlier run", 0) == 0;
+    repairs += m.rfind("autopolycube:", 0) == 0;
+  };
+  const auto r = autopolycube::mesh_surface(s, o);
+  EXPECT_EQ(repairs, 2) << log;  // two candidates
+  EXPECT_EQ(handed, 1) << log;   // the second one took the first one's repair
+  EXPECT_EQ(r.quality.hex.inverted, 0);
+}
