@@ -96,7 +96,7 @@ def _faces_of(grid):
 
 _VOLUME_DEFECT = pytest.mark.xfail(
     strict=True, reason="issue 3: at level 2 the boundary faces of fertility and ant are chords of a "
-    "strongly curved surface and the mesh volume is 2.96% / 1.70% short of the enclosed volume. Measured "
+    "strongly curved surface and the mesh volume is 2.93% / 1.61% short of the enclosed volume. Measured "
     "(bench/bench_volume_deficit.py): the mesh volume equals its boundary polyhedron's to 0.001%, the "
     "surface-side estimate (distance x area) gives 2.90% / 1.43%, and the deficit falls by 3.97 / 3.98 from "
     "level 2 to 3 and 3.89 / 3.82 from 3 to 4: chordal O(h^2). No patch holds more than 13% of it and "
