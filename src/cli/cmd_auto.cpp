@@ -191,11 +191,7 @@ void add_mesh(CLI::App& app) {
     } else {
       surface = io::read_surface(a->in);
     }
-    if (reference_volume == 0)
-      for (int f = 0; f < surface.F.rows(); ++f) {
-        const Eigen::Vector3d p = surface.V.row(surface.F(f, 0)), q = surface.V.row(surface.F(f, 1)), r = surface.V.row(surface.F(f, 2));
-        reference_volume += p.dot(q.cross(r)) / 6.0;
-      }
+    if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
     autopolycube::MeshSurfaceRun run;
     auto write_intermediate = [&](bool all) {
       if (run.labels.F.rows() > 0) io::write_mesh(stem + "_labels.k", mesh::from_surface(run.labels));

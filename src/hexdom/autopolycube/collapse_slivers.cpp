@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "hexdom/common/format.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/quality/metrics.h"
 
@@ -52,12 +53,6 @@ struct State {
     return q;
   }
 };
-
-std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, f, a, b, c, d);
-  return buf;
-}
 
 }  // namespace
 

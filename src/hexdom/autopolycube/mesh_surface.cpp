@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "hexdom/common/format.h"
 #include "hexdom/generation/generate.h"
 
 namespace hexdom::autopolycube {
@@ -12,14 +13,6 @@ namespace hexdom::autopolycube {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, f, a, b, c, d);
-  return buf;
-}
-}  // namespace
-
-namespace {
 
 int inverted_cells(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
 
@@ -51,6 +44,12 @@ bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, 
   return worst_sj(b.quality) > worst_sj(a.quality);
 }
 
+// The time and the segmentations another candidate cost, added to the run that is kept.
+void add_costs(MeshSurfaceRun& kept, const MeshSurfaceRun& other) {
+  for (int k = 0; k < 4; ++k) kept.seconds[k] += other.seconds[k];
+  kept.segmentations += other.segmentations;
+}
+
 // segment -> autopolycube -> generate -> improve at one level, one polycube option set.
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
 
@@ -62,11 +61,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   r = MeshSurfaceRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   mesh_once(surface, opt, r);
-  double reference = 0;
-  for (int f = 0; f < surface.F.rows(); ++f) {
-    const Eigen::Vector3d p = surface.V.row(surface.F(f, 0)), q = surface.V.row(surface.F(f, 1)), w = surface.V.row(surface.F(f, 2));
-    reference += p.dot(q.cross(w)) / 6.0;
-  }
+  const double reference = mesh::enclosed_volume(surface.V, surface.F);
   // A polycube that keeps the widths of holes is tried first; when its mesh misses a target, the one
   // with the least-squares plane offsets is tried too and the better kept (see `better`).
   if (opt.polycube.keep_widths && opt.try_without_widths && !meets_targets(r, reference, opt)) {
@@ -82,12 +77,11 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
       mesh_once(surface, other, again);
       if (better(again, r, reference, opt)) {
         say("kept the polycube without the widths of holes: its mesh is better");
-        for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
-        again.segmentations += r.segmentations;
+        add_costs(again, r);
         r = std::move(again);
       } else {
         say("kept the polycube with the widths of holes: its mesh is better");
-        for (int k = 0; k < 4; ++k) r.seconds[k] += again.seconds[k];
+        add_costs(r, again);
       }
     } catch (const Error& e) {
       say(std::string("without the widths of holes: ") + e.what() + "; keeping the first polycube");
@@ -115,7 +109,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
     }
     const int inverted2 = inverted_cells(again.quality);
     if (better(again, r, reference, opt)) {
-      for (int k = 0; k < 4; ++k) again.seconds[k] += r.seconds[k];
+      add_costs(again, r);
       r = std::move(again);
     } else {
       say(fmt("level %.0f is no better (%.0f inverted, worst SJ %.3f); keeping level %.0f", finer.level, inverted2,

@@ -38,6 +38,15 @@ std::string vertex_text(const mesh::SurfaceMesh& s, int v) {
 
 // Normals more than this far apart make a sharp edge for MixedConvexity.
 constexpr double kSharpAngleDegrees = 35.0;
+
+// The triangles around each vertex.
+std::vector<std::vector<int>> vertex_triangles(const mesh::SurfaceMesh& s) {
+  std::vector<std::vector<int>> vt(s.V.rows());
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) vt[s.F(f, k)].push_back(f);
+  return vt;
+}
+
 // Each of the convex and the concave part of a mixed curve is at least this share of its length
 // (and at least the minimum length given).
 constexpr double kMixedShare = 0.1;
@@ -94,9 +103,7 @@ std::vector<int> charts_at(const ChartGraph& g, const std::vector<std::vector<in
 
 std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const ChartGraph& g, const PlaneGroups& pg) {
   std::vector<ChartProblem> out;
-  std::vector<std::vector<int>> vt(s.V.rows());
-  for (int f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) vt[s.F(f, k)].push_back(f);
+  const std::vector<std::vector<int>> vt = vertex_triangles(s);
   auto name = [&](int c) { return chart_name(g, c); };
   for (const auto& c : g.curves) {
     const int v = c.vertices.front();
@@ -199,9 +206,7 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
 std::vector<ChartProblem> mixed_convexity_problems(const mesh::SurfaceMesh& s, const ChartGraph& g, double min_length) {
   std::vector<ChartProblem> out;
   if (min_length <= 0 && s.V.rows()) min_length = (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm() / 30.0;
-  std::vector<std::vector<int>> vt(s.V.rows());
-  for (int f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) vt[s.F(f, k)].push_back(f);
+  const std::vector<std::vector<int>> vt = vertex_triangles(s);
   for (const auto& c : g.curves) {
     const CurveConvexity cc = curve_convexity(s, g, vt, c);
     if (!cc.mixed(min_length)) continue;
@@ -448,9 +453,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
 // leaves fewer chart problems or as many and fewer than `mixed_curves` mixed curves.
 Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int problems, int mixed_curves,
                                   double width, std::string* what) {
-  std::vector<std::vector<int>> vt(s.V.rows());
-  for (int f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) vt[s.F(f, k)].push_back(f);
+  const std::vector<std::vector<int>> vt = vertex_triangles(s);
   std::vector<std::pair<double, int>> mixed;  // the longest curves first
   std::vector<CurveConvexity> parts(g.curves.size());
   for (size_t ci = 0; ci < g.curves.size(); ++ci) {

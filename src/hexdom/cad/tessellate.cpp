@@ -281,15 +281,6 @@ std::string closed_manifold_problem(const Eigen::MatrixXi& F) {
   return "";
 }
 
-double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  double vol = 0;
-  for (int t = 0; t < F.rows(); ++t) {
-    const Eigen::Vector3d a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
-    vol += a.dot(b.cross(c));
-  }
-  return vol / 6.0;
-}
-
 double tri_min_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   auto angle = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
   return std::min({angle(b - a, c - a), angle(a - b, c - b), angle(a - c, b - c)}) * 180.0 / kPi;
@@ -322,7 +313,7 @@ TessellateStats tessellation_stats(const Shape& shape, const mesh::SurfaceMesh& 
   }
   st.mean_edge = s.F.rows() ? edge_sum / (3.0 * s.F.rows()) : 0;
   st.closed = s.F.rows() > 0 && closed_manifold_problem(s.F).empty();
-  st.volume = signed_volume(s.V, s.F);
+  st.volume = mesh::enclosed_volume(s.V, s.F);
   st.brep_volume = info.volume;
   return st;
 }
@@ -526,7 +517,7 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
     for (Eigen::Index t = 0; t < face.size(); ++t) out.patch(t) = original_face[face(t)];
     const std::string problem = closed_manifold_problem(out.F);
     if (!problem.empty()) throw MeshingError(source + ": the tessellation is not closed: " + problem);
-    if (signed_volume(out.V, out.F) < 0) {
+    if (mesh::enclosed_volume(out.V, out.F) < 0) {
       out.F.col(1).swap(out.F.col(2));
       if (options.log) options.log(1, source + ": the solid's faces point inward; turned the triangles over");
     }

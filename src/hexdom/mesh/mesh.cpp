@@ -232,4 +232,13 @@ std::array<int, 8> to_hex_nodes(CellType t, const int* c) {
   }
 }
 
+double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  double vol = 0;
+  for (int t = 0; t < F.rows(); ++t) {
+    const Eigen::Vector3d a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
+    vol += a.dot(b.cross(c));
+  }
+  return vol / 6.0;
+}
+
 }  // namespace hexdom::mesh

@@ -68,6 +68,9 @@ struct SurfaceMesh {
 SurfaceMesh to_surface(const Mesh& mesh);
 /// A SurfaceMesh as a Mesh of triangle cells (patch -> region).
 Mesh from_surface(const SurfaceMesh& surface);
+/// Volume a closed triangle surface encloses (divergence theorem): positive when the triangles
+/// are counter-clockwise seen from outside, negative when they face inward.
+double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 /// Result of reading an 8-node hexahedron that may have collapsed edges.
 struct DegenerateHex {
