@@ -16,6 +16,9 @@ struct GridStructureOptions {
   int untangle_rounds = 50;  ///< rounds of local moves of interior vertices
   /// Interior vertices of blocks whose scaled Jacobian is below this are moved (when it helps).
   double target_quality = 0.3;
+  /// A move may not make an edge of the vertex shorter than this share of its mean edge length in
+  /// the harmonic placement (the scaled Jacobian alone lets a block flatten to a slab); 0: no limit.
+  double min_edge_share = 0.25;
   LogCallback log;
 };
 
