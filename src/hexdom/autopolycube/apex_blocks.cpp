@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include "hexdom/common/format.h"
@@ -58,63 +59,74 @@ struct State {
   int next_patch = 0, tets = 0, prisms = 0, split = 0;
 };
 
-// Cuts the triangles `tris` of one square (axis `axis`, polycube positions D in grid units) along
-// its diagonal from corner A to corner C, as cut_along_grid cuts along grid lines: a new vertex where
-// an edge crosses the diagonal, at the input position of the same barycentric coordinates, so the
-// geometry does not change. The triangles on one side keep `keep`, the others get `other`. False
-// when a triangle lies on the diagonal or one side is empty.
-bool split_square(const mesh::SurfaceMesh& s, const Eigen::MatrixXd& D, int axis, const std::vector<int>& tris, int A, int C,
-                  int keep, int other, State& st) {
-  const int b = (axis + 1) % 3, d = (axis + 2) % 3, nv = static_cast<int>(s.V.rows());
-  auto side = [&](int v) {
-    const double f = (D(v, b) - D(A, b)) * (D(C, d) - D(A, d)) - (D(v, d) - D(A, d)) * (D(C, b) - D(A, b));
-    return std::abs(f) < 1e-9 ? 0.0 : f;
-  };
-  std::map<int, double> f;
-  for (int t : tris)
-    for (int k = 0; k < 3; ++k) f[s.F(t, k)] = side(s.F(t, k));
+// Cuts the triangles `tris` of F along the zero level of the vertex field f (linear along edges,
+// values of magnitude below eps taken as 0), as cut_along_grid cuts along grid lines: a new vertex
+// where an edge crosses, at the position of the same barycentric coordinates (appended to `extra`,
+// numbered from nv; pos gives any vertex's position), so the geometry does not change. Returns the
+// pieces (three vertices, the triangle they came from) in the triangles' orientation.
+std::vector<std::array<int, 4>> cut_triangles(const Eigen::MatrixXi& F, const std::vector<int>& tris, std::map<int, double>& f, double eps,
+                                              int nv, std::vector<Eigen::RowVector3d>& extra,
+                                              const std::function<Eigen::RowVector3d(int)>& pos) {
+  for (auto& [v, x] : f)
+    if (std::abs(x) < eps) x = 0;
   std::map<std::pair<int, int>, int> cut;
-  auto pos = [&](int v) -> Eigen::RowVector3d { return v < nv ? Eigen::RowVector3d(s.V.row(v)) : st.extra[v - nv]; };
   auto mid = [&](int u, int w) {
     const std::pair<int, int> key{std::min(u, w), std::max(u, w)};
     auto it = cut.find(key);
     if (it != cut.end()) return it->second;
     const double x = f.at(u) / (f.at(u) - f.at(w));
-    const int id = nv + static_cast<int>(st.extra.size());
-    st.extra.push_back(pos(u) + x * (pos(w) - pos(u)));
+    const int id = nv + static_cast<int>(extra.size());
+    extra.push_back(pos(u) + x * (pos(w) - pos(u)));
     f[id] = 0;
     cut.emplace(key, id);
     return id;
   };
-  std::vector<std::array<int, 3>> out;
+  std::vector<std::array<int, 4>> out;
   for (int t : tris) {
-    std::array<int, 3> v{s.F(t, 0), s.F(t, 1), s.F(t, 2)};
-    bool pos_side = false, neg_side = false;
-    for (int k = 0; k < 3; ++k) { pos_side = pos_side || f[v[k]] > 0; neg_side = neg_side || f[v[k]] < 0; }
-    if (!(pos_side && neg_side)) { out.push_back(v); continue; }
+    std::array<int, 3> v{F(t, 0), F(t, 1), F(t, 2)};
+    bool above = false, below = false;
+    for (int k = 0; k < 3; ++k) { above = above || f.at(v[k]) > 0; below = below || f.at(v[k]) < 0; }
+    if (!(above && below)) { out.push_back({v[0], v[1], v[2], t}); continue; }
     int z = -1;
     for (int k = 0; k < 3; ++k)
-      if (f[v[k]] == 0) z = k;
+      if (f.at(v[k]) == 0) z = k;
     if (z >= 0) {
-      // One vertex on the diagonal, the others on either side.
+      // One vertex on the level, the others on either side.
       const int x = v[z], y = v[(z + 1) % 3], w = v[(z + 2) % 3], m = mid(y, w);
-      out.push_back({x, y, m});
-      out.push_back({x, m, w});
+      out.push_back({x, y, m, t});
+      out.push_back({x, m, w, t});
       continue;
     }
     // The vertex alone on its side first.
     int k0 = 0;
     for (int k = 0; k < 3; ++k)
-      if ((f[v[k]] > 0) != (f[v[(k + 1) % 3]] > 0) && (f[v[k]] > 0) != (f[v[(k + 2) % 3]] > 0)) k0 = k;
+      if ((f.at(v[k]) > 0) != (f.at(v[(k + 1) % 3]) > 0) && (f.at(v[k]) > 0) != (f.at(v[(k + 2) % 3]) > 0)) k0 = k;
     const int x = v[k0], y = v[(k0 + 1) % 3], w = v[(k0 + 2) % 3];
     const int m1 = mid(x, y), m2 = mid(w, x);
-    out.push_back({x, m1, m2});
-    out.push_back({m1, y, w});
-    out.push_back({m1, w, m2});
+    out.push_back({x, m1, m2, t});
+    out.push_back({m1, y, w, t});
+    out.push_back({m1, w, m2, t});
   }
+  return out;
+}
+
+// Cuts the triangles `tris` of one square (axis `axis`, polycube positions D in grid units) along
+// its diagonal from corner A to corner C (cut_triangles). The triangles on one side keep `keep`, the
+// others get `other`. False when a triangle lies on the diagonal or one side is empty.
+bool split_square(const mesh::SurfaceMesh& s, const Eigen::MatrixXd& D, int axis, const std::vector<int>& tris, int A, int C,
+                  int keep, int other, State& st) {
+  const int b = (axis + 1) % 3, d = (axis + 2) % 3, nv = static_cast<int>(s.V.rows());
+  std::map<int, double> f;
+  for (int t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int v = s.F(t, k);
+      f[v] = (D(v, b) - D(A, b)) * (D(C, d) - D(A, d)) - (D(v, d) - D(A, d)) * (D(C, b) - D(A, b));
+    }
+  auto pos = [&](int v) -> Eigen::RowVector3d { return v < nv ? Eigen::RowVector3d(s.V.row(v)) : st.extra[v - nv]; };
+  const auto pieces = cut_triangles(s.F, tris, f, 1e-9, nv, st.extra, pos);
   int sides[2] = {0, 0};
   std::vector<std::array<int, 4>> halves;
-  for (const auto& v : out) {
+  for (const auto& v : pieces) {
     const double sum = f[v[0]] + f[v[1]] + f[v[2]];
     if (sum == 0) return false;
     ++sides[sum > 0];
@@ -129,43 +141,111 @@ bool split_square(const mesh::SurfaceMesh& s, const Eigen::MatrixXd& D, int axis
 }  // namespace
 
 std::vector<int> add_apex_caps(mesh::SurfaceMesh& s, const ApexCapOptions& opt) {
-  const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
-  std::vector<std::vector<int>> tris(nv);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) tris[s.F(f, k)].push_back(f);
-  const Eigen::VectorXi label = s.patch;
-  std::vector<char> capped(nf, 0);
-  std::vector<int> out;
-  for (int v = 0; v < nv; ++v) {
-    if (tris[v].size() < 3) continue;
-    std::set<int> L;
-    bool taken = false;
-    for (int f : tris[v]) { L.insert(label(f)); taken = taken || capped[f]; }
-    if (L.size() < 3 || taken) continue;
-    bool has[3] = {false, false, false};
-    for (int l : L) has[(l - 1) / 2] = true;
-    int missing = -1, axes = 0;
-    for (int a = 0; a < 3; ++a) (has[a] ? ++axes : missing = a);
-    if (axes != 2) continue;
-    // The tip points along the missing axis: no triangle of the ring faces the other way.
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    double lo = 1e300, hi = -1e300;
-    for (int f : tris[v]) {
-      const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-      const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-      mean += n;
-      lo = std::min(lo, n[missing]);
-      hi = std::max(hi, n[missing]);
+  std::vector<std::pair<int, int>> apexes;  // vertex, cap label
+  {
+    const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
+    std::vector<std::vector<int>> tris(nv);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) tris[s.F(f, k)].push_back(f);
+    for (int v = 0; v < nv; ++v) {
+      if (tris[v].size() < 3) continue;
+      std::set<int> L;
+      for (int f : tris[v]) L.insert(s.patch(f));
+      if (L.size() < 3) continue;
+      bool has[3] = {false, false, false};
+      for (int l : L) has[(l - 1) / 2] = true;
+      int missing = -1, axes = 0;
+      for (int a = 0; a < 3; ++a) (has[a] ? ++axes : missing = a);
+      if (axes != 2) continue;
+      // A tip: the angles of its triangles at it sum to well below a full turn (a cone of half-angle
+      // 32 degrees: 0.53 of a turn, the pyramid here 0.64, a point on a crease or a flat face 1), and
+      // it points along the missing axis: no triangle of the ring faces the other way.
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      double lo = 1e300, hi = -1e300, angle = 0;
+      for (int f : tris[v]) {
+        const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+        const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+        mean += n;
+        lo = std::min(lo, n[missing]);
+        hi = std::max(hi, n[missing]);
+        int k = 0;
+        while (s.F(f, k) != v) ++k;
+        const Eigen::Vector3d o = s.V.row(v), x = s.V.row(s.F(f, (k + 1) % 3)), y = s.V.row(s.F(f, (k + 2) % 3));
+        angle += std::atan2((x - o).cross(y - o).norm(), (x - o).dot(y - o));
+      }
+      mean /= static_cast<double>(tris[v].size());
+      if (angle > opt.max_angle * 2 * M_PI) continue;
+      if (std::abs(mean[missing]) < opt.min_normal || (mean[missing] > 0 ? lo < -1e-3 : hi > 1e-3)) continue;
+      const int cap = 1 + 2 * missing + (mean[missing] > 0 ? 0 : 1);
+      bool near = false;  // within the cap of an apex found before
+      for (const auto& [w, l] : apexes) near = near || (s.V.row(w) - s.V.row(v)).norm() <= 2 * opt.radius || w == v;
+      if (near) continue;
+      apexes.push_back({v, cap});
+      if (opt.log)
+        opt.log(0, "apex at (" + fmt("%.4g, %.4g, %.4g", s.V(v, 0), s.V(v, 1), s.V(v, 2)) + "): " + std::to_string(L.size()) +
+                       " charts of two axes meet; a " + segmentation::label_name(cap) + " cap" +
+                       (opt.radius > 0 ? fmt(" of radius %.3g", opt.radius) : std::string(" over its 1-ring")));
     }
-    mean /= static_cast<double>(tris[v].size());
-    if (std::abs(mean[missing]) < opt.min_normal || (mean[missing] > 0 ? lo < -1e-3 : hi > 1e-3)) continue;
-    const int cap = 1 + 2 * missing + (mean[missing] > 0 ? 0 : 1);
-    for (int f : tris[v]) { s.patch(f) = cap; capped[f] = 1; }
+  }
+  std::vector<int> out;
+  for (const auto& [v, cap] : apexes) {
+    const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
+    const Eigen::RowVector3d p = s.V.row(v);
+    std::vector<int> cap_tris;
+    if (opt.radius <= 0) {
+      for (int f = 0; f < nf; ++f)
+        if ((s.F.row(f).array() == v).any()) cap_tris.push_back(f);
+    } else {
+      // The triangles reaching into the ball of the radius, connected to the apex, cut at its sphere.
+      std::vector<std::vector<int>> tris(nv);
+      for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) tris[s.F(f, k)].push_back(f);
+      std::map<int, double> dist;
+      auto field = [&](int w) {
+        auto it = dist.find(w);
+        return it != dist.end() ? it->second : dist[w] = (s.V.row(w) - p).norm() - opt.radius;
+      };
+      std::set<int> seen(tris[v].begin(), tris[v].end());
+      std::vector<int> stack(tris[v].begin(), tris[v].end()), near;
+      while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        near.push_back(f);
+        for (int k = 0; k < 3; ++k) {
+          const int w = s.F(f, k);
+          if (field(w) >= 0) continue;
+          for (int g : tris[w])
+            if (seen.insert(g).second) stack.push_back(g);
+        }
+      }
+      for (int f : near)
+        for (int k = 0; k < 3; ++k) field(s.F(f, k));
+      std::vector<Eigen::RowVector3d> extra;
+      auto pos = [&](int w) -> Eigen::RowVector3d { return w < nv ? Eigen::RowVector3d(s.V.row(w)) : extra[w - nv]; };
+      std::sort(near.begin(), near.end());
+      const auto pieces = cut_triangles(s.F, near, dist, 0.05 * opt.radius, nv, extra, pos);
+      std::vector<char> is_near(nf, 0);
+      for (int f : near) is_near[f] = 1;
+      mesh::SurfaceMesh c;
+      c.V.resize(nv + static_cast<int>(extra.size()), 3);
+      c.V.topRows(nv) = s.V;
+      for (size_t i = 0; i < extra.size(); ++i) c.V.row(nv + i) = extra[i];
+      const int kept = nf - static_cast<int>(near.size());
+      c.F.resize(kept + static_cast<int>(pieces.size()), 3);
+      c.patch.resize(c.F.rows());
+      int n = 0;
+      for (int f = 0; f < nf; ++f)
+        if (!is_near[f]) { c.F.row(n) = s.F.row(f); c.patch(n++) = s.patch(f); }
+      for (const auto& q : pieces) {
+        const bool inside = dist.at(q[0]) + dist.at(q[1]) + dist.at(q[2]) < 0;
+        if (inside) cap_tris.push_back(n);
+        c.F.row(n) << q[0], q[1], q[2];
+        c.patch(n++) = s.patch(q[3]);
+      }
+      s = std::move(c);
+    }
+    for (int f : cap_tris) s.patch(f) = cap;
     out.push_back(v);
-    if (opt.log)
-      opt.log(0, "apex at (" + fmt("%.4g, %.4g, %.4g", s.V(v, 0), s.V(v, 1), s.V(v, 2)) + "): " +
-                     std::to_string(L.size()) + " charts of two axes meet, its " + std::to_string(tris[v].size()) +
-                     " triangles become a " + segmentation::label_name(cap) + " cap");
   }
   return out;
 }

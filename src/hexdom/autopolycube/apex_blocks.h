@@ -33,11 +33,18 @@ struct ApexCapOptions {
   /// A vertex is an apex when the labels of its triangles are three or more of two axes only and
   /// the mean unit normal of its triangles has at least this component along the third axis.
   double min_normal = 0.05;
+  /// ... and the angles of its triangles at it sum to at most this share of a full turn (i10o_simp's
+  /// hole exit has vertices with labels of two axes on a crease: a full turn).
+  double max_angle = 0.8;
+  /// The cap: the triangles within this distance of the apex, cut at that sphere (the input's
+  /// geometry kept); 0: the apex's 1-ring.
+  double radius = 0;
   LogCallback log;
 };
 
-/// Gives the 1-ring of every apex vertex of `labels` (patch = label 1..6) the label of the missing
-/// axis; returns the apex vertices (indices into labels.V).
+/// Gives a cap around every apex vertex of `labels` (patch = label 1..6) the label of the missing
+/// axis (triangles cut at the cap's sphere: new vertices appended, old ones keep their indices);
+/// returns the apex vertices (indices into labels.V).
 std::vector<int> add_apex_caps(mesh::SurfaceMesh& labels, const ApexCapOptions& options = {});
 
 struct CollapseApexes {

@@ -68,6 +68,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       if (attempt == 0 && opt.apex_caps) {
         ApexCapOptions ao;
         ao.log = opt.log;
+        ao.radius = opt.apex_cap_radius * size;
         for (int v : add_apex_caps(s, ao)) apexes.push_back(s.V.row(v).transpose());
       }
       RepairOptions ro;
@@ -182,7 +183,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
             std::to_string(cs.tets) + " tet blocks, " + std::to_string(cs.merged_squares) + " squares joined a neighbouring patch");
       }
     }
-    if (!apexes.empty()) {
+    if (!apexes.empty() && opt.collapse_apexes) {
       // Apex vertices keep their indices in the patch surface (cut_along_grid).
       std::vector<int> apex_vertices;
       for (const Eigen::Vector3d& p : apexes) {

@@ -123,6 +123,24 @@ TEST(ApexBlocks, APyramidsTipBecomesTetBlocksAndTheColumnsBelowPrisms) {
   const auto imp = quality::improve(m, io);
   EXPECT_EQ(imp.after.hex.inverted + imp.after.prism.inverted + imp.after.tet.inverted, 0);
   EXPECT_GT(imp.after.tet.sj_min, 0);
-  EXPECT_GE(imp.after.hex.sj_min, 0.3);
+  EXPECT_GT(imp.after.prism.sj_min, 0);
+  EXPECT_NEAR(imp.after.total_volume, 16.0, 0.01 * 16.0);
+}
+
+TEST(ApexBlocks, WithoutTheCollapseTheCapIsAFaceOfHexBlocks) {
+  // The other candidate mesh_surface measures: the cap stays a face, every block a hex.
+  auto o = options(true);
+  o.collapse_apexes = false;
+  const auto r = autopolycube::autopolycube(pyramid(), o);
+  EXPECT_EQ(r.apexes, 1);
+  EXPECT_EQ(r.apexes_collapsed, 0);
+  EXPECT_EQ(r.structure.count(mesh::CellType::Hex), r.structure.num_cells());
+  generation::GenerateOptions go;
+  go.level = 1;
+  const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
+  quality::ImproveOptions io;
+  io.surface = r.patches;
+  const auto imp = quality::improve(m, io);
+  EXPECT_EQ(imp.after.hex.inverted, 0);
   EXPECT_NEAR(imp.after.total_volume, 16.0, 0.01 * 16.0);
 }
