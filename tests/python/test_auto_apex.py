@@ -42,9 +42,10 @@ def _shapes(FreeCAD, Part):
 
 SHAPES = ["cone", "sharp_cone", "pyramid", "tetrahedron"]
 _NOT_MESHED = {
-    "tetrahedron": "issue 9: the slanted face is one +X chart beside the -X face along a whole edge; the apex caps "
-                   "(+Y at (0, 40, 0), +Z at (0, 0, 40)) do not separate them and the label repair merges the charts "
-                   "until it gives up ('chart 1 (+X, 2208 triangles) has no neighbour with another label to join')",
+    "tetrahedron": "issue 9: no corner is a tip (each has a face at right angles to the missing axis, so no cap), the "
+                   "slanted face is one +X chart beside the -X face along a whole edge, and the label repair merges "
+                   "the charts until it gives up ('chart 1 (+X, 2208 triangles) has no neighbour with another label to "
+                   "join'); splitting that face into +X / +Y / +Z quads from its corners is not done",
 }
 _SJ_DEFECT = {
     "sharp_cone": "issue 9: worst hex SJ 0.240 (320 hexes, hex blocks under the cap kept; with tet blocks the "

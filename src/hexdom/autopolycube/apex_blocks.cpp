@@ -159,7 +159,8 @@ std::vector<int> add_apex_caps(mesh::SurfaceMesh& s, const ApexCapOptions& opt) 
       if (axes != 2) continue;
       // A tip: the angles of its triangles at it sum to well below a full turn (a cone of half-angle
       // 32 degrees: 0.53 of a turn, the pyramid here 0.64, a point on a crease or a flat face 1), and
-      // it points along the missing axis: no triangle of the ring faces the other way.
+      // it points along the missing axis: every triangle of the ring leans that way (the end of a
+      // knife edge has faces at right angles to it: no tip).
       Eigen::Vector3d mean = Eigen::Vector3d::Zero();
       double lo = 1e300, hi = -1e300, angle = 0;
       for (int f : tris[v]) {
@@ -175,7 +176,7 @@ std::vector<int> add_apex_caps(mesh::SurfaceMesh& s, const ApexCapOptions& opt) 
       }
       mean /= static_cast<double>(tris[v].size());
       if (angle > opt.max_angle * 2 * M_PI) continue;
-      if (std::abs(mean[missing]) < opt.min_normal || (mean[missing] > 0 ? lo < -1e-3 : hi > 1e-3)) continue;
+      if (std::abs(mean[missing]) < opt.min_normal || (mean[missing] > 0 ? lo < opt.min_lean : hi > -opt.min_lean)) continue;
       const int cap = 1 + 2 * missing + (mean[missing] > 0 ? 0 : 1);
       bool near = false;  // within the cap of an apex found before
       for (const auto& [w, l] : apexes) near = near || (s.V.row(w) - s.V.row(v)).norm() <= 2 * opt.radius || w == v;

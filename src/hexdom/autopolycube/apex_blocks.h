@@ -33,6 +33,9 @@ struct ApexCapOptions {
   /// A vertex is an apex when the labels of its triangles are three or more of two axes only and
   /// the mean unit normal of its triangles has at least this component along the third axis.
   double min_normal = 0.05;
+  /// ... and every triangle's unit normal has at least this component along it (the ends of the thin
+  /// wedge's knife edge, whose end faces are at right angles to the missing axis, are no tips).
+  double min_lean = 0.01;
   /// ... and the angles of its triangles at it sum to at most this share of a full turn (i10o_simp's
   /// hole exit has vertices with labels of two axes on a crease: a full turn).
   double max_angle = 0.8;
