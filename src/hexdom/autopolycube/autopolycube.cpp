@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hexdom/autopolycube/apex_blocks.h"
 #include "hexdom/autopolycube/chart_graph.h"
 #include "hexdom/autopolycube/collapse_slivers.h"
 #include "hexdom/autopolycube/cut_along_grid.h"
@@ -52,6 +53,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
 
   mesh::SurfaceMesh s = drop_unused_vertices(labels);
   r.labels = s;
+  std::vector<Eigen::Vector3d> apexes;
   for (int attempt = 0;; ++attempt) {
     if (attempt == 0 && opt.repaired) {
       if (opt.repaired->labels.F.rows() < s.F.rows() || opt.repaired->labels.V.rows() < s.V.rows())
@@ -59,9 +61,16 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       s = opt.repaired->labels;
       r.relabelled = opt.repaired->relabelled;
       r.chords = opt.repaired->chords;
+      apexes = opt.repaired->apexes;
       log("labels: the repair of an earlier run (" + std::to_string(r.relabelled) + " charts relabelled, " +
           std::to_string(r.chords) + " chords split)");
     } else {
+      if (attempt == 0 && opt.apex_caps) {
+        ApexCapOptions ao;
+        ao.log = opt.log;
+        ao.radius = opt.apex_cap_radius * size;
+        for (int v : add_apex_caps(s, ao)) apexes.push_back(s.V.row(v).transpose());
+      }
       RepairOptions ro;
       ro.max_relabels = std::max(0, opt.max_relabels - r.relabelled);
       ro.band_width = size;
@@ -82,7 +91,8 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       r.chords += chords;
     }
     r.labels = s;
-    if (attempt == 0) r.repaired = RepairedLabels{s, r.relabelled, r.chords};
+    if (attempt == 0) r.repaired = RepairedLabels{s, r.relabelled, r.chords, apexes};
+    r.apexes = static_cast<int>(apexes.size());
     const ChartGraph g = chart_graph(s);
     const PlaneGroups pg = plane_groups(s, g);
     r.charts = g.num_charts();
@@ -146,6 +156,17 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
     r.interior_vertices = st.interior_vertices;
     r.min_block_quality = st.min_quality;
     r.inverted_blocks = st.inverted;
+    // The worst block and the inverted ones after a collapse changed the blocks.
+    auto measure_blocks = [&]() {
+      r.min_block_quality = 1.0;
+      r.inverted_blocks = 0;
+      for (int b = 0; b < st.structure.num_cells(); ++b) {
+        const double sj = quality::scaled_jacobian(st.structure.type(b), quality::cell_points(st.structure, b));
+        const double q = std::isfinite(sj) && sj < 2 ? sj : -1.0;
+        r.min_block_quality = std::min(r.min_block_quality, q);
+        r.inverted_blocks += q <= 0;
+      }
+    };
     if (opt.sliver_ratio > 0) {
       CollapseSliversOptions co;
       co.max_ratio = opt.sliver_ratio;
@@ -157,16 +178,35 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       r.tet_blocks = cs.tets;
       if (cs.collapsed > 0) {
         r.boundary_vertices -= before - st.structure.num_nodes();
-        r.min_block_quality = 1.0;
-        r.inverted_blocks = 0;
-        for (int b = 0; b < st.structure.num_cells(); ++b) {
-          const double sj = quality::scaled_jacobian(st.structure.type(b), quality::cell_points(st.structure, b));
-          const double q = std::isfinite(sj) && sj < 2 ? sj : -1.0;
-          r.min_block_quality = std::min(r.min_block_quality, q);
-          r.inverted_blocks += q <= 0;
-        }
+        measure_blocks();
         log("slivers: " + std::to_string(cs.collapsed) + " strips collapsed, " + std::to_string(cs.prisms) + " prism and " +
             std::to_string(cs.tets) + " tet blocks, " + std::to_string(cs.merged_squares) + " squares joined a neighbouring patch");
+      }
+    }
+    if (!apexes.empty() && opt.collapse_apexes) {
+      // Apex vertices keep their indices in the patch surface (cut_along_grid).
+      std::vector<int> apex_vertices;
+      for (const Eigen::Vector3d& p : apexes) {
+        int best = -1;
+        double bd = 1e300;
+        for (int v = 0; v < s.V.rows(); ++v) {
+          const double dd = (s.V.row(v).transpose() - p).squaredNorm();
+          if (dd < bd) { bd = dd; best = v; }
+        }
+        apex_vertices.push_back(best);
+      }
+      if (r.slivers > 0) {
+        log("apexes: left as hex blocks under their caps (sliver strips collapsed)");
+      } else {
+        const int before = st.structure.num_nodes();
+        const CollapseApexes ca = collapse_apexes(grid, st.structure, st.grid, cut.patches, cut.grid_vertex, cut.D, apex_vertices, opt.log);
+        r.apexes_collapsed = ca.collapsed;
+        if (ca.collapsed > 0) {
+          r.tet_blocks += ca.tets;
+          r.prism_blocks += ca.prisms;
+          r.boundary_vertices -= before - st.structure.num_nodes();
+          measure_blocks();
+        }
       }
     }
     r.patches = std::move(cut.patches);

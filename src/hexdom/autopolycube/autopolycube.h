@@ -13,8 +13,14 @@
 // fewer than 4 corners, zero-length edges, folds of the map) are repaired by joining the smallest
 // offending chart to a neighbour. Where the repair left a thin strip chart along a wedge-like
 // feature (a knife edge), the blocks under the strip become prisms: the strip's short edges collapse
-// and its squares join the neighbouring patches (collapse_slivers.h).
+// and its squares join the neighbouring patches (collapse_slivers.h). At an apex where only side
+// charts meet (the tip of a cone or a pyramid) the 1-ring becomes a cap chart of the missing axis
+// and the blocks under the cap collapse to the apex: tets at the tip, prisms in the columns below
+// (apex_blocks.h).
 #pragma once
+
+#include <Eigen/Core>
+#include <vector>
 
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
@@ -29,6 +35,7 @@ namespace hexdom::autopolycube {
 struct RepairedLabels {
   mesh::SurfaceMesh labels;  ///< chords split, no chart problem left
   int relabelled = 0, chords = 0;
+  std::vector<Eigen::Vector3d> apexes;  ///< apex vertices given a cap (add_apex_caps), by position
 };
 
 struct AutoPolycubeOptions {
@@ -49,6 +56,17 @@ struct AutoPolycubeOptions {
   /// squares' length along, or whose hex blocks are poor, become prism blocks where that does not
   /// lower the worst block (see collapse_slivers.h); 0: hex blocks only.
   double sliver_ratio = 0.35;
+  /// Apexes where only side charts meet get a cap chart, and the blocks under it collapse to tets
+  /// and prisms (apex_blocks.h); false: labels as given (the label repair then merges the charts
+  /// around the apex).
+  bool apex_caps = true;
+  /// The cap's radius in element sizes (ApexCapOptions::radius = this * size). Measured on a cone
+  /// R 25 x 40 (level 1, tet blocks): 1-ring cap -2.60% volume (a polycube 2 cells across), 0.5:
+  /// -2.57%, 1: -1.18% (3 cells across), 1.5: -1.26%; the sharp cone R 10 x 60 stays 1 cell across.
+  double apex_cap_radius = 1.0;
+  /// The blocks under a cap collapse to tets and prisms (collapse_apexes); false: they stay hexes,
+  /// the cap a face of its own (route of a frustum).
+  bool collapse_apexes = true;
   /// When given: the result of the first repair of these same labels at this same size (see
   /// RepairedLabels; AutoPolycube::repaired of an earlier run), used instead of repairing again.
   const RepairedLabels* repaired = nullptr;
@@ -69,6 +87,7 @@ struct AutoPolycube {
   int charts = 0, relabelled = 0, chords = 0, planes = 0, pushed = 0;
   int squares = 0, blocks = 0, boundary_vertices = 0, interior_vertices = 0;
   int slivers = 0, prism_blocks = 0, tet_blocks = 0;  ///< strips collapsed; blocks that are not hexes
+  int apexes = 0, apexes_collapsed = 0;  ///< apex caps added; of them, collapsed to tet / prism blocks
   double min_block_quality = 0;  ///< worst block scaled Jacobian after untangling
   int inverted_blocks = 0;
 };

@@ -64,6 +64,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   const double reference = mesh::enclosed_volume(surface.V, surface.F);
   // A polycube that keeps the widths of holes is tried first; when its mesh misses a target, the one
   // with the least-squares plane offsets is tried too and the better kept (see `better`).
+  bool widths = opt.polycube.keep_widths;
   if (opt.polycube.keep_widths && opt.try_without_widths && !meets_targets(r, reference, opt)) {
     say(fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%%: again without keeping the widths of holes", r.level,
             worst_sj(r.quality), inverted_cells(r.quality), 100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)));
@@ -79,12 +80,40 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
         say("kept the polycube without the widths of holes: its mesh is better");
         add_costs(again, r);
         r = std::move(again);
+        widths = false;
       } else {
         say("kept the polycube with the widths of holes: its mesh is better");
         add_costs(r, again);
       }
     } catch (const Error& e) {
       say(std::string("without the widths of holes: ") + e.what() + "; keeping the first polycube");
+    }
+  }
+  // Tet and prism blocks at apexes first; when that mesh misses a target, the hex blocks under the
+  // caps are meshed too and the better kept (a blunt tip's hex corner can beat the tets' prisms).
+  if (r.polycube.apexes_collapsed > 0 && opt.try_hex_apexes && !meets_targets(r, reference, opt)) {
+    say(fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%% with tet blocks at the apexes: again with hex blocks under the caps",
+            r.level, worst_sj(r.quality), inverted_cells(r.quality),
+            100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)));
+    MeshSurfaceOptions other = opt;
+    other.polycube.keep_widths = widths;
+    other.polycube.collapse_apexes = false;
+    other.polycube.repaired = &r.polycube.repaired;
+    other.segment.edge_weight = r.edge_weight;
+    other.retry_edge_weights.clear();
+    MeshSurfaceRun again;
+    try {
+      mesh_once(surface, other, again);
+      if (better(again, r, reference, opt)) {
+        say("kept the hex blocks under the caps: their mesh is better");
+        add_costs(again, r);
+        r = std::move(again);
+      } else {
+        say("kept the tet blocks at the apexes: their mesh is better");
+        add_costs(r, again);
+      }
+    } catch (const Error& e) {
+      say(std::string("hex blocks under the caps: ") + e.what() + "; keeping the tet blocks");
     }
   }
   const int inverted = inverted_cells(r.quality);

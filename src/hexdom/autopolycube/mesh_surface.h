@@ -44,6 +44,9 @@ struct MeshSurfaceOptions {
   /// plane offsets and keep the better mesh: fewer inverted cells; then the one whose worst SJ meets
   /// target_sj; then the one whose volume meets target_volume; then the higher worst SJ.
   bool try_without_widths = true;
+  /// When apexes got tet and prism blocks (AutoPolycubeOptions::collapse_apexes) and the mesh misses a
+  /// target, mesh the hex blocks under the caps too and keep the better by the same order.
+  bool try_hex_apexes = true;
   double target_sj = 0.3;       ///< worst scaled Jacobian the candidates are measured against
   double target_volume = 0.01;  ///< relative volume error the candidates are measured against
   /// One line per stage (level 0); with `verbose` also the stages' own messages.

@@ -242,4 +242,37 @@ inline double enclosed_volume(const mesh::SurfaceMesh& s) {
   return v;
 }
 
+/// Closed surface of the triangles `tris` (corners counter-clockwise seen from outside), each split
+/// into n x n similar triangles (shared edges split alike, so the surface is closed); labels from
+/// normals.
+inline mesh::SurfaceMesh subdivided_triangles(const std::vector<std::array<Eigen::RowVector3d, 3>>& tris, int n) {
+  std::map<std::array<long long, 3>, int> id;
+  std::vector<Eigen::RowVector3d> V;
+  std::vector<std::array<int, 3>> F;
+  auto vertex = [&](const Eigen::RowVector3d& p) {
+    const std::array<long long, 3> key{std::llround(p(0) * 1e9), std::llround(p(1) * 1e9), std::llround(p(2) * 1e9)};
+    auto [it, fresh] = id.emplace(key, static_cast<int>(V.size()));
+    if (fresh) V.push_back(p);
+    return it->second;
+  };
+  for (const auto& t : tris) {
+    auto P = [&](int i, int j) { return vertex(t[0] + (t[1] - t[0]) * i / double(n) + (t[2] - t[0]) * j / double(n)); };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        F.push_back({P(i, j), P(i + 1, j), P(i, j + 1)});
+        if (i + j + 1 < n) F.push_back({P(i + 1, j), P(i + 1, j + 1), P(i, j + 1)});
+      }
+  }
+  mesh::SurfaceMesh s = surface_of(V, F);
+  s.patch = labels_from_normals(s);
+  return s;
+}
+
+/// A square pyramid: base [0, side]^2 at z = 0 (-Z), apex (side / 2, side / 2, height), its four
+/// sides labelled +-X, +-Y by their normals; every face split into n x n triangles.
+inline mesh::SurfaceMesh pyramid_surface(double side, double height, int n) {
+  const Eigen::RowVector3d a(0, 0, 0), b(side, 0, 0), c(side, side, 0), d(0, side, 0), top(side / 2, side / 2, height);
+  return subdivided_triangles({{a, d, c}, {a, c, b}, {a, b, top}, {b, c, top}, {c, d, top}, {d, a, top}}, n);
+}
+
 }  // namespace hexdom::test

@@ -1,0 +1,144 @@
+"""Parts whose faces are triangles (issue 9, "use prism / tet blocks where a chart is triangular"):
+a cone, a sharper cone, a square pyramid and a tetrahedron, made with FreeCAD Part, written as
+STEP and meshed by `hexdom mesh` at the default size (diagonal / 30). Before the apex caps all of
+them failed in autopolycube (the label repair merged every chart around the tip and gave up).
+
+Oracles nobody here wrote: FreeCAD's Part (the B-rep volume, distToShape of the boundary nodes to
+the faces), VTK (the mesh read back, vtkDataSetSurfaceFilter for the boundary nodes, Verdict's
+scaled Jacobian per cell type through vtkMeshQuality).
+
+Measured (level 1 unless said): cone R25 x 40 876 hex, worst 0.461, -1.16%; pyramid 40 x 40 x 30
+635 hex (level 0), worst 0.325, -0.00%; cone R10 x 60: 320 hex, worst 0.240, -10.0% (the polycube
+is one cell across); tetrahedron: no mesh. With tet blocks at the tip the cone gave 288 hex (0.374)
+/ 984 prisms (0.188) / 144 tets (0.191), -1.17%, and the pyramid 288 hex (0.204) / 984 prisms (0.212)
+/ 144 tets (0.222): `hexdom mesh` keeps the hex blocks under the caps, whose worst cell is better."""
+
+import subprocess
+
+import numpy as np
+import pytest
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+import hexdom_oracles as oracle
+import hexdom_test_support as support
+
+
+def _shapes(FreeCAD, Part):
+    V = FreeCAD.Vector
+    base = Part.Face(Part.makePolygon([V(0, 0, 0), V(40, 0, 0), V(40, 40, 0), V(0, 40, 0), V(0, 0, 0)]))
+    sides = [Part.Face(Part.makePolygon([a, b, V(20, 20, 30), a]))
+             for a, b in [(V(0, 0, 0), V(40, 0, 0)), (V(40, 0, 0), V(40, 40, 0)), (V(40, 40, 0), V(0, 40, 0)),
+                          (V(0, 40, 0), V(0, 0, 0))]]
+    p = [V(0, 0, 0), V(40, 0, 0), V(0, 40, 0), V(0, 0, 40)]
+    tetra = [Part.Face(Part.makePolygon([p[a], p[b], p[c], p[a]])) for a, b, c in [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]]
+    return {
+        "cone": Part.makeCone(25, 0, 40),
+        "sharp_cone": Part.makeCone(10, 0, 60),
+        "pyramid": Part.Solid(Part.Shell([base] + sides)),
+        "tetrahedron": Part.Solid(Part.Shell(tetra)),
+    }
+
+
+SHAPES = ["cone", "sharp_cone", "pyramid", "tetrahedron"]
+_NOT_MESHED = {
+    "tetrahedron": "issue 9: no corner is a tip (each has a face at right angles to the missing axis, so no cap), the "
+                   "slanted face is one +X chart beside the -X face along a whole edge, and the label repair merges "
+                   "the charts until it gives up ('chart 1 (+X, 2208 triangles) has no neighbour with another label to "
+                   "join'); splitting that face into +X / +Y / +Z quads from its corners is not done",
+}
+_SJ_DEFECT = {
+    "sharp_cone": "issue 9: worst hex SJ 0.240 (320 hexes, hex blocks under the cap kept; with tet blocks the "
+                  "prisms of the column under the tip reach 0.031 and the tets 0.11): the polycube is one cell across",
+}
+_VOLUME_DEFECT = {
+    "cone": "issue 9: volume -1.16% of the B-rep (876 hexes at level 1): the polycube of the cone R25 x 40 is 3 cells "
+            "across (a cap of one element size around the tip; -2.60% with the 1-ring cap, 2 cells across)",
+    "sharp_cone": "issue 9: volume -10.0% of the B-rep: the polycube of the cone R10 x 60 is one cell across (2 x 2 "
+                  "hexes, 8 nodes around the base circle at level 1; the same at level 0)",
+}
+
+
+def _marks(defects):
+    out = []
+    for s in SHAPES:
+        reason = _NOT_MESHED.get(s) or defects.get(s)
+        out.append(pytest.param(s, marks=pytest.mark.xfail(strict=True, reason=reason)) if reason else s)
+    return out
+
+
+@pytest.fixture(scope="module")
+def meshed(freecad, tmp_path_factory, core):
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    FreeCAD, Part = freecad
+    shapes = _shapes(FreeCAD, Part)
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            d = tmp_path_factory.mktemp(name)
+            shape = shapes[name]
+            assert shape.isValid()
+            shape.exportStep(str(d / f"{name}.step"))
+            out = d / f"{name}.vtu"
+            r = subprocess.run([str(support.hexdom_bin()), "mesh", str(d / f"{name}.step"), "-o", str(out)],
+                               capture_output=True, text=True)
+            cache[name] = (shape, r, out)
+        shape, r, out = cache[name]
+        assert r.returncode == 0, f"hexdom mesh {name} exited {r.returncode}: {r.stderr.strip()[-400:]}"
+        g = oracle.read_vtu(out)
+        sj, _ = oracle.verdict_metrics(g)
+        types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+        return shape, g, sj, types, r.stdout + r.stderr
+    return get
+
+
+def _boundary_points(g):
+    f = vtk.vtkDataSetSurfaceFilter()
+    f.SetInputData(g)
+    f.PassThroughPointIdsOn()
+    f.Update()
+    ids = vtk_to_numpy(f.GetOutput().GetPointData().GetArray(f.GetOriginalPointIdsName()))
+    P, _, _ = oracle.grid_arrays(g)
+    return P[np.unique(ids)]
+
+
+@pytest.mark.parametrize("name", _marks({}))
+def test_triangular_part_meshes_with_no_inverted_cell(name, meshed):
+    _, g, sj, types, log = meshed(name)
+    assert g.GetNumberOfCells() > 0
+    assert np.all(sj > 0), f"{name}: {int(np.sum(~(sj > 0)))} inverted cells"
+    # The quality summary has a row per cell type; its counts are the file's.
+    for t, row in ((oracle.HEX, "hex"), (oracle.WEDGE, "prism"), (oracle.TET, "tet")):
+        assert any(line.split()[:2] == [row, str(int(np.sum(types == t)))] for line in log.splitlines()), (row, log[-600:])
+
+
+@pytest.mark.parametrize("name", _marks({}))
+def test_triangular_part_boundary_lies_on_the_brep(name, meshed, freecad):
+    FreeCAD, Part = freecad
+    shape, g, _, _, _ = meshed(name)
+    faces = Part.Compound(shape.Faces)
+    P = _boundary_points(g)
+    d = np.array([faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in P])
+    assert d.max() <= 1e-7 * shape.BoundBox.DiagonalLength, f"{name}: {d.max():.3g} off the B-rep"
+
+
+@pytest.mark.parametrize("name", _marks(_VOLUME_DEFECT))
+def test_triangular_part_volume_within_1_percent(name, meshed):
+    shape, g, _, _, _ = meshed(name)
+    volume = float(oracle.signed_volumes(g).sum())
+    print(f"{name}: mesh volume {volume:.6g}, B-rep {shape.Volume:.6g} ({100 * (volume - shape.Volume) / shape.Volume:+.2f}%)")
+    assert volume == pytest.approx(shape.Volume, rel=0.01)
+
+
+@pytest.mark.parametrize("name", _marks(_SJ_DEFECT))
+def test_triangular_part_worst_hex_sj_at_least_0_3(name, meshed):
+    _, _, sj, types, _ = meshed(name)
+    hexes = sj[types == oracle.HEX]
+    for t, n in ((oracle.WEDGE, "prism"), (oracle.TET, "tet")):
+        if np.any(types == t):
+            print(f"{name}: {n} worst SJ {sj[types == t].min():.3f}")
+    if hexes.size:
+        print(f"{name}: {hexes.size} hexes, worst SJ {hexes.min():.3f}")
+        assert hexes.min() >= 0.3
