@@ -178,7 +178,7 @@ TEST(Autopolycube, ARepairHandedDownIsNotDoneAgain) {
   EXPECT_TRUE((handed.labels.patch.array() == alone.labels.patch.array()).all());
 
   // A repaired labelling with fewer triangles than the labels cannot be theirs.
-  autopolycube::RepairedLabels small{test::cell_surface({{0, 0, 0}}, 1), 0, 0};
+  autopolycube::RepairedLabels small{test::cell_surface({{0, 0, 0}}, 1), 0, 0, {}};
   fine.repaired = &small;
   EXPECT_THROW(autopolycube::autopolycube(s, fine), GeometryError);
 }
