@@ -150,6 +150,17 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
 
 namespace {
 
+/// "worst hex SJ 0.307, prism 0.306, tet 0.118, 0 inverted": the types present only (a mesh with
+/// tet and prism blocks may have no hex, whose minimum is then NaN).
+std::string worst_by_type(const quality::QualityReport& q) {
+  std::string s;
+  const std::pair<const char*, const quality::TypeStats*> types[] = {{"hex", &q.hex}, {"prism", &q.prism}, {"tet", &q.tet}};
+  for (const auto& [name, t] : types)
+    if (t->count > 0) s += (s.empty() ? std::string("worst ") + name + " SJ" : std::string(", ") + name) + fmt(" %.3f", t->sj_min);
+  if (s.empty()) s = "no cells";
+  return s + fmt(", %.0f inverted", q.hex.inverted + q.prism.inverted + q.tet.inverted);
+}
+
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   const LogCallback inner = opt.verbose ? opt.log : LogCallback();
@@ -224,8 +235,8 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   r.generated = generation::generate(r.polycube.patches, r.polycube.structure, go);
   r.generated_quality = quality::quality_report(r.generated);
   r.seconds[2] = since(t);
-  say(fmt("generate: %.0f cells, worst hex SJ %.3f, %.0f inverted, in %.2f s", r.generated.num_cells(),
-          r.generated_quality.hex.sj_min, r.generated_quality.hex.inverted, r.seconds[2]));
+  say(fmt("generate: %.0f cells, ", r.generated.num_cells()) + worst_by_type(r.generated_quality) +
+      fmt(", in %.2f s", r.seconds[2]));
 
   r.stage = "improve";
   t = Clock::now();
@@ -241,9 +252,8 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     r.quality = r.generated_quality;
   }
   r.seconds[3] = since(t);
-  const int inverted = r.quality.hex.inverted + r.quality.prism.inverted + r.quality.tet.inverted;
-  say(fmt("improve: %.0f cells, worst hex SJ %.3f, mean %.3f, %.0f inverted", r.mesh.num_cells(), r.quality.hex.sj_min,
-          r.quality.hex.sj_mean, inverted) +
+  say(fmt("improve: %.0f cells, ", r.mesh.num_cells()) + worst_by_type(r.quality) +
+      (r.quality.hex.count > 0 ? fmt(", mean hex %.3f", r.quality.hex.sj_mean) : std::string()) +
       fmt(", in %.2f s", r.seconds[3]));
   r.level = opt.level;
   r.stage = "done";
