@@ -5,6 +5,7 @@
 #include <functional>
 #include <set>
 
+#include "hexdom/autopolycube/collapse_slivers.h"
 #include "hexdom/common/format.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/quality/metrics.h"
@@ -347,27 +348,17 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
           ++face_count[vs];
         }
     }
-    std::map<std::vector<int>, int> patch_of;
-    for (size_t p = 0; p < layout.patches.size(); ++p) {
-      if (layout.patches[p].num_loops != 1) { *why = "a patch that is not a disk"; return false; }
-      std::vector<int> vs;
-      for (int li : layout.patches[p].corners) {
-        auto it = structure_of.find(layout.patches[p].loop[li]);
+    std::vector<std::vector<int>> patch_corners;
+    for (const auto& patch : layout.patches) {
+      if (patch.num_loops != 1) { *why = "a patch that is not a disk"; return false; }
+      patch_corners.emplace_back();
+      for (int li : patch.corners) {
+        auto it = structure_of.find(patch.loop[li]);
         if (it == structure_of.end()) { *why = "a patch corner off the block vertices"; return false; }
-        vs.push_back(it->second);
+        patch_corners.back().push_back(it->second);
       }
-      std::sort(vs.begin(), vs.end());
-      if (!patch_of.emplace(vs, static_cast<int>(p)).second) { *why = "two patches with the same corners"; return false; }
     }
-    size_t boundary = 0;
-    for (const auto& [vs, n] : face_count) {
-      if (n > 2) { *why = "a face shared by three blocks"; return false; }
-      if (n == 2) continue;
-      ++boundary;
-      if (!patch_of.count(vs)) { *why = "a boundary face that matches no patch"; return false; }
-    }
-    if (boundary != layout.patches.size()) { *why = "patches that match no boundary face"; return false; }
-    return true;
+    return faces_match_patches(face_count, std::move(patch_corners), why);
   };
 
   double worst_before = 1e300, worst_after = 1e300;

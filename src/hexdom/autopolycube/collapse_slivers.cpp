@@ -196,22 +196,13 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
         ++face_count[vs];
       }
     }
-    std::map<std::vector<int>, int> patch_of;
-    for (size_t p = 0; p < layout.patches.size(); ++p) {
-      if (layout.patches[p].num_loops != 1) { *why = "a patch that is not a disk"; return false; }
-      std::vector<int> vs;
-      for (int li : layout.patches[p].corners) vs.push_back(s.find(structure_of[layout.patches[p].loop[li]]));
-      std::sort(vs.begin(), vs.end());
-      if (!patch_of.emplace(vs, static_cast<int>(p)).second) { *why = "two patches with the same corners"; return false; }
+    std::vector<std::vector<int>> patch_corners;
+    for (const auto& patch : layout.patches) {
+      if (patch.num_loops != 1) { *why = "a patch that is not a disk"; return false; }
+      patch_corners.emplace_back();
+      for (int li : patch.corners) patch_corners.back().push_back(s.find(structure_of[patch.loop[li]]));
     }
-    size_t boundary = 0;
-    for (const auto& [vs, n] : face_count) {
-      if (n > 2) { *why = "a face shared by three blocks"; return false; }
-      if (n == 2) continue;
-      ++boundary;
-      if (!patch_of.count(vs)) { *why = "a boundary face that matches no patch"; return false; }
-    }
-    if (boundary != layout.patches.size()) { *why = "patches that match no boundary face"; return false; }
+    if (!faces_match_patches(face_count, std::move(patch_corners), why)) return false;
     for (const auto& [cls, v] : corner_of_class) {
       pos.row(cls) = T.V.row(v);
       s.at[cls] = v;
@@ -345,6 +336,24 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
   }
   for (int f = 0; f < patches.F.rows(); ++f) patches.patch(f) = new_id.at(state.owner_of(patches.patch(f) - 1));
   return out;
+}
+
+bool faces_match_patches(const std::map<std::vector<int>, int>& face_count, std::vector<std::vector<int>> patch_corners,
+                         std::string* why) {
+  std::set<std::vector<int>> patches;
+  for (auto& vs : patch_corners) {
+    std::sort(vs.begin(), vs.end());
+    if (!patches.insert(vs).second) { *why = "two patches with the same corners"; return false; }
+  }
+  size_t boundary = 0;
+  for (const auto& [vs, n] : face_count) {
+    if (n > 2) { *why = "a face shared by three blocks"; return false; }
+    if (n == 2) continue;
+    ++boundary;
+    if (!patches.count(vs)) { *why = "a boundary face that matches no patch"; return false; }
+  }
+  if (boundary != patches.size()) { *why = "patches that match no boundary face"; return false; }
+  return true;
 }
 
 }  // namespace hexdom::autopolycube

@@ -63,4 +63,12 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& structure
                                  mesh::SurfaceMesh& patches, const std::map<std::array<int, 3>, int>& grid_vertex,
                                  const CollapseSliversOptions& options = {});
 
+/// Whether collapsed blocks and a patch surface still conform: `face_count` maps each block face (its
+/// sorted vertex ids) to the number of blocks that have it, `patch_corners` holds each patch's corner
+/// vertex ids (any order). True when no face is in three blocks, no two patches have the same
+/// corners, and the faces in one block are exactly the patches; otherwise false with `*why`.
+/// (collapse_slivers and collapse_apexes both check their result with it.)
+bool faces_match_patches(const std::map<std::vector<int>, int>& face_count, std::vector<std::vector<int>> patch_corners,
+                         std::string* why);
+
 }  // namespace hexdom::autopolycube
