@@ -53,6 +53,41 @@ void add_costs(MeshSurfaceRun& kept, const MeshSurfaceRun& other) {
 // segment -> autopolycube -> generate -> improve at one level, one polycube option set.
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
 
+// "level 1: worst SJ 0.190, 0 inverted, volume -1.18%" of a run, for the lines that say why another
+// candidate is tried.
+std::string run_summary(const MeshSurfaceRun& r, double reference) {
+  return fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%%", r.level, worst_sj(r.quality), inverted_cells(r.quality),
+             100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0));
+}
+
+// Meshes `surface` once more with `other` (set to r's repaired labelling and lambda here) and keeps
+// the better of that and `r` in `r` (see `better`), saying which with `kept_other` / `kept_r`; when
+// the other candidate throws, says "`failed`: why; `keeping`" and keeps `r`. Returns whether
+// `other` won.
+bool try_candidate(const mesh::SurfaceMesh& surface, MeshSurfaceOptions other, const MeshSurfaceOptions& opt, double reference,
+                   MeshSurfaceRun& r, const char* kept_other, const char* kept_r, const char* failed, const char* keeping) {
+  auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  other.polycube.repaired = &r.polycube.repaired;  // the same labelling: repaired once
+  other.segment.edge_weight = r.edge_weight;
+  other.retry_edge_weights.clear();
+  MeshSurfaceRun again;
+  try {
+    mesh_once(surface, other, again);
+  } catch (const Error& e) {
+    say(std::string(failed) + ": " + e.what() + "; " + keeping);
+    return false;
+  }
+  if (better(again, r, reference, opt)) {
+    say(kept_other);
+    add_costs(again, r);
+    r = std::move(again);
+    return true;
+  }
+  say(kept_r);
+  add_costs(r, again);
+  return false;
+}
+
 }  // namespace
 
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
@@ -66,55 +101,24 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   // with the least-squares plane offsets is tried too and the better kept (see `better`).
   bool widths = opt.polycube.keep_widths;
   if (opt.polycube.keep_widths && opt.try_without_widths && !meets_targets(r, reference, opt)) {
-    say(fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%%: again without keeping the widths of holes", r.level,
-            worst_sj(r.quality), inverted_cells(r.quality), 100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)));
+    say(run_summary(r, reference) + ": again without keeping the widths of holes");
     MeshSurfaceOptions other = opt;
     other.polycube.keep_widths = false;
-    other.polycube.repaired = &r.polycube.repaired;  // the same labelling: repaired once
-    other.segment.edge_weight = r.edge_weight;
-    other.retry_edge_weights.clear();
-    MeshSurfaceRun again;
-    try {
-      mesh_once(surface, other, again);
-      if (better(again, r, reference, opt)) {
-        say("kept the polycube without the widths of holes: its mesh is better");
-        add_costs(again, r);
-        r = std::move(again);
-        widths = false;
-      } else {
-        say("kept the polycube with the widths of holes: its mesh is better");
-        add_costs(r, again);
-      }
-    } catch (const Error& e) {
-      say(std::string("without the widths of holes: ") + e.what() + "; keeping the first polycube");
-    }
+    if (try_candidate(surface, other, opt, reference, r, "kept the polycube without the widths of holes: its mesh is better",
+                      "kept the polycube with the widths of holes: its mesh is better", "without the widths of holes",
+                      "keeping the first polycube"))
+      widths = false;
   }
   // Tet and prism blocks at apexes first; when that mesh misses a target, the hex blocks under the
   // caps are meshed too and the better kept (a blunt tip's hex corner can beat the tets' prisms).
   if (r.polycube.apexes_collapsed > 0 && opt.try_hex_apexes && !meets_targets(r, reference, opt)) {
-    say(fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%% with tet blocks at the apexes: again with hex blocks under the caps",
-            r.level, worst_sj(r.quality), inverted_cells(r.quality),
-            100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)));
+    say(run_summary(r, reference) + " with tet blocks at the apexes: again with hex blocks under the caps");
     MeshSurfaceOptions other = opt;
     other.polycube.keep_widths = widths;
     other.polycube.collapse_apexes = false;
-    other.polycube.repaired = &r.polycube.repaired;
-    other.segment.edge_weight = r.edge_weight;
-    other.retry_edge_weights.clear();
-    MeshSurfaceRun again;
-    try {
-      mesh_once(surface, other, again);
-      if (better(again, r, reference, opt)) {
-        say("kept the hex blocks under the caps: their mesh is better");
-        add_costs(again, r);
-        r = std::move(again);
-      } else {
-        say("kept the tet blocks at the apexes: their mesh is better");
-        add_costs(r, again);
-      }
-    } catch (const Error& e) {
-      say(std::string("hex blocks under the caps: ") + e.what() + "; keeping the tet blocks");
-    }
+    try_candidate(surface, other, opt, reference, r, "kept the hex blocks under the caps: their mesh is better",
+                  "kept the tet blocks at the apexes: their mesh is better", "hex blocks under the caps",
+                  "keeping the tet blocks");
   }
   const int inverted = inverted_cells(r.quality);
   const bool nearly = inverted == 0 && worst_sj(r.quality) < opt.refine_below_sj;
