@@ -18,13 +18,6 @@ namespace {
 using GP = std::array<int, 3>;
 using Cell = std::pair<mesh::CellType, std::array<int, 8>>;
 
-const std::vector<std::vector<int>> kHexFaces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-const std::vector<std::vector<int>> kWedgeFaces = {{0, 1, 2}, {3, 4, 5}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-const std::vector<std::vector<int>> kTetFaces = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}};
-const std::vector<std::vector<int>>& faces_of(mesh::CellType t) {
-  return t == mesh::CellType::Hex ? kHexFaces : t == mesh::CellType::Wedge ? kWedgeFaces : kTetFaces;
-}
-
 double cell_quality(const Cell& c, const Eigen::MatrixXd& X) {
   quality::CellPoints cp = quality::CellPoints::Zero();
   for (int i = 0; i < mesh::node_count(c.first); ++i) cp.row(i) = X.row(c.second[i]);
@@ -340,10 +333,7 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
         cs.push_back(c);
       }
       for (const Cell& c : cs)
-        for (const auto& f : faces_of(c.first)) {
-          std::vector<int> vs;
-          for (int i : f) vs.push_back(c.second[i]);
-          std::sort(vs.begin(), vs.end());
+        for (const auto& vs : sorted_faces(c.first, c.second)) {
           if (std::adjacent_find(vs.begin(), vs.end()) != vs.end()) { *why = "a block with a collapsed face"; return false; }
           ++face_count[vs];
         }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "hexdom/common/format.h"
+#include "hexdom/mesh/cell_faces.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/quality/metrics.h"
 
@@ -15,14 +16,6 @@ namespace hexdom::autopolycube {
 namespace {
 
 using GP = std::array<int, 3>;
-
-// Faces of a hex, wedge and tet in VTK order (only their vertex sets matter here).
-const std::vector<std::vector<int>> kHexFaces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-const std::vector<std::vector<int>> kWedgeFaces = {{0, 1, 2}, {3, 4, 5}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-const std::vector<std::vector<int>> kTetFaces = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}};
-const std::vector<std::vector<int>>& faces_of(mesh::CellType t) {
-  return t == mesh::CellType::Hex ? kHexFaces : t == mesh::CellType::Wedge ? kWedgeFaces : kTetFaces;
-}
 
 // A chart whose squares form a rectangle 1 or 2 squares wide across `thin` (an in-plane axis) and
 // `nl` squares long along `lng`.
@@ -189,12 +182,7 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
     for (int b = 0; b < nb; ++b) {
       mesh::DegenerateHex d;
       if (!block_shape(s, b, &d)) { *why = "a block that is no hex, prism or tet"; return false; }
-      for (const auto& f : faces_of(d.type)) {
-        std::vector<int> vs;
-        for (int i : f) vs.push_back(d.nodes[i]);
-        std::sort(vs.begin(), vs.end());
-        ++face_count[vs];
-      }
+      for (const auto& vs : sorted_faces(d.type, d.nodes)) ++face_count[vs];
     }
     std::vector<std::vector<int>> patch_corners;
     for (const auto& patch : layout.patches) {
@@ -335,6 +323,16 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
     if (!new_id.count(o)) new_id.emplace(o, static_cast<int>(new_id.size()) + 1);
   }
   for (int f = 0; f < patches.F.rows(); ++f) patches.patch(f) = new_id.at(state.owner_of(patches.patch(f) - 1));
+  return out;
+}
+
+std::vector<std::vector<int>> sorted_faces(mesh::CellType type, const std::array<int, 8>& nodes) {
+  const auto [faces, n] = mesh::cell_faces(type);
+  std::vector<std::vector<int>> out(n);
+  for (int f = 0; f < n; ++f) {
+    for (int i = 0; i < faces[f].n; ++i) out[f].push_back(nodes[faces[f].v[i]]);
+    std::sort(out[f].begin(), out[f].end());
+  }
   return out;
 }
 

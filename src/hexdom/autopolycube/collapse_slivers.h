@@ -63,6 +63,10 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& structure
                                  mesh::SurfaceMesh& patches, const std::map<std::array<int, 3>, int>& grid_vertex,
                                  const CollapseSliversOptions& options = {});
 
+/// The vertex ids of each face of a cell of `type` with `nodes` (VTK order), sorted: faces of
+/// different cells are the same face when these match.
+std::vector<std::vector<int>> sorted_faces(mesh::CellType type, const std::array<int, 8>& nodes);
+
 /// Whether collapsed blocks and a patch surface still conform: `face_count` maps each block face (its
 /// sorted vertex ids) to the number of blocks that have it, `patch_corners` holds each patch's corner
 /// vertex ids (any order). True when no face is in three blocks, no two patches have the same

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
@@ -13,6 +12,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/quality/metrics.h"
@@ -286,9 +286,7 @@ class Improver {
     const int q = static_cast<int>(std::min_element(sj_.begin(), sj_.end()) - sj_.begin());
     const auto P = cell_points(m_, q);
     const Vec c = P.topRows(mesh::node_count(m_.type(q))).colwise().mean().transpose();
-    char b[96];
-    std::snprintf(b, sizeof b, " at (%.4g, %.4g, %.4g)", c(0), c(1), c(2));
-    return b;
+    return fmt(" at (%.4g, %.4g, %.4g)", c(0), c(1), c(2));
   }
   double local_min(int v) const {
     double w = 2;
