@@ -109,6 +109,17 @@ def grid_arrays(g):
     return P, types, [conn[offsets[i]:offsets[i + 1]].tolist() for i in range(len(offsets) - 1)]
 
 
+def boundary_points(g):
+    """Coordinates of the nodes on the boundary of the grid (VTK's surface filter)."""
+    f = vtk.vtkDataSetSurfaceFilter()
+    f.SetInputData(g)
+    f.PassThroughPointIdsOn()
+    f.Update()
+    ids = vtk_to_numpy(f.GetOutput().GetPointData().GetArray(f.GetOriginalPointIdsName()))
+    P, _, _ = grid_arrays(g)
+    return P[np.unique(ids)]
+
+
 def read_legacy_vtk(path):
     """VTK's own reader (vtkUnstructuredGridReader); also returns the points' stored dtype."""
     r = vtk.vtkUnstructuredGridReader()

@@ -17,8 +17,6 @@ import subprocess
 
 import numpy as np
 import pytest
-import vtk
-from vtk.util.numpy_support import vtk_to_numpy
 
 import hexdom_oracles as oracle
 import hexdom_test_support as support
@@ -94,16 +92,6 @@ def meshed(freecad, tmp_path_factory, core):
     return get
 
 
-def _boundary_points(g):
-    f = vtk.vtkDataSetSurfaceFilter()
-    f.SetInputData(g)
-    f.PassThroughPointIdsOn()
-    f.Update()
-    ids = vtk_to_numpy(f.GetOutput().GetPointData().GetArray(f.GetOriginalPointIdsName()))
-    P, _, _ = oracle.grid_arrays(g)
-    return P[np.unique(ids)]
-
-
 @pytest.mark.parametrize("name", _marks({}))
 def test_triangular_part_meshes_with_no_inverted_cell(name, meshed):
     _, g, sj, types, log = meshed(name)
@@ -119,7 +107,7 @@ def test_triangular_part_boundary_lies_on_the_brep(name, meshed, freecad):
     FreeCAD, Part = freecad
     shape, g, _, _, _ = meshed(name)
     faces = Part.Compound(shape.Faces)
-    P = _boundary_points(g)
+    P = oracle.boundary_points(g)
     d = np.array([faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in P])
     assert d.max() <= 1e-7 * shape.BoundBox.DiagonalLength, f"{name}: {d.max():.3g} off the B-rep"
 

@@ -11,8 +11,6 @@ import subprocess
 
 import numpy as np
 import pytest
-import vtk
-from vtk.util.numpy_support import vtk_to_numpy
 
 import hexdom_oracles as oracle
 import hexdom_test_support as support
@@ -80,17 +78,6 @@ def meshed(tmp_path_factory, core):
     return get
 
 
-def _boundary_points(g):
-    """Coordinates of the nodes on the boundary of the grid (VTK's surface filter)."""
-    f = vtk.vtkDataSetSurfaceFilter()
-    f.SetInputData(g)
-    f.PassThroughPointIdsOn()
-    f.Update()
-    ids = vtk_to_numpy(f.GetOutput().GetPointData().GetArray(f.GetOriginalPointIdsName()))
-    P, _, _ = oracle.grid_arrays(g)
-    return P[np.unique(ids)]
-
-
 def _solid(Part, path):
     shape = Part.read(path)
     return shape.Solids[0] if shape.Solids else shape
@@ -113,7 +100,7 @@ def test_boundary_nodes_lie_on_the_brep(stem, meshed, Part):
     assert float(m.group(1)) <= 1e-7
     shape = _solid(Part, part)
     diag = shape.BoundBox.DiagonalLength
-    P = _boundary_points(g)
+    P = oracle.boundary_points(g)
     d = _brep_distances(Part, shape, P)
     print(f"{stem}: {len(P)} boundary nodes, B-rep distance max {d.max():.3g} = {d.max() / diag:.2e} x diagonal")
     assert d.max() <= 1e-7 * diag, f"{stem}: a boundary node is {d.max() / diag:.2e} x diagonal off the B-rep"
@@ -233,5 +220,5 @@ def test_cli_no_snap_leaves_the_tessellation(tmp_path, Part):
     assert "snap:" not in r.stderr + r.stdout
     g, _ = oracle.read_legacy_vtk(out)
     shape = _solid(Part, part)
-    d = _brep_distances(Part, shape, _boundary_points(g))
+    d = _brep_distances(Part, shape, oracle.boundary_points(g))
     assert d.max() > 1e-5 * shape.BoundBox.DiagonalLength

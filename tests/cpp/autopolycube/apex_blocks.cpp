@@ -27,23 +27,6 @@ autopolycube::AutoPolycubeOptions options(bool caps) {
   return o;
 }
 
-// Faces of the cells of `m` by sorted nodes -> the number of cells using them.
-std::map<std::vector<int>, int> cell_faces(const mesh::Mesh& m) {
-  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  static const std::vector<std::vector<int>> wedge = {{0, 1, 2}, {3, 4, 5}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-  static const std::vector<std::vector<int>> tet = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}};
-  std::map<std::vector<int>, int> faces;
-  for (int c = 0; c < m.num_cells(); ++c) {
-    const auto& fs = m.type(c) == mesh::CellType::Hex ? hex : m.type(c) == mesh::CellType::Wedge ? wedge : tet;
-    for (const auto& f : fs) {
-      std::vector<int> vs;
-      for (int i : f) vs.push_back(m.cells(c, i));
-      std::sort(vs.begin(), vs.end());
-      ++faces[vs];
-    }
-  }
-  return faces;
-}
 
 }  // namespace
 
@@ -94,7 +77,7 @@ TEST(ApexBlocks, APyramidsTipBecomesTetBlocksAndTheColumnsBelowPrisms) {
   // triangles at the tip and the halves of the squares ending the prism columns included).
   const auto layout = polycube::patch_layout(r.patches);
   int boundary = 0, triangles = 0;
-  for (const auto& [vs, n] : cell_faces(r.structure)) {
+  for (const auto& [vs, n] : test::cell_faces(r.structure)) {
     EXPECT_LE(n, 2);
     boundary += n == 1;
     triangles += n == 1 && vs.size() == 3;
@@ -117,7 +100,7 @@ TEST(ApexBlocks, APyramidsTipBecomesTetBlocksAndTheColumnsBelowPrisms) {
   const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
   EXPECT_EQ(m.count(mesh::CellType::Tet), 8 * r.tet_blocks);
   EXPECT_EQ(m.count(mesh::CellType::Wedge), 8 * r.prism_blocks);
-  for (const auto& [vs, n] : cell_faces(m)) ASSERT_LE(n, 2);
+  for (const auto& [vs, n] : test::cell_faces(m)) ASSERT_LE(n, 2);
   quality::ImproveOptions io;
   io.surface = r.patches;
   const auto imp = quality::improve(m, io);

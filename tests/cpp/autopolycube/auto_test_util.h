@@ -15,6 +15,26 @@
 
 namespace hexdom::test {
 
+// Faces of the cells of `m` by sorted nodes -> the number of cells using them, and each face's nodes
+// in its (first) cell's order. Face tables of its own (VTK order), not the core's.
+inline std::map<std::vector<int>, int> cell_faces(const mesh::Mesh& m, std::map<std::vector<int>, std::vector<int>>* ordered = nullptr) {
+  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  static const std::vector<std::vector<int>> wedge = {{0, 1, 2}, {3, 4, 5}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
+  static const std::vector<std::vector<int>> tet = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}};
+  std::map<std::vector<int>, int> faces;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const auto& fs = m.type(c) == mesh::CellType::Hex ? hex : m.type(c) == mesh::CellType::Wedge ? wedge : tet;
+    for (const auto& f : fs) {
+      std::vector<int> vs;
+      for (int i : f) vs.push_back(m.cells(c, i));
+      std::vector<int> key = vs;
+      std::sort(key.begin(), key.end());
+      if (++faces[key] == 1 && ordered) (*ordered)[key] = vs;
+    }
+  }
+  return faces;
+}
+
 /// Label 1..6 of the axis nearest to each triangle's normal.
 inline Eigen::VectorXi labels_from_normals(const mesh::SurfaceMesh& s) {
   Eigen::VectorXi l(s.F.rows());

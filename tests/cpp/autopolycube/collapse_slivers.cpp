@@ -33,25 +33,6 @@ autopolycube::AutoPolycubeOptions options(double sliver_ratio) {
   return o;
 }
 
-// Faces of the cells of `m` by sorted nodes -> the number of cells using them, and each face's nodes
-// in its (first) cell's order.
-std::map<std::vector<int>, int> cell_faces(const mesh::Mesh& m, std::map<std::vector<int>, std::vector<int>>* ordered = nullptr) {
-  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  static const std::vector<std::vector<int>> wedge = {{0, 1, 2}, {3, 4, 5}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-  static const std::vector<std::vector<int>> tet = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}};
-  std::map<std::vector<int>, int> faces;
-  for (int c = 0; c < m.num_cells(); ++c) {
-    const auto& fs = m.type(c) == mesh::CellType::Hex ? hex : m.type(c) == mesh::CellType::Wedge ? wedge : tet;
-    for (const auto& f : fs) {
-      std::vector<int> vs;
-      for (int i : f) vs.push_back(m.cells(c, i));
-      std::vector<int> key = vs;
-      std::sort(key.begin(), key.end());
-      if (++faces[key] == 1 && ordered) (*ordered)[key] = vs;
-    }
-  }
-  return faces;
-}
 
 }  // namespace
 
@@ -77,7 +58,7 @@ TEST(CollapseSlivers, KnifeEdgeStripGivesPrismBlocksAndTriangularPatches) {
   // triangles included, and the geometry is the input's.
   const auto layout = polycube::patch_layout(r.patches);
   int boundary = 0, triangles = 0;
-  for (const auto& [vs, n] : cell_faces(r.structure)) {
+  for (const auto& [vs, n] : test::cell_faces(r.structure)) {
     EXPECT_LE(n, 2);
     boundary += n == 1;
     triangles += n == 1 && vs.size() == 3;
@@ -103,7 +84,7 @@ TEST(CollapseSlivers, KnifeEdgeStripGivesPrismBlocksAndTriangularPatches) {
   std::map<std::vector<int>, std::vector<int>> ordered;
   std::map<std::pair<int, int>, int> boundary_edges;
   int mesh_triangles = 0;
-  for (const auto& [vs, n] : cell_faces(m, &ordered)) {
+  for (const auto& [vs, n] : test::cell_faces(m, &ordered)) {
     ASSERT_LE(n, 2);
     if (n == 2) continue;
     const auto& f = ordered.at(vs);
