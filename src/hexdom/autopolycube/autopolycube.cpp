@@ -110,7 +110,9 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       mo.separate_touching = false;
       log(std::string(e.what()) + ": again without separating curves whose spans only touch");
       map = polycube_map(s, g, pg, mo);
+      r.widened += opt.keep_widths;  // the failed map's widths are not known: counted as used
     }
+    r.widened += map.widened;
     r.polycube = polycube_surface(s, map);
     r.pushed = map.pushed;
 

@@ -88,6 +88,8 @@ struct AutoPolycube {
   int squares = 0, blocks = 0, boundary_vertices = 0, interior_vertices = 0;
   int slivers = 0, prism_blocks = 0, tet_blocks = 0;  ///< strips collapsed; blocks that are not hexes
   int apexes = 0, apexes_collapsed = 0;  ///< apex caps added; of them, collapsed to tet / prism blocks
+  /// PolycubeMap::widened over every map this run made; 0: keep_widths changed nothing.
+  int widened = 0;
   double min_block_quality = 0;  ///< worst block scaled Jacobian after untangling
   int inverted_blocks = 0;
 };

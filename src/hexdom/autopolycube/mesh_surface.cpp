@@ -98,9 +98,10 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   mesh_once(surface, opt, r);
   const double reference = mesh::enclosed_volume(surface.V, surface.F);
   // A polycube that keeps the widths of holes is tried first; when its mesh misses a target, the one
-  // with the least-squares plane offsets is tried too and the better kept (see `better`).
+  // with the least-squares plane offsets is tried too and the better kept (see `better`), unless
+  // keeping the widths changed nothing (no hole: the same polycube again).
   bool widths = opt.polycube.keep_widths;
-  if (opt.polycube.keep_widths && opt.try_without_widths && !meets_targets(r, reference, opt)) {
+  if (opt.polycube.keep_widths && opt.try_without_widths && r.polycube.widened > 0 && !meets_targets(r, reference, opt)) {
     say(run_summary(r, reference) + ": again without keeping the widths of holes");
     MeshSurfaceOptions other = opt;
     other.polycube.keep_widths = false;

@@ -422,6 +422,7 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
           const int clo = d > 0 ? u.other : w.other, chi = d > 0 ? w.other : u.other;
           const bool overlap = std::min(uhi, whi) > std::max(ulo, wlo);
           const int gap = overlap && g.label[clo] % 2 == 1 ? width_gap(clo, chi) : 1;
+          m.widened += gap > 1;
           if (m.plane(hi) - m.plane(lo) >= gap) continue;
           const auto it = added.find({lo, hi});
           if (it == added.end()) {

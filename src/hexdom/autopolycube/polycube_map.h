@@ -45,6 +45,9 @@ struct PolycubeMap {
   double cell = 0;         ///< h: model position = origin + h * D
   std::vector<int> flipped;  ///< per chart: triangles whose orientation in its plane is wrong or zero
   int pushed = 0;            ///< plane groups moved more than one cell to keep every curve's length >= h
+  /// Times keep_widths asked more than one cell between two walls facing across a void; 0: the map
+  /// is the one keep_widths = false gives.
+  int widened = 0;
 };
 
 /// Computes the map. Expects a labelling without chart problems (see chart_problems) and no

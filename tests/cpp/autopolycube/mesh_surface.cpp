@@ -1,5 +1,6 @@
 #include "hexdom/autopolycube/mesh_surface.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -55,6 +56,32 @@ TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
   // 0.94 with the widths, 0.88 without.
   EXPECT_NE(log.find("kept the polycube with the widths of holes"), std::string::npos) << log;
   EXPECT_LT(volume_error(r, reference), 0.015);
+}
+
+// Without a hole keep_widths changes nothing, so the polycube without the widths would be the same
+// one again: it is not meshed, even when the first misses a target. (A box of 4 x 4 x 2 cells.)
+TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
+  std::vector<std::array<int, 3>> cells;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 2; ++k) cells.push_back({i, j, k});
+  const auto s = test::cell_surface(cells, 2);
+  autopolycube::MeshSurfaceOptions o;
+  o.size = 0.5;
+  o.level = 1;
+  o.target_sj = 2.0;  // no mesh meets it
+  o.refine_when_inverted = false;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const auto r = autopolycube::mesh_surface(s, o);
+  EXPECT_EQ(r.polycube.widened, 0);
+  EXPECT_EQ(log.find("without keeping the widths of holes"), std::string::npos) << log;
+  EXPECT_EQ(r.segmentations, 1);
+
+  // The tilted hole's walls are kept apart: there the second candidate is meshed (test above).
+  const auto h = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
+  o.size = 1.0;
+  EXPECT_GT(autopolycube::mesh_surface(h, o).polycube.widened, 0);
 }
 
 // The second candidate (without the widths of holes) and a finer level take the first candidate's
