@@ -322,7 +322,8 @@ class AutoPolycube:
     boundary block face: give both to generate), ``labels`` (the repaired labelling on the surface the
     map used), ``polycube`` (that surface at its polycube positions) and ``info`` (cell, charts,
     relabelled, chords, planes, pushed, squares, blocks, boundary_vertices, interior_vertices,
-    min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks)."""
+    min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks, apexes,
+    apexes_collapsed, widened)."""
 
     structure: Mesh
     patches: Surface
@@ -338,17 +339,23 @@ def _auto_polycube(r):
 
 
 def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
-                 max_relabel_area=0.03, untangle_rounds=50):
+                 max_relabel_area=0.03, untangle_rounds=50, keep_widths=True,
+                 collapse_apexes=True):
     """Polycube structure of a labelled Surface (patch = label 1..6 per triangle, e.g. from
     segment()) with no manual step: blocks are the grid cells of spacing h = size * 2^level
     (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto (prism
     blocks where a strip chart runs along a knife edge); the surface is cut along the grid lines
     into one patch per boundary block face, so that
-    generate(result.patches, result.structure, level) takes the pair unchanged. Raises
-    GeometryError naming the charts when the labelling cannot be repaired. Returns an AutoPolycube."""
+    generate(result.patches, result.structure, level) takes the pair unchanged. keep_widths: the
+    walls of a hole keep their distance in cells (False: least-squares plane offsets);
+    collapse_apexes: the blocks under an apex cap become tets and prisms (False: hexes). The two
+    are the candidates mesh_surface chooses between (MeshRun.keep_widths, .collapse_apexes).
+    Raises GeometryError naming the charts when the labelling cannot be repaired. Returns an
+    AutoPolycube."""
     return _auto_polycube(_hexdom.autopolycube(labels.V, labels.F, labels.patch, float(size),
                                                int(level), int(max_relabels), int(max_attempts),
-                                               float(max_relabel_area), int(untangle_rounds)))
+                                               float(max_relabel_area), int(untangle_rounds),
+                                               bool(keep_widths), bool(collapse_apexes)))
 
 
 MESH_STAGES = ("segment", "autopolycube", "generate", "improve")
@@ -362,7 +369,10 @@ class MeshRun:
     improve; tessellate and snap too for mesh_part), the ``level`` of the result (one less than
     asked when inverted cells remained and the finer grid did better) and the segmentation's
     ``edge_weight`` that autopolycube took (the next of 1, 0.3, 3 when the asked one defeated
-    it). ``snap`` holds snap_to_brep's report for mesh_part (None otherwise)."""
+    it). ``keep_widths`` and ``collapse_apexes`` are the polycube options of the candidate kept
+    (see autopolycube): segment(edge_weight=edge_weight) then autopolycube(level=level,
+    keep_widths=..., collapse_apexes=...) rebuild its polycube; ``choice`` says it in words.
+    ``snap`` holds snap_to_brep's report for mesh_part (None otherwise)."""
 
     mesh: Mesh
     generated: Mesh
@@ -374,6 +384,9 @@ class MeshRun:
     level: int = 1
     edge_weight: float = 0.1
     snap: dict = None
+    keep_widths: bool = True
+    collapse_apexes: bool = True
+    choice: str = ""
 
     @property
     def inverted(self):
@@ -390,7 +403,9 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
                              float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve))
     run = MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
                   _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
-                  dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]))
+                  dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
+                  keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
+                  choice=str(r["choice"]))
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
                            "(allow_inverted=True returns the mesh anyway)")

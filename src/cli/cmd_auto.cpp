@@ -209,6 +209,7 @@ void add_mesh(CLI::App& app) {
                        (run.polycube.polycube.F.rows() ? " and " + stem + "_polycube.vtk" : std::string()) + " for inspection");
       throw;
     }
+    print_log(0, "kept: " + autopolycube::choice_text(run));
     if (!shape.is_empty() && !a->no_snap) {
       const auto t0 = std::chrono::steady_clock::now();
       cad::SnapOptions so;

@@ -37,6 +37,9 @@ py::dict polycube_dict(const autopolycube::AutoPolycube& r) {
   d["slivers"] = r.slivers;
   d["prism_blocks"] = r.prism_blocks;
   d["tet_blocks"] = r.tet_blocks;
+  d["apexes"] = r.apexes;
+  d["apexes_collapsed"] = r.apexes_collapsed;
+  d["widened"] = r.widened;
   return d;
 }
 
@@ -51,8 +54,11 @@ const char* kAutopolycubeDoc =
     "surface). Returns a dict: structure (V, cells, types, region), patches (V, F, patch), labels (the\n"
     "repaired labelling on the surface the map used), polycube (V, F, label at polycube positions), and the\n"
     "figures cell, charts, relabelled, chords, planes, pushed, squares, blocks, boundary_vertices,\n"
-    "interior_vertices, min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks. Raises GeometryError naming the charts when\n"
-    "the labelling cannot be repaired.";
+    "interior_vertices, min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks, apexes (apex caps\n"
+    "added), apexes_collapsed (of them, under tet and prism blocks), widened (walls keep_widths moved). keep_widths:\n"
+    "walls of a hole facing each other across the void keep their distance in cells (False: least-squares plane\n"
+    "offsets); collapse_apexes: the blocks under an apex cap collapse to tets and prisms (False: they stay hexes).\n"
+    "Raises GeometryError naming the charts when the labelling cannot be repaired.";
 
 const char* kMeshSurfaceDoc =
     "Hex mesh of a closed surface with no manual step: segment (CVT, edge_weight) -> autopolycube (size,\n"
@@ -60,14 +66,17 @@ const char* kMeshSurfaceDoc =
     "the patch surface; skipped with improve=False). The surface's patch ids are CAD faces when there are\n"
     "several. Returns a dict: mesh and generated (V, cells, types, region), labels (V, F, label),\n"
     "polycube (the autopolycube dict), quality and generated_quality (hex, prism, tet, total_volume),\n"
-    "seconds (segment, autopolycube, generate, improve). Inverted cells left are reported, not raised.";
+    "seconds (segment, autopolycube, generate, improve), and the options of the candidate kept: level,\n"
+    "edge_weight, keep_widths, collapse_apexes (segment with edge_weight, then autopolycube with level,\n"
+    "keep_widths and collapse_apexes rebuild its polycube) and choice (them as one line of text). Inverted\n"
+    "cells left are reported, not raised.";
 
 }  // namespace
 
 void bind_auto(py::module_& m) {
   m.def("autopolycube",
         [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
-           double max_relabel_area, int untangle_rounds) {
+           double max_relabel_area, int untangle_rounds, bool keep_widths, bool collapse_apexes) {
           mesh::SurfaceMesh s = surface_of(V, F, label);
           autopolycube::AutoPolycubeOptions opt;
           opt.size = size;
@@ -76,6 +85,8 @@ void bind_auto(py::module_& m) {
           opt.max_attempts = max_attempts;
           opt.max_relabel_area = max_relabel_area;
           opt.untangle_rounds = untangle_rounds;
+          opt.keep_widths = keep_widths;
+          opt.collapse_apexes = collapse_apexes;
           autopolycube::AutoPolycube r;
           {
             py::gil_scoped_release nogil;
@@ -85,7 +96,8 @@ void bind_auto(py::module_& m) {
         },
         py::arg("V"), py::arg("F"), py::arg("label"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("max_relabels") = 200, py::arg("max_attempts") = 20, py::arg("max_relabel_area") = 0.03,
-        py::arg("untangle_rounds") = 50, kAutopolycubeDoc);
+        py::arg("untangle_rounds") = 50, py::arg("keep_widths") = true, py::arg("collapse_apexes") = true,
+        kAutopolycubeDoc);
 
   m.def("mesh_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
@@ -113,6 +125,9 @@ void bind_auto(py::module_& m) {
           d["seconds"] = std::vector<double>(r.seconds, r.seconds + 4);
           d["level"] = r.level;
           d["edge_weight"] = r.edge_weight;
+          d["keep_widths"] = r.keep_widths;
+          d["collapse_apexes"] = r.collapse_apexes;
+          d["choice"] = autopolycube::choice_text(r);
           return d;
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,

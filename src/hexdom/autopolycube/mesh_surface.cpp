@@ -261,6 +261,8 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
       (r.quality.hex.count > 0 ? fmt(", mean hex %.3f", r.quality.hex.sj_mean) : std::string()) +
       fmt(", in %.2f s", r.seconds[3]));
   r.level = opt.level;
+  r.keep_widths = opt.polycube.keep_widths;
+  r.collapse_apexes = opt.polycube.collapse_apexes;
   r.stage = "done";
 }
 
@@ -273,6 +275,14 @@ std::string to_text(const MeshSurfaceRun& r) {
            r.polycube.cell);
   s += fmt("generate      %8.2f s  %8.0f cells\n", r.seconds[2], r.generated.num_cells());
   s += fmt("improve       %8.2f s  %8.0f cells\n", r.seconds[3], r.mesh.num_cells());
+  s += "kept          " + choice_text(r) + "\n";
+  return s;
+}
+
+std::string choice_text(const MeshSurfaceRun& r) {
+  std::string s = fmt("level %.0f, lambda %g, ", r.level, r.edge_weight) +
+                  (r.keep_widths ? "widths of holes kept" : "least-squares plane offsets");
+  if (r.polycube.apexes > 0) s += r.collapse_apexes ? ", tet blocks at apexes" : ", hex blocks under the caps";
   return s;
 }
 

@@ -63,6 +63,11 @@ struct MeshSurfaceRun {
   double seconds[4] = {0, 0, 0, 0};  ///< segment, autopolycube, generate, improve
   double edge_weight = 0;     ///< the segmentation's lambda that autopolycube took
   int level = 0;              ///< the subdivision level of the result (see refine_when_inverted)
+  /// The polycube options of the kept candidate (see try_without_widths, try_hex_apexes): with
+  /// edge_weight and level they rebuild its polycube (autopolycube on the labels segmented with
+  /// edge_weight, AutoPolycubeOptions::keep_widths, collapse_apexes, level).
+  bool keep_widths = true;
+  bool collapse_apexes = true;
   int segmentations = 0;      ///< segmentations tried
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
 };
@@ -74,7 +79,12 @@ struct MeshSurfaceRun {
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
 
-/// "segment: 12 charts in 0.21 s"-style summary of a run, one line per finished stage.
+/// "segment: 12 charts in 0.21 s"-style summary of a run, one line per finished stage, then the
+/// kept candidate's options (choice_text).
 std::string to_text(const MeshSurfaceRun& run);
+
+/// The options of the kept candidate on one line: "level 1, lambda 0.1, widths of holes kept, tet
+/// blocks at apexes" (the last part only when the polycube has apex caps).
+std::string choice_text(const MeshSurfaceRun& run);
 
 }  // namespace hexdom::autopolycube

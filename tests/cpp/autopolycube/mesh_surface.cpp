@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "auto_test_util.h"
+#include "hexdom/generation/generate.h"
 #include "test_common.h"
 
 using namespace hexdom;
@@ -13,6 +14,34 @@ using namespace hexdom;
 namespace {
 double volume_error(const autopolycube::MeshSurfaceRun& r, double reference) {
   return std::abs(r.quality.total_volume - reference) / reference;
+}
+
+// The kept candidate rebuilt stage by stage from the options the run reports, as the workbench's
+// objects do it (Segmentation EdgeWeight, Polycube KeepWidths / TetApexes / Level, Mesh Level):
+// no repair handed down, no candidate choice.
+mesh::Mesh rebuild(const mesh::SurfaceMesh& s, const autopolycube::MeshSurfaceOptions& o, const autopolycube::MeshSurfaceRun& r) {
+  segmentation::CvtOptions so = o.segment;
+  so.edge_weight = r.edge_weight;
+  mesh::SurfaceMesh labels = s;
+  labels.patch = segmentation::segment_cvt(s, so).label;
+  autopolycube::AutoPolycubeOptions ao = o.polycube;
+  ao.size = o.size;
+  ao.level = r.level;
+  ao.keep_widths = r.keep_widths;
+  ao.collapse_apexes = r.collapse_apexes;
+  const auto p = autopolycube::autopolycube(labels, ao);
+  generation::GenerateOptions go;
+  go.level = r.level;
+  go.relax_sweeps = o.relax_sweeps;
+  quality::ImproveOptions io = o.improvement;
+  io.surface = p.patches;
+  return quality::improve(generation::generate(p.patches, p.structure, go), io).mesh;
+}
+
+void expect_same_mesh(const mesh::Mesh& a, const mesh::Mesh& b) {
+  for (auto t : {mesh::CellType::Hex, mesh::CellType::Wedge, mesh::CellType::Tet}) EXPECT_EQ(a.count(t), b.count(t));
+  ASSERT_EQ(a.V.rows(), b.V.rows());
+  EXPECT_LT((a.V - b.V).cwiseAbs().maxCoeff(), 1e-9);
 }
 }  // namespace
 
@@ -104,4 +133,65 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
   EXPECT_EQ(repairs, 2) << log;  // two candidates
   EXPECT_EQ(handed, 1) << log;   // the second one took the first one's repair
   EXPECT_EQ(r.quality.hex.inverted, 0);
+}
+
+// The run reports the options of the candidate it kept (level, lambda, widths of holes, tet or hex
+// blocks at apexes), and they rebuild that very mesh without the choice: what Mesh Part sets on
+// its objects. Tilted hole: with an unreachable SJ target both width candidates are measured and
+// the one with the widths kept; with keep_widths off from the start, it says so.
+TEST(MeshSurface, TheKeptCandidatesOptionsAreReportedAndRebuildItsMesh) {
+  const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
+  autopolycube::MeshSurfaceOptions o;
+  o.size = 1.0;
+  o.level = 1;
+  o.target_sj = 2.0;  // no mesh meets it: both candidates are measured
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const auto r = autopolycube::mesh_surface(s, o);
+  EXPECT_NE(log.find("kept the polycube with the widths of holes"), std::string::npos) << log;
+  EXPECT_TRUE(r.keep_widths);
+  EXPECT_TRUE(r.collapse_apexes);  // the default; no apex here
+  EXPECT_EQ(r.edge_weight, 0.1);
+  EXPECT_NE(autopolycube::choice_text(r).find("level " + std::to_string(r.level) + ", lambda 0.1"), std::string::npos) << autopolycube::choice_text(r);
+  EXPECT_NE(autopolycube::choice_text(r).find("widths of holes kept"), std::string::npos);
+  EXPECT_NE(autopolycube::to_text(r).find("kept          level"), std::string::npos) << autopolycube::to_text(r);
+  expect_same_mesh(rebuild(s, o, r), r.mesh);
+
+  autopolycube::MeshSurfaceOptions old = o;
+  old.polycube.keep_widths = false;
+  old.refine_when_inverted = false;
+  const auto q = autopolycube::mesh_surface(s, old);
+  EXPECT_FALSE(q.keep_widths);
+  EXPECT_EQ(q.level, 1);
+  EXPECT_NE(autopolycube::choice_text(q).find("level 1, lambda 0.1, least-squares plane offsets"), std::string::npos)
+      << autopolycube::choice_text(q);
+  expect_same_mesh(rebuild(s, old, q), q.mesh);
+}
+
+// A pyramid's tip: tet blocks first; when their mesh misses the targets the hex blocks under the cap
+// are measured too. The run says which it kept, its mesh has tets exactly when it kept the tet
+// blocks, and the reported options rebuild it.
+TEST(MeshSurface, TheKeptApexBlocksAreReportedAndRebuildTheMesh) {
+  const auto s = test::pyramid_surface(4.0, 3.0, 16);
+  autopolycube::MeshSurfaceOptions o;
+  o.size = 0.25;
+  o.level = 1;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const auto r = autopolycube::mesh_surface(s, o);
+  EXPECT_EQ(r.polycube.apexes, 1);
+  const bool tets = log.find("kept the tet blocks at the apexes") != std::string::npos ||
+                    log.find("with tet blocks at the apexes: again") == std::string::npos;
+  EXPECT_EQ(r.collapse_apexes, tets) << log;
+  EXPECT_EQ(r.mesh.count(mesh::CellType::Tet) > 0, r.collapse_apexes) << log;
+  EXPECT_NE(autopolycube::choice_text(r).find(r.collapse_apexes ? "tet blocks at apexes" : "hex blocks under the caps"),
+            std::string::npos)
+      << autopolycube::choice_text(r);
+  expect_same_mesh(rebuild(s, o, r), r.mesh);
+
+  autopolycube::MeshSurfaceOptions hex = o;  // the hex blocks asked for: reported as such
+  hex.polycube.collapse_apexes = false;
+  const auto h = autopolycube::mesh_surface(s, hex);
+  EXPECT_FALSE(h.collapse_apexes);
+  EXPECT_EQ(h.mesh.count(mesh::CellType::Tet), 0);
 }
