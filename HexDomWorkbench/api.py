@@ -697,6 +697,48 @@ def make_mesh_part(doc, part, size=0.0, level=1, improve=True):
     return objs
 
 
+def choose_mesh_part(objs, run=None):
+    """The candidate choice of `hexdom mesh` for mesh_part's objects: recomputes the Surface, runs
+    core.mesh_surface on its triangles (the Polycube's Size and Level, the Mesh's Improve;
+    segmentation edge weight, widths of holes, tet or hex blocks at apexes and the level drop
+    chosen by measuring the meshes) and sets what it kept on the objects:
+    Segmentation.EdgeWeight, Polycube.KeepWidths, .TetApexes and .Level (the Mesh's Level follows
+    it). The rest is left to recompute, which rebuilds the kept candidate with ordinary, editable
+    objects. The core call runs in a Progress (a worker thread under the GUI), or in ``run``
+    when given. Returns the core.MeshRun of the choice (its mesh before snapping to the CAD
+    faces), or None when the Surface or the choice failed: the objects keep their settings, and
+    recomputing them reports the stage at fault."""
+    surface_obj, seg, poly = objs["surface"], objs["segmentation"], objs["polycube"]
+    from .objects import tessellation
+    surface_obj.recompute()
+    state = surface_obj.State
+    if "Invalid" in state or "Error" in state or not len(surface_obj.Triangles):
+        return None
+    surface = tessellation.get_surface(surface_obj)
+    mesh = objs.get("mesh")
+    try:
+        with Progress("Choosing the polycube of " + surface_obj.Label, 1) as bar:
+            chosen = (run or bar.run)("choose the polycube", core.mesh_surface, surface,
+                                      size=float(poly.Size.Value), level=int(poly.Level),
+                                      improve=bool(getattr(mesh, "Improve", True)),
+                                      allow_inverted=True)
+            bar.step(chosen.choice)
+    except Cancelled:
+        raise
+    except core.Error as e:
+        import FreeCAD
+        FreeCAD.Console.PrintLog("HexDom: {}: no choice of polycube ({}); recomputing with the "
+                                 "defaults\n".format(poly.Label, e))
+        return None
+    if seg.EdgeWeight != chosen.edge_weight:
+        seg.EdgeWeight = chosen.edge_weight
+    for name, value in (("KeepWidths", chosen.keep_widths),
+                        ("TetApexes", chosen.collapse_apexes), ("Level", chosen.level)):
+        if getattr(poly, name) != value:
+            setattr(poly, name, value)
+    return chosen
+
+
 def check_mesh_part(objs, allow_inverted=False):
     """Raises MeshPartError for the first of mesh_part's objects that failed (naming its stage
     and the core's message), or when the mesh has inverted cells (unless ``allow_inverted``)."""
@@ -727,6 +769,9 @@ def mesh_part(doc, part, size=0.0, level=1, improve=True, recompute=True, allow_
     stage as an editable document object: HexDom Surface (tessellation at ``size``, 0: bounding-box
     diagonal / 30), Segmentation (automatic), Polycube (Mode Automatic: blocks of size * 2^level)
     and Mesh (generated at ``level`` and improved if ``improve``; its Level follows the Polycube's).
+    Before the recompute, choose_mesh_part makes `hexdom mesh`'s choice on the Surface's triangles
+    (edge weight, widths of holes, tet or hex blocks at apexes, level ``level`` or one less) and
+    sets it on the Segmentation and the Polycube, so that the Mesh is the one it kept.
     Returns a dict with keys surface, segmentation, polycube, mesh.
 
     With ``recompute`` the document is recomputed; a stage that fails raises MeshPartError naming
@@ -736,8 +781,26 @@ def mesh_part(doc, part, size=0.0, level=1, improve=True, recompute=True, allow_
     """
     objs = make_mesh_part(doc, part, size=size, level=level, improve=improve)
     if recompute:
-        with Progress("Meshing " + part.Label, 1) as bar:
+        with Progress("Meshing " + part.Label, 2) as bar:
+            chosen = choose_mesh_part(objs)
+            bar.step("chosen: " + (chosen.choice if chosen else "none"))
             doc.recompute()
             bar.step("recomputed")
         check_mesh_part(objs, allow_inverted)
+        if chosen is not None:
+            check_choice(objs, chosen)
     return objs
+
+
+def check_choice(objs, chosen):
+    """Warns (FreeCAD's report view) when the recomputed Mesh of mesh_part is not the mesh the
+    choice produced (other element counts): the objects did not rebuild the kept candidate."""
+    mesh = objs["mesh"]
+    got = (mesh.HexCount, mesh.PrismCount, mesh.TetCount)
+    want = tuple(chosen.mesh.count(t) for t in (core.HEX, core.WEDGE, core.TET))
+    if got != want:
+        import FreeCAD
+        FreeCAD.Console.PrintWarning(
+            "HexDom: {}: {} hex, {} prism, {} tet, but the choice ({}) gave {} hex, {} prism, "
+            "{} tet\n".format(mesh.Label, *got, chosen.choice, *want))
+    return got == want

@@ -325,7 +325,9 @@ class _MeshPart(CommandManager):
     tooltip = ("Meshes the selected Part solid with no manual step: a HexDom Surface "
                "(tessellation), Segmentation (automatic), Polycube (automatic) and Mesh "
                "(generated and improved), all kept and editable; element size = bounding-box "
-               "diagonal / 30, level 1 (change Size and Level on the Polycube and recompute)")
+               "diagonal / 30, level 1 or 0 and the polycube's options chosen as `hexdom mesh` "
+               "chooses them (change Size, Level, KeepWidths, TetApexes on the Polycube and "
+               "recompute)")
     is_active = "with_part"
 
     def Activated(self):
@@ -346,12 +348,15 @@ class _MeshPart(CommandManager):
         doc.openTransaction("Mesh part")
         cancelled = False
         try:
-            with api.Progress("Meshing " + part.Label, 2) as bar:
+            with api.Progress("Meshing " + part.Label, 3) as bar:
                 FreeCADGui.addModule("HexDomWorkbench.api")
                 FreeCADGui.doCommand(
-                    "HexDomWorkbench.api.make_mesh_part(App.ActiveDocument, {}, size={!r}, "
-                    "level={})".format(_doc_expr(part), float(size), int(level)))
+                    "_objs = HexDomWorkbench.api.make_mesh_part(App.ActiveDocument, {}, "
+                    "size={!r}, level={})".format(_doc_expr(part), float(size), int(level)))
                 bar.step("objects created")
+                # `hexdom mesh`'s choice of candidate, set on the Segmentation and the Polycube
+                FreeCADGui.doCommand("HexDomWorkbench.api.choose_mesh_part(_objs)")
+                bar.step("polycube chosen")
                 FreeCADGui.doCommand("App.ActiveDocument.recompute()")
                 bar.step("recomputed")
                 cancelled = bar.is_cancelled()

@@ -7,7 +7,8 @@ setting it to another file and recomputing reads that file (api.import_structure
 api.export_structure read and write the original program's .k files through core).
 
 Mode "Automatic" computes the structure on recompute with core.autopolycube from the labels of the
-linked Segmentation, with blocks of Size * 2^Level (Size 0: bounding-box diagonal / 30). The
+linked Segmentation, with blocks of Size * 2^Level (Size 0: bounding-box diagonal / 30), the
+widths of holes kept (KeepWidths) and tet blocks at apexes (TetApexes) as asked. The
 automatic structure comes with its own patch surface (the segmented surface cut along the grid,
 one patch per boundary square: PatchPoints, PatchTriangles, PatchIds), which the HexDom Mesh then
 generates from instead of the Segmentation's patches. Mode "Manual" keeps the stored blocks (and
@@ -92,6 +93,18 @@ class Polycube(BaseHexDomObject):
                             "Subdivision level the blocks are made for (the HexDom Mesh's Level): "
                             "2^Level cells per block edge")
             obj.Level = 1
+        if not hasattr(obj, "KeepWidths"):
+            obj.addProperty("App::PropertyBool", "KeepWidths", "Automatic",
+                            "Walls of a hole or slot facing each other across the void stay as "
+                            "many cells apart as in the part; false: least-squares plane offsets "
+                            "(Mesh Part sets the one whose mesh is better)")
+            obj.KeepWidths = True
+        if not hasattr(obj, "TetApexes"):
+            obj.addProperty("App::PropertyBool", "TetApexes", "Automatic",
+                            "The blocks under the cap of an apex (cone or pyramid tip) become "
+                            "tets and prisms; false: they stay hexes (Mesh Part sets the one "
+                            "whose mesh is better)")
+            obj.TetApexes = True
         for name, prop_type, doc, _ in _AUTO_RESULTS:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Automatic", doc)
@@ -143,7 +156,9 @@ def build_automatic(obj):
     labels = segmentation.get_label_surface(seg)
     with api.Progress("Automatic polycube " + obj.Label, 1) as bar:
         result = bar.run("automatic polycube", core.autopolycube, labels,
-                         size=float(obj.Size.Value), level=int(obj.Level))
+                         size=float(obj.Size.Value), level=int(obj.Level),
+                         keep_widths=bool(getattr(obj, "KeepWidths", True)),
+                         collapse_apexes=bool(getattr(obj, "TetApexes", True)))
         bar.step("{} blocks of {:g}".format(len(result.structure.types),
                                             float(result.info.get("cell", 0.0))))
     store_structure(obj, result.structure)

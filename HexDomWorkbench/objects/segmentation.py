@@ -3,9 +3,9 @@ HexDom Surface.
 
 Method picks where labels and patches come from:
 
-- "Automatic": core.segment (CVT on normals; on a CAD surface planar faces keep one label) when
-  the build has it, with the user edits as fixed labels; patches are the connected regions of
-  equal label.
+- "Automatic": core.segment (CVT on normals, edge term weighted by EdgeWeight; on a CAD surface
+  planar faces keep one label) when the build has it, with the user edits as fixed labels;
+  patches are the connected regions of equal label.
 - "Surface patches": the Surface's own face ids (CAD faces, or part ids of a .k file) are the
   patches; each patch gets the label of the axis nearest its mean normal.
 - "Patch file": patches read from PatchFile (.k shells, part id = patch id, as the paper's patch
@@ -27,6 +27,7 @@ from . import tessellation
 
 TYPE = "HexDom::Segmentation"
 METHODS = ["Automatic", "Surface patches", "Patch file"]
+DEFAULT_EDGE_WEIGHT = 0.1  # core.segment's; documents older than EdgeWeight get it on restore
 
 _RESULTS = [
     ("TriangleCount", "App::PropertyInteger", "Number of triangles"),
@@ -50,6 +51,12 @@ class Segmentation(BaseHexDomObject):
                             "Automatic (core), Surface patches (its face ids) or Patch file")
             obj.Method = METHODS
             obj.Method = "Automatic"
+        if not hasattr(obj, "EdgeWeight"):
+            obj.addProperty("App::PropertyFloat", "EdgeWeight", "Segmentation",
+                            "Method Automatic: weight lambda of the CVT's edge term (larger: "
+                            "smoother boundaries, fewer small charts); Mesh Part sets the one "
+                            "its automatic polycube took (0.1, else 1, 0.3 or 3)")
+            obj.EdgeWeight = DEFAULT_EDGE_WEIGHT
         if not hasattr(obj, "PatchFile"):
             obj.addProperty("App::PropertyFile", "PatchFile", "Segmentation",
                             "Segmented surface (.k shells, part id = patch id) for Method "
@@ -117,7 +124,11 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
     if method == "Automatic":
         edits = np.c_[np.asarray(triangles, np.int32), np.asarray(new_labels, np.int32)]
         run = run or (lambda text, fn, *args, **kw: fn(*args, **kw))
-        result = run("segment", api.segment, surface, edits=edits if len(edits) else None)
+        weight = float(getattr(obj, "EdgeWeight", DEFAULT_EDGE_WEIGHT))
+        if not weight >= 0:
+            raise ValueError("{}: EdgeWeight must be 0 or more".format(obj.Label))
+        result = run("segment", api.segment, surface, edits=edits if len(edits) else None,
+                     edge_weight=weight)
         return result.labels, result.patch, False
     if method == "Surface patches":
         patches = np.asarray(surface.patch, np.int32)
