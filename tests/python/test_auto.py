@@ -378,3 +378,72 @@ def test_core_mesh_part_tessellates_first(core):
     run = core.mesh_part(part)
     assert list(run.seconds) == ["tessellate", *core.MESH_STAGES, "snap"]
     assert run.quality["total_volume"] == pytest.approx(core._hexdom.cad_volume(part), rel=0.01)
+
+
+def test_core_mesh_surface_reports_the_candidate_hexdom_mesh_kept(core, paper_mesh):
+    """mount1 defeats autopolycube at lambda 0.1 and its level-1 mesh misses the volume target, so
+    `hexdom mesh` segments again with lambda 1 and measures the polycube without the widths of
+    holes too. _hexdom's mesh_surface reports the candidate it kept (what the workbench's Mesh
+    Part sets on its objects) the same as the CLI's "kept:" line, with the CLI's mesh."""
+    raw, _, report, stderr = paper_mesh("mount1")
+    run = core.mesh_surface(core.read_surface(raw))
+    kept = [line for line in stderr.splitlines() if line.startswith("hexdom: kept: ")]
+    assert kept == ["hexdom: kept: " + run.choice]
+    assert run.edge_weight == pytest.approx(1.0) and run.level == 1
+    assert run.keep_widths and run.collapse_apexes
+    assert run.choice == "level 1, lambda 1, widths of holes kept"
+    assert run.mesh.count(core.HEX) == report["hex"]["count"]
+    assert run.quality["hex"]["sj_min"] == pytest.approx(report["hex"]["sj_min"], abs=1e-9)
+    # The kept options rebuild its polycube from its labels; the other width option is another one
+    # (mount1's holes: 36 walls moved apart, 71 blocks; 68 with the least-squares offsets).
+    h = run.polycube.info["cell"] / 2
+    same = core.autopolycube(run.labels, size=h, level=run.level, keep_widths=run.keep_widths)
+    other = core.autopolycube(run.labels, size=h, level=run.level, keep_widths=not run.keep_widths)
+    assert same.info["blocks"] == run.polycube.info["blocks"] and same.info["widened"] > 0
+    assert other.info["widened"] == 0 and other.info["blocks"] != same.info["blocks"]
+
+
+def _pyramid(core, side=4.0, height=3.0, n=16):
+    """Closed surface of a square pyramid (base [0, side]^2, apex above its centre), every face
+    split into n x n triangles, labels from normals: built here with numpy."""
+    a, b, c, d = (np.array(p, float) for p in ((0, 0, 0), (side, 0, 0), (side, side, 0), (0, side, 0)))
+    top = np.array([side / 2, side / 2, height])
+    V, F = [], []
+    for p, q, r in ((a, d, c), (a, c, b), (a, b, top), (b, c, top), (c, d, top), (d, a, top)):
+        ids = {}
+        for i in range(n + 1):
+            for j in range(n + 1 - i):
+                ids[i, j] = len(V)
+                V.append(p + (q - p) * i / n + (r - p) * j / n)
+        for i in range(n):
+            for j in range(n - i):
+                F.append([ids[i, j], ids[i + 1, j], ids[i, j + 1]])
+                if i + j + 1 < n:
+                    F.append([ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]])
+    V = np.array(V)
+    _, first, inverse = np.unique(np.round(V, 9), axis=0, return_index=True, return_inverse=True)
+    V, F = V[first], inverse.reshape(-1)[np.array(F)].astype(np.int32)
+    nrm = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    axis = np.abs(nrm).argmax(1)
+    label = (2 * axis + 1 + (nrm[np.arange(len(F)), axis] < 0)).astype(np.int32)
+    return core.Surface(V, F, label)
+
+
+def test_core_autopolycube_takes_the_candidates_options(core):
+    """autopolycube's collapse_apexes and keep_widths reach the core: the pyramid's tip gets tet
+    blocks (two per block under the cap) by default and hex blocks only without the collapse; on a
+    pyramid, which has no hole, keep_widths moves no wall (widened 0) either way."""
+    s = _pyramid(core)
+    assert len(s.F) == 6 * 16 * 16
+    tets = core.autopolycube(s, size=0.25, level=1)
+    hexes = core.autopolycube(s, size=0.25, level=1, collapse_apexes=False)
+    assert tets.info["apexes"] == hexes.info["apexes"] == 1
+    assert tets.info["apexes_collapsed"] == 1 and hexes.info["apexes_collapsed"] == 0
+    assert tets.structure.count(core.TET) > 0 and tets.structure.count(core.TET) % 2 == 0
+    assert hexes.structure.count(core.HEX) == len(hexes.structure.types)
+    lsq = core.autopolycube(s, size=0.25, level=1, keep_widths=False)
+    assert tets.info["widened"] == lsq.info["widened"] == 0
+    assert len(lsq.structure.types) == len(tets.structure.types)
+    run = core.mesh_surface(s, size=0.25, level=1)
+    assert run.collapse_apexes == (run.mesh.count(core.TET) > 0)
+    assert run.choice.endswith("tet blocks at apexes" if run.collapse_apexes else "hex blocks under the caps")
