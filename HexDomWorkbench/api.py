@@ -706,11 +706,11 @@ def choose_mesh_part(objs, run=None):
     it). The rest is left to recompute, which rebuilds the kept candidate with ordinary, editable
     objects. The core call runs in a Progress (a worker thread under the GUI), or in ``run``
     when given. Returns the core.MeshRun of the choice (its mesh before snapping to the CAD
-    faces), or None when the Surface or the choice failed: the objects keep their settings, and
-    recomputing them reports the stage at fault."""
+    faces), or None when the Surface or the choice failed or was cancelled: the objects keep their
+    settings, and recomputing them reports the stage at fault (or cancelled)."""
     surface_obj, seg, poly = objs["surface"], objs["segmentation"], objs["polycube"]
     from .objects import tessellation
-    surface_obj.recompute()
+    surface_obj.Document.recompute([surface_obj])  # (obj.recompute() would leave it touched)
     state = surface_obj.State
     if "Invalid" in state or "Error" in state or not len(surface_obj.Triangles):
         return None
@@ -723,8 +723,10 @@ def choose_mesh_part(objs, run=None):
                                       improve=bool(getattr(mesh, "Improve", True)),
                                       allow_inverted=True)
             bar.step(chosen.choice)
-    except Cancelled:
-        raise
+    except Cancelled as e:  # the recompute then marks the next stage cancelled, keeping the objects
+        import FreeCAD
+        FreeCAD.Console.PrintLog("HexDom: {}: {}\n".format(poly.Label, e))
+        return None
     except core.Error as e:
         import FreeCAD
         FreeCAD.Console.PrintLog("HexDom: {}: no choice of polycube ({}); recomputing with the "
