@@ -62,7 +62,8 @@ def test_mesh_part_i11o_is_the_mesh_hexdom_mesh_chooses(doc):
     mesh, poly, seg = objs["mesh"], objs["polycube"], objs["segmentation"]
     # `hexdom mesh`'s path in _hexdom on the same shape, at the same element size.
     run = core.mesh_part(shape.exportBrepToString(), size=size, allow_inverted=True)
-    sj_cli, _ = oracles.verdict_metrics(oracles.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types))
+    grid = oracles.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types)
+    sj_cli, _ = oracles.verdict_metrics(grid)
     types_cli = np.asarray(run.mesh.types)
     sj, types, g = _verdict_of(mesh)
     FreeCAD.Console.PrintMessage(
@@ -89,7 +90,8 @@ def test_mesh_part_i11o_is_the_mesh_hexdom_mesh_chooses(doc):
 
 def _pyramid_part(doc):
     V = FreeCAD.Vector
-    base = Part.Face(Part.makePolygon([V(0, 0, 0), V(40, 0, 0), V(40, 40, 0), V(0, 40, 0), V(0, 0, 0)]))
+    base = Part.Face(Part.makePolygon([V(0, 0, 0), V(40, 0, 0), V(40, 40, 0), V(0, 40, 0),
+                                       V(0, 0, 0)]))
     sides = [Part.Face(Part.makePolygon([a, b, V(20, 20, 30), a]))
              for a, b in [(V(0, 0, 0), V(40, 0, 0)), (V(40, 0, 0), V(40, 40, 0)),
                           (V(40, 40, 0), V(0, 40, 0)), (V(0, 40, 0), V(0, 0, 0))]]
