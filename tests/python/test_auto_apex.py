@@ -11,7 +11,7 @@ Measured (level 1 unless said), after session 6: cone R25 x 40 1,408 hex, worst 
 base rim keeps 0.6 of its length in cells, PolycubeMapOptions::keep_lengths; before: 876 hex, 0.461,
 -1.16% with 24 nodes around the rim); pyramid 40 x 40 x 30 635 hex (level 0), worst 0.325, -0.00%;
 cone R10 x 60: 320 hex, worst 0.240, -10.0% (the polycube is one cell across); tetrahedron (slanted
-face split from its corners, split_oblique_faces): 6,804 hex, worst 0.234, -0.00% (before: no mesh).
+face split from its corners, split_oblique_faces): 704 hex, worst 0.450, -0.00% (before: no mesh).
 With tet blocks at the tip the pyramid gave 288 hex (0.204) / 984 prisms (0.212) / 144 tets (0.222):
 `hexdom mesh` keeps the hex blocks under the caps, whose worst cell is better."""
 
@@ -45,10 +45,6 @@ _NOT_MESHED = {}
 _SJ_DEFECT = {
     "sharp_cone": "issue 9: worst hex SJ 0.240 (320 hexes, hex blocks under the cap kept; with tet blocks the "
                   "prisms of the column under the tip reach 0.031 and the tets 0.11): the polycube is one cell across",
-    "tetrahedron": "issue 9: worst hex SJ 0.234 (6,804 hexes, pillowed; 0.197 at level 0): the slanted face is split "
-                   "into +X / +Y / +Z quads from its corners (split_oblique_faces), so the polycube is a cube whose "
-                   "corner at the face's centre is flat (three hexes at 120 degrees) and whose corners at the edges' "
-                   "midpoints lie on a straight edge",
 }
 _VOLUME_DEFECT = {
     "sharp_cone": "issue 9: volume -10.0% of the B-rep: the polycube of the cone R10 x 60 is one cell across (2 x 2 "

@@ -301,7 +301,14 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
       for (size_t i = 1; i < c.vertices.size(); ++i) arc += (s.V.row(c.vertices[i]) - s.V.row(c.vertices[i - 1])).norm();
       const double chord = (s.V.row(q) - s.V.row(p)).norm();
       const double span = std::abs(m.offset(gq) - m.offset(gp));
-      if (span < opt.keep_lengths * chord) {
+      // Only a curved curve loses volume between its nodes (a pyramid's straight base edges do not).
+      double sag = 0;
+      const Eigen::Vector3d P = s.V.row(p), Q = s.V.row(q);
+      for (int v : c.vertices) {
+        const Eigen::Vector3d x = s.V.row(v);
+        sag = std::max(sag, (x - P).cross(Q - P).norm() / std::max(chord, 1e-300));
+      }
+      if (span < opt.keep_lengths * chord && sag >= 0.05 * chord) {
         gap = std::max(1, static_cast<int>(std::floor(opt.length_share * std::min(arc, 1.25 * chord) / h + 0.5)));
         if (gap > static_cast<int>(std::floor(span / h + 0.5)) + 1) ++m.lengthened;
         else gap = 1;

@@ -27,8 +27,9 @@ struct PolycubeMapOptions {
   /// along their mean normal, rounded, at least 1), not only one: the least-squares offsets of curved
   /// charts shrink a round hole to a narrower tunnel than its width, a tilted one most.
   bool keep_widths = true;
-  /// A chart boundary curve whose span between the least-squares plane offsets of its end corners
-  /// is below this share of its input chord gets at least length_share times its input length in
+  /// A curved chart boundary curve (off its chord by 5% of it somewhere: a straight edge loses no
+  /// volume between its nodes) whose span between the least-squares plane offsets of its end
+  /// corners is below this share of its input chord gets at least length_share times its input length in
   /// cells (the arc, at most 1.25 times the chord, rounded), when that is 2 or more cells beyond the
   /// span: the side charts of a cone get planes that compromise between the base and the tip, and
   /// the base rim too few nodes (cone R25 x 40: 24 around it, -1.16% volume; with this 32, -0.66%).
