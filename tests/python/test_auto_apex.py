@@ -1,7 +1,8 @@
 """Parts whose faces are triangles (issue 9, "use prism / tet blocks where a chart is triangular"):
-a cone, a sharper cone, a square pyramid and a tetrahedron, made with FreeCAD Part, written as
-STEP and meshed by `hexdom mesh` at the default size (diagonal / 30). Before the apex caps all of
-them failed in autopolycube (the label repair merged every chart around the tip and gave up).
+a cone, a sharper cone, a square pyramid, a tetrahedron and a box with a corner cut off, made with
+FreeCAD Part, written as STEP and meshed by `hexdom mesh` at the default size (diagonal / 30).
+Before the apex caps the first four failed in autopolycube (the label repair merged every chart
+around the tip and gave up); before split_oblique_faces the tetrahedron still did.
 
 Oracles nobody here wrote: FreeCAD's Part (the B-rep volume, distToShape of the boundary nodes to
 the faces), VTK (the mesh read back, vtkDataSetSurfaceFilter for the boundary nodes, Verdict's
@@ -11,7 +12,8 @@ Measured (level 1 unless said), after session 6: cone R25 x 40 1,408 hex, worst 
 base rim keeps 0.6 of its length in cells, PolycubeMapOptions::keep_lengths; before: 876 hex, 0.461,
 -1.16% with 24 nodes around the rim); pyramid 40 x 40 x 30 635 hex (level 0), worst 0.325, -0.00%;
 cone R10 x 60: 320 hex, worst 0.240, -10.0% (the polycube is one cell across); tetrahedron (slanted
-face split from its corners, split_oblique_faces): 704 hex, worst 0.450, -0.00% (before: no mesh).
+face split from its corners, split_oblique_faces): 704 hex, worst 0.450, -0.00% (before: no mesh);
+box 40 with a corner cut off at 15 (its triangular face split the same way): 4,088 hex, worst 0.500.
 With tet blocks at the tip the pyramid gave 288 hex (0.204) / 984 prisms (0.212) / 144 tets (0.222):
 `hexdom mesh` keeps the hex blocks under the caps, whose worst cell is better."""
 
@@ -32,7 +34,13 @@ def _shapes(FreeCAD, Part):
                           (V(0, 40, 0), V(0, 0, 0))]]
     p = [V(0, 0, 0), V(40, 0, 0), V(0, 40, 0), V(0, 0, 40)]
     tetra = [Part.Face(Part.makePolygon([p[a], p[b], p[c], p[a]])) for a, b, c in [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]]
+    # A box with a corner cut off by a plane of normal (1, 1, 1): its triangular face lies between
+    # +X, +Y and +Z faces (a notch's corner once split), where the tetrahedron's lies between -X, -Y, -Z.
+    q = [V(40, 40, 40), V(25, 40, 40), V(40, 25, 40), V(40, 40, 25)]
+    corner = [Part.Face(Part.makePolygon([q[a], q[b], q[c], q[a]]))
+              for a, b, c in [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)]]
     return {
+        "cut_corner": Part.makeBox(40, 40, 40).cut(Part.Solid(Part.Shell(corner))),
         "cone": Part.makeCone(25, 0, 40),
         "sharp_cone": Part.makeCone(10, 0, 60),
         "pyramid": Part.Solid(Part.Shell([base] + sides)),
@@ -40,7 +48,7 @@ def _shapes(FreeCAD, Part):
     }
 
 
-SHAPES = ["cone", "sharp_cone", "pyramid", "tetrahedron"]
+SHAPES = ["cone", "sharp_cone", "pyramid", "tetrahedron", "cut_corner"]
 _NOT_MESHED = {}
 _SJ_DEFECT = {
     "sharp_cone": "issue 9: worst hex SJ 0.240 (320 hexes, hex blocks under the cap kept; with tet blocks the "

@@ -16,7 +16,8 @@
 // and its squares join the neighbouring patches (collapse_slivers.h). At an apex where only side
 // charts meet (the tip of a cone or a pyramid) the 1-ring becomes a cap chart of the missing axis
 // and the blocks under the cap collapse to the apex: tets at the tip, prisms in the columns below
-// (apex_blocks.h).
+// (apex_blocks.h). A flat triangular face whose normal is far from every axis (a tetrahedron's
+// slanted face) is cut into three quads from its corners first (split_oblique_faces.h).
 #pragma once
 
 #include <Eigen/Core>
