@@ -13,6 +13,7 @@
 #include "hexdom/autopolycube/polycube_map.h"
 #include "hexdom/autopolycube/repair_labels.h"
 #include "hexdom/autopolycube/split_chords.h"
+#include "hexdom/autopolycube/split_oblique_faces.h"
 #include "hexdom/quality/metrics.h"
 #include "hexdom/segmentation/axis_labels.h"
 
@@ -61,10 +62,17 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       s = opt.repaired->labels;
       r.relabelled = opt.repaired->relabelled;
       r.chords = opt.repaired->chords;
+      r.oblique_faces = opt.repaired->oblique_faces;
       apexes = opt.repaired->apexes;
       log("labels: the repair of an earlier run (" + std::to_string(r.relabelled) + " charts relabelled, " +
           std::to_string(r.chords) + " chords split)");
     } else {
+      if (attempt == 0 && opt.oblique_faces) {
+        ObliqueFaceOptions oo;
+        oo.min_side = 2 * size;
+        oo.log = opt.log;
+        r.oblique_faces = static_cast<int>(split_oblique_faces(s, oo).size());
+      }
       if (attempt == 0 && opt.apex_caps) {
         ApexCapOptions ao;
         ao.log = opt.log;
@@ -91,7 +99,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       r.chords += chords;
     }
     r.labels = s;
-    if (attempt == 0) r.repaired = RepairedLabels{s, r.relabelled, r.chords, apexes};
+    if (attempt == 0) r.repaired = RepairedLabels{s, r.relabelled, r.chords, apexes, r.oblique_faces};
     r.apexes = static_cast<int>(apexes.size());
     const ChartGraph g = chart_graph(s);
     const PlaneGroups pg = plane_groups(s, g);

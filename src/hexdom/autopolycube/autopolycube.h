@@ -16,7 +16,8 @@
 // and its squares join the neighbouring patches (collapse_slivers.h). At an apex where only side
 // charts meet (the tip of a cone or a pyramid) the 1-ring becomes a cap chart of the missing axis
 // and the blocks under the cap collapse to the apex: tets at the tip, prisms in the columns below
-// (apex_blocks.h).
+// (apex_blocks.h). A flat triangular face whose normal is far from every axis (a tetrahedron's
+// slanted face) is cut into three quads from its corners first (split_oblique_faces.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -36,6 +37,7 @@ struct RepairedLabels {
   mesh::SurfaceMesh labels;  ///< chords split, no chart problem left
   int relabelled = 0, chords = 0;
   std::vector<Eigen::Vector3d> apexes;  ///< apex vertices given a cap (add_apex_caps), by position
+  int oblique_faces = 0;                ///< oblique triangular faces split from their corners
 };
 
 struct AutoPolycubeOptions {
@@ -60,6 +62,11 @@ struct AutoPolycubeOptions {
   /// and prisms (apex_blocks.h); false: labels as given (the label repair then merges the charts
   /// around the apex).
   bool apex_caps = true;
+  /// Flat triangular faces whose normal is far from every axis and whose neighbours carry one label
+  /// of each axis (a tetrahedron's slanted face) are cut into three quads from their corners, each
+  /// labelled with the axis its neighbours lack (split_oblique_faces.h), before the label repair;
+  /// false: labels as given (the repair then merges such a face with a neighbour or gives up).
+  bool oblique_faces = true;
   /// The cap's radius in element sizes (ApexCapOptions::radius = this * size). Measured on a cone
   /// R 25 x 40 (level 1, tet blocks): 1-ring cap -2.60% volume (a polycube 2 cells across), 0.5:
   /// -2.57%, 1: -1.18% (3 cells across), 1.5: -1.26%; the sharp cone R 10 x 60 stays 1 cell across.
@@ -87,6 +94,7 @@ struct AutoPolycube {
   int charts = 0, relabelled = 0, chords = 0, planes = 0, pushed = 0;
   int squares = 0, blocks = 0, boundary_vertices = 0, interior_vertices = 0;
   int slivers = 0, prism_blocks = 0, tet_blocks = 0;  ///< strips collapsed; blocks that are not hexes
+  int oblique_faces = 0;                 ///< oblique triangular faces split from their corners
   int apexes = 0, apexes_collapsed = 0;  ///< apex caps added; of them, collapsed to tet / prism blocks
   /// PolycubeMap::widened over every map this run made; 0: keep_widths changed nothing.
   int widened = 0;

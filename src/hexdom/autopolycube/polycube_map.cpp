@@ -291,8 +291,32 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
     // local order is what keeps the chart's polygon from folding).
     double d = s.V(q, ax) - s.V(p, ax);
     if (d == 0) d = m.offset(gq) - m.offset(gp);
-    order[ax].push_back(d >= 0 ? Order{gp, gq} : Order{gq, gp});
+    // A curve the least-squares offsets shrank to a fraction of its input chord (a cone's base rim:
+    // the side charts' planes are a compromise between the base and the tip) gets more cells (see
+    // keep_lengths), or its nodes are too few and the mesh cuts the round boundary between them (a
+    // loss of (2 pi / n)^2 / 6 of a circle's area with n nodes around it).
+    int gap = 1;
+    if (opt.keep_lengths > 0) {
+      double arc = 0;
+      for (size_t i = 1; i < c.vertices.size(); ++i) arc += (s.V.row(c.vertices[i]) - s.V.row(c.vertices[i - 1])).norm();
+      const double chord = (s.V.row(q) - s.V.row(p)).norm();
+      const double span = std::abs(m.offset(gq) - m.offset(gp));
+      // Only a curved curve loses volume between its nodes (a pyramid's straight base edges do not).
+      double sag = 0;
+      const Eigen::Vector3d P = s.V.row(p), Q = s.V.row(q);
+      for (int v : c.vertices) {
+        const Eigen::Vector3d x = s.V.row(v);
+        sag = std::max(sag, (x - P).cross(Q - P).norm() / std::max(chord, 1e-300));
+      }
+      if (span < opt.keep_lengths * chord && sag >= 0.05 * chord) {
+        gap = std::max(1, static_cast<int>(std::floor(opt.length_share * std::min(arc, 1.25 * chord) / h + 0.5)));
+        if (gap > static_cast<int>(std::floor(span / h + 0.5)) + 1) ++m.lengthened;
+        else gap = 1;
+      }
+    }
+    order[ax].push_back(d >= 0 ? Order{gp, gq, gap} : Order{gq, gp, gap});
   }
+  if (m.lengthened > 0) log("polycube map: " + std::to_string(m.lengthened) + " curves shrunk by the least-squares offsets keep the cells of their input length");
   for (const auto& sep : opt.separate) {
     if (sep.first < 0 || sep.second < 0 || sep.first >= ng || sep.second >= ng || pg.axis[sep.first] != pg.axis[sep.second])
       throw GeometryError("polycube map: plane groups " + std::to_string(sep.first) + " and " + std::to_string(sep.second) +
