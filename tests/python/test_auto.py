@@ -176,7 +176,8 @@ _RAW_VOLUME = {
                  "(110 blocks, worst block SJ -0.41; 2 in 107 blocks without the widths of holes) "
                  "(401 hex of one cell each; worst hex SJ 0.023, mean 0.81, edge ratio up to 9.1 (2061 before the "
                  "structure's untangling kept its edges); the 24-chart polycube left by 21 relabellings is a box "
-                 "around the rounded head, whose thin ring above the bore holds the worst cells)",
+                 "around the rounded head, whose thin ring above the bore holds the worst cells; the +X chart joins the head's outer face and the "
+                 "web, so the -Y ledge between them has zero width in X and is relabelled whole: see the notes, round 6)",
 }
 
 
