@@ -172,12 +172,12 @@ def test_autopolycube_errors_write_nothing(tmp_path):
 _RAW_VOLUME = {
     "mount1": "issue 9: volume -1.09% at size = diagonal / 30 (chords of the 16-facet ear holes and rounds; "
               "worst hex SJ 0.363, mean 0.77, 1392 hex)",
-    "rockerarm": "issue 9: volume -6.11% at size = diagonal / 30, level 0 after level 1 left 1 inverted cell "
-                 "(110 blocks, worst block SJ -0.41; 2 in 107 blocks without the widths of holes) "
-                 "(401 hex of one cell each; worst hex SJ 0.023, mean 0.81, edge ratio up to 9.1 (2061 before the "
-                 "structure's untangling kept its edges); the 24-chart polycube left by 21 relabellings is a box "
-                 "around the rounded head, whose thin ring above the bore holds the worst cells; the +X chart joins the head's outer face and the "
-                 "web, so the -Y ledge between them has zero width in X and is relabelled whole: see the notes, round 6)",
+    "rockerarm": "issue 9: volume -3.70% at size = diagonal / 30, level 0 after level 1 left inverted cells "
+                 "(1331 hex at level 0, worst hex SJ 0.173, mean 0.76, edge ratio up to 61; -6.11% and 0.023 before "
+                 "the curved curves kept cells of their length, s6-tet); the 24-chart polycube left by 21 "
+                 "relabellings is a box around the rounded head: the +X chart joins the head's outer face and the "
+                 "web, so the -Y ledge between them has zero width in X and is relabelled whole: see the notes, "
+                 "round 6)",
 }
 
 
