@@ -721,7 +721,9 @@ def choose_mesh_part(objs, run=None):
             chosen = (run or bar.run)("choose the polycube", core.mesh_surface, surface,
                                       size=float(poly.Size.Value), level=int(poly.Level),
                                       improve=bool(getattr(mesh, "Improve", True)),
-                                      allow_inverted=True)
+                                      allow_inverted=True,
+                                      # the objects segment in the model's axes (no frame property yet)
+                                      align=False)
             bar.step(chosen.choice)
     except Cancelled as e:  # the recompute then marks the next stage cancelled, keeping the objects
         import FreeCAD

@@ -153,22 +153,31 @@ class Segmentation(Surface):
 
 def segment(surface, edge_weight=0.1, respect_faces=None, manual=None, classical_sweeps=50,
             edge_sweeps=200, min_moves=3, max_drift=10.0, ring=2, planar_angle=1.0,
-            face_majority=0.9):
+            face_majority=0.9, frame=None):
     """Polycube segmentation of a closed Surface: CVT of the triangle normals with the generators
     +-X, +-Y, +-Z, classical energy first, then the edge-weighted energy (lambda = edge_weight)
     that removes zig-zag boundaries. respect_faces: None = when surface.patch has more than one id
     (CAD faces, e.g. from tessellation): planar faces keep one label and boundaries follow CAD edges
     where they can. manual: a path to the original's override file ("triangle label", 0-based) or
-    (triangle, label 1..6) rows. Returns a Segmentation."""
+    (triangle, label 1..6) rows. frame: a 3 x 3 rotation (cube_frame()["rotation"], MeshRun.frame):
+    the labels name its axes. Returns a Segmentation."""
     if isinstance(manual, (str, os.PathLike)):
         manual = read_manual_labels(manual)
     if manual is not None:
         manual = np.asarray(manual, np.int32).reshape(-1, 2)
     r = _hexdom.segment(surface.V, surface.F, surface.patch, edge_weight, classical_sweeps,
                         edge_sweeps, min_moves, max_drift, ring, respect_faces, planar_angle,
-                        face_majority, manual)
+                        face_majority, manual,
+                        None if frame is None else np.asarray(frame, np.float64).reshape(3, 3))
     info = {k: v for k, v in r.items() if k not in ("label", "classical", "generators")}
     return Segmentation(surface.V, surface.F, r["label"], r["classical"], r["generators"], info)
+
+
+def cube_frame(surface, min_gain=0.02):
+    """The frame the triangle normals of a Surface fit best (a part lying at an angle): a dict with
+    rotation (3 x 3, x_frame = rotation @ x), fit, fit_identity, angle (degrees), axis and turned
+    (False: the model's own axes fit within min_gain, rotation is the identity)."""
+    return _hexdom.cube_frame(surface.V, surface.F, float(min_gain))
 
 
 def read_manual_labels(path):
@@ -340,7 +349,7 @@ def _auto_polycube(r):
 
 def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
                  max_relabel_area=0.03, untangle_rounds=50, keep_widths=True,
-                 collapse_apexes=True):
+                 collapse_apexes=True, frame=None):
     """Polycube structure of a labelled Surface (patch = label 1..6 per triangle, e.g. from
     segment()) with no manual step: blocks are the grid cells of spacing h = size * 2^level
     (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto (prism
@@ -350,12 +359,14 @@ def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
     walls of a hole keep their distance in cells (False: least-squares plane offsets);
     collapse_apexes: the blocks under an apex cap become tets and prisms (False: hexes). The two
     are the candidates mesh_surface chooses between (MeshRun.keep_widths, .collapse_apexes).
-    Raises GeometryError naming the charts when the labelling cannot be repaired. Returns an
-    AutoPolycube."""
+    frame: the rotation the labels refer to (segment's frame); every result is in the input's
+    coordinates. Raises GeometryError naming the charts when the labelling cannot be repaired.
+    Returns an AutoPolycube."""
     return _auto_polycube(_hexdom.autopolycube(labels.V, labels.F, labels.patch, float(size),
                                                int(level), int(max_relabels), int(max_attempts),
                                                float(max_relabel_area), int(untangle_rounds),
-                                               bool(keep_widths), bool(collapse_apexes)))
+                                               bool(keep_widths), bool(collapse_apexes),
+                                               None if frame is None else np.asarray(frame, np.float64).reshape(3, 3)))
 
 
 MESH_STAGES = ("segment", "autopolycube", "generate", "improve")
@@ -371,7 +382,8 @@ class MeshRun:
     ``edge_weight`` that autopolycube took (the next of 1, 0.3, 3 when the asked one defeated
     it). ``keep_widths`` and ``collapse_apexes`` are the polycube options of the candidate kept
     (see autopolycube): segment(edge_weight=edge_weight) then autopolycube(level=level,
-    keep_widths=..., collapse_apexes=...) rebuild its polycube; ``choice`` says it in words.
+    keep_widths=..., collapse_apexes=..., both with frame=frame["rotation"]) rebuild its polycube;
+    ``frame`` is the cube_frame dict of the axes the labels refer to; ``choice`` says it in words.
     ``snap`` holds snap_to_brep's report for mesh_part (None otherwise)."""
 
     mesh: Mesh
@@ -387,6 +399,7 @@ class MeshRun:
     keep_widths: bool = True
     collapse_apexes: bool = True
     choice: str = ""
+    frame: dict = None
 
     @property
     def inverted(self):
@@ -394,18 +407,20 @@ class MeshRun:
 
 
 def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
-                 improve=True, allow_inverted=False):
+                 improve=True, allow_inverted=False, align=True):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
-    of size * 2^level. Raises MeshingError when inverted cells remain, unless allow_inverted (then
+    of size * 2^level. align: segment and build the polycube in the frame the faces fit
+    (cube_frame; a part lying at an angle), False: in the model's axes. Raises MeshingError when inverted cells remain, unless allow_inverted (then
     MeshRun.inverted counts them). Returns a MeshRun."""
     r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
-                             float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve))
+                             float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve),
+                             bool(align))
     run = MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
                   _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
                   dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
                   keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
-                  choice=str(r["choice"]))
+                  choice=str(r["choice"]), frame=dict(r["frame"]))
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
                            "(allow_inverted=True returns the mesh anyway)")

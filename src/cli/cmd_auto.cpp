@@ -133,10 +133,13 @@ void add_mesh(CLI::App& app) {
       "polycube with the least-squares plane offsets is meshed too, and the better kept: fewer inverted\n"
       "cells, then a worst SJ >= 0.3, then a volume within 1%, then the higher worst SJ. When inverted\n"
       "cells remain at level s > 0 or the worst SJ is below 0.3, the same again at level s - 1 (a grid of\n"
-      "half the spacing), the better kept by the same order.");
+      "half the spacing), the better kept by the same order.\n"
+      "A part lying at an angle (its faces fit axes turned from the model's by more than the model's own\n"
+      "fit them) is segmented and given its polycube in that turned frame; the mesh is in the model's\n"
+      "coordinates (--no-align: the model's axes).");
   struct Args {
     std::string in, out, report;
-    bool keep = false, allow_inverted = false, no_improve = false, no_snap = false;
+    bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
     int solid = 0;
     autopolycube::MeshSurfaceOptions opt;
   };
@@ -155,6 +158,9 @@ void add_mesh(CLI::App& app) {
                   "0: hex blocks only")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--no-improve", a->no_improve, "skip the improvement stage");
+  cmd->add_flag("--no-align", a->no_align,
+                "segment and build the polycube in the model's axes, not in the frame the faces fit best (a part "
+                "lying at an angle is turned into that frame and back; the default size is that frame's box diagonal / 30)");
   cmd->add_flag("--no-snap", a->no_snap, "CAD files: leave the boundary nodes on the tessellation instead of the B-rep");
   cmd->add_option("--solid", a->solid, "CAD files: which solid (1-based); default: the first")->check(CLI::PositiveNumber);
   cmd->add_flag("--keep", a->keep,
@@ -167,6 +173,7 @@ void add_mesh(CLI::App& app) {
     io::format_of(a->out);
     a->opt.log = print_log;
     a->opt.improve = !a->no_improve;
+    a->opt.align = !a->no_align;
     const std::string stem = stem_of(a->out);
     mesh::SurfaceMesh surface;
     cad::Shape shape;
@@ -180,6 +187,7 @@ void add_mesh(CLI::App& app) {
       shape = cad::read_shape(a->in, ro);
       cad::TessellateOptions to;
       to.size = a->opt.size;
+      to.size_in_frame = !a->no_align;
       cad::TessellateStats st;
       surface = cad::tessellate(shape, to, &st);
       reference_volume = st.brep_volume;

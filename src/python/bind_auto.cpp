@@ -58,7 +58,8 @@ const char* kAutopolycubeDoc =
     "added), apexes_collapsed (of them, under tet and prism blocks), widened (walls keep_widths moved). keep_widths:\n"
     "walls of a hole facing each other across the void keep their distance in cells (False: least-squares plane\n"
     "offsets); collapse_apexes: the blocks under an apex cap collapse to tets and prisms (False: they stay hexes).\n"
-    "Raises GeometryError naming the charts when the labelling cannot be repaired.";
+    "frame: a 3 x 3 rotation (cube_frame's): the labels refer to its axes, x_frame = frame @ x; every result\n"
+    "is in the input's coordinates. Raises GeometryError naming the charts when the labelling cannot be repaired.";
 
 const char* kMeshSurfaceDoc =
     "Hex mesh of a closed surface with no manual step: segment (CVT, edge_weight) -> autopolycube (size,\n"
@@ -68,17 +69,20 @@ const char* kMeshSurfaceDoc =
     "polycube (the autopolycube dict), quality and generated_quality (hex, prism, tet, total_volume),\n"
     "seconds (segment, autopolycube, generate, improve), and the options of the candidate kept: level,\n"
     "edge_weight, keep_widths, collapse_apexes (segment with edge_weight, then autopolycube with level,\n"
-    "keep_widths and collapse_apexes rebuild its polycube) and choice (them as one line of text). Inverted\n"
-    "cells left are reported, not raised.";
+    "keep_widths and collapse_apexes rebuild its polycube), frame (the cube_frame dict the labels and the\n"
+    "polycube refer to: segment and autopolycube with its rotation rebuild them; align=False: the model's\n"
+    "axes) and choice (them as one line of text). Inverted cells left are reported, not raised.";
 
 }  // namespace
 
 void bind_auto(py::module_& m) {
   m.def("autopolycube",
         [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
-           double max_relabel_area, int untangle_rounds, bool keep_widths, bool collapse_apexes) {
+           double max_relabel_area, int untangle_rounds, bool keep_widths, bool collapse_apexes,
+           std::optional<Eigen::Matrix3d> frame) {
           mesh::SurfaceMesh s = surface_of(V, F, label);
           autopolycube::AutoPolycubeOptions opt;
+          if (frame) opt.frame = checked_rotation(*frame);
           opt.size = size;
           opt.level = level;
           opt.max_relabels = max_relabels;
@@ -97,13 +101,14 @@ void bind_auto(py::module_& m) {
         py::arg("V"), py::arg("F"), py::arg("label"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("max_relabels") = 200, py::arg("max_attempts") = 20, py::arg("max_relabel_area") = 0.03,
         py::arg("untangle_rounds") = 50, py::arg("keep_widths") = true, py::arg("collapse_apexes") = true,
-        kAutopolycubeDoc);
+        py::arg("frame") = py::none(), kAutopolycubeDoc);
 
   m.def("mesh_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve) {
+           int relax_sweeps, bool improve, bool align) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           autopolycube::MeshSurfaceOptions opt;
+          opt.align = align;
           opt.size = size;
           opt.level = level;
           opt.segment.edge_weight = edge_weight;
@@ -128,11 +133,12 @@ void bind_auto(py::module_& m) {
           d["keep_widths"] = r.keep_widths;
           d["collapse_apexes"] = r.collapse_apexes;
           d["choice"] = autopolycube::choice_text(r);
+          d["frame"] = frame_dict(r.frame);
           return d;
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
-        py::arg("improve") = true, kMeshSurfaceDoc);
+        py::arg("improve") = true, py::arg("align") = true, kMeshSurfaceDoc);
 }
 
 }  // namespace hexdom::python

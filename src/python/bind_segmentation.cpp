@@ -9,6 +9,7 @@
 #include "convert.h"
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/segmentation/check_patches.h"
+#include "hexdom/segmentation/cube_frame.h"
 #include "hexdom/segmentation/edit_patches.h"
 #include "hexdom/segmentation/polycube_boundary.h"
 #include "hexdom/segmentation/read_manual_labels.h"
@@ -50,7 +51,8 @@ const char* kSegmentDoc =
     "term counts only neighbours in the same face. manual: (triangle, label 1..6) rows, fixed.\n"
     "Returns a dict: label (#F, 1..6), classical (#F, after the first pass), generators (6 x 3), and\n"
     "classical_sweeps, edge_sweeps, classical_moves, edge_moves, respected_faces, faces, planar_faces,\n"
-    "uniform_faces. Raises GeometryError for an open, non-manifold or degenerate surface.";
+    "uniform_faces. frame: a 3 x 3 rotation (cube_frame's): the labels name its axes (x_frame = frame @ x).\n"
+    "Raises GeometryError for an open, non-manifold or degenerate surface.";
 
 }  // namespace
 
@@ -58,9 +60,11 @@ void bind_segmentation(py::module_& m) {
   m.def("segment",
         [](const RefV& V, const RefF& F, const RefI& patch, double edge_weight, int classical_sweeps, int edge_sweeps,
            int min_moves, double max_drift, int ring, std::optional<bool> respect_faces, double planar_angle,
-           double face_majority, std::optional<Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>> manual) {
+           double face_majority, std::optional<Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>> manual,
+           std::optional<Eigen::Matrix3d> frame) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           segmentation::CvtOptions opt;
+          if (frame) opt.frame = checked_rotation(*frame);
           opt.edge_weight = edge_weight;
           opt.classical_sweeps = classical_sweeps;
           opt.edge_sweeps = edge_sweeps;
@@ -96,7 +100,26 @@ void bind_segmentation(py::module_& m) {
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("edge_weight") = 0.1, py::arg("classical_sweeps") = 50,
         py::arg("edge_sweeps") = 200, py::arg("min_moves") = 3, py::arg("max_drift") = 10.0, py::arg("ring") = 2,
         py::arg("respect_faces") = py::none(), py::arg("planar_angle") = 1.0, py::arg("face_majority") = 0.9,
-        py::arg("manual") = py::none(), kSegmentDoc);
+        py::arg("manual") = py::none(), py::arg("frame") = py::none(), kSegmentDoc);
+
+  m.def("cube_frame",
+        [](const RefV& V, const RefF& F, double min_gain) {
+          mesh::SurfaceMesh s = surface_of(V, F, Eigen::VectorXi::Zero(F.rows()));
+          segmentation::CubeFrameOptions opt;
+          opt.min_gain = min_gain;
+          segmentation::CubeFrame r;
+          {
+            py::gil_scoped_release nogil;
+            r = segmentation::cube_frame(s, opt);
+          }
+          return frame_dict(r);
+        },
+        py::arg("V"), py::arg("F"), py::arg("min_gain") = 0.02,
+        "The frame the triangle normals fit best: the rotation maximising the area-weighted mean of\n"
+        "sum_k (R n)_k^4 (1 for a box square to the axes), or the identity when it gains no more than\n"
+        "min_gain over the model's own axes. Returns a dict: rotation (3 x 3, x_frame = rotation @ x), fit,\n"
+        "fit_identity, angle (degrees), axis, turned (bool). segment(frame=...) and autopolycube(frame=...)\n"
+        "take the rotation.");
 
   m.def("read_manual_labels",
         [](const std::string& path) {

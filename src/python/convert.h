@@ -14,6 +14,7 @@
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/quality/report.h"
+#include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::python {
 
@@ -72,6 +73,24 @@ inline py::dict report_dict(const quality::QualityReport& r) {
   d["prism"] = type_dict(r.prism);
   d["tet"] = type_dict(r.tet);
   d["total_volume"] = r.total_volume;
+  return d;
+}
+
+/// A frame given from Python: InputError unless it is a rotation (orthonormal to 1e-9, determinant +1).
+inline Eigen::Matrix3d checked_rotation(const Eigen::Matrix3d& R) {
+  if (!R.allFinite() || (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() <= 0)
+    throw InputError("frame must be a 3 x 3 rotation matrix (orthonormal, determinant +1)");
+  return R;
+}
+
+inline py::dict frame_dict(const segmentation::CubeFrame& f) {
+  py::dict d;
+  d["rotation"] = Eigen::MatrixXd(f.rotation);
+  d["fit"] = f.fit;
+  d["fit_identity"] = f.fit_identity;
+  d["angle"] = f.angle_degrees;
+  d["axis"] = std::vector<double>{f.axis.x(), f.axis.y(), f.axis.z()};
+  d["turned"] = f.turned();
   return d;
 }
 

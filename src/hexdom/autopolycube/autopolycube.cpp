@@ -16,6 +16,7 @@
 #include "hexdom/autopolycube/split_oblique_faces.h"
 #include "hexdom/quality/metrics.h"
 #include "hexdom/segmentation/axis_labels.h"
+#include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::autopolycube {
 
@@ -40,7 +41,34 @@ mesh::SurfaceMesh drop_unused_vertices(const mesh::SurfaceMesh& s) {
 }
 }  // namespace
 
+namespace {
+
+// autopolycube of the labels turned into opt.frame; the results turned back (x = frame^T x_frame).
+AutoPolycube autopolycube_in_frame(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
+  AutoPolycubeOptions in_frame = opt;
+  in_frame.frame.setIdentity();
+  if (in_frame.size <= 0 && labels.V.rows())  // the default size of the input, not of the turned box
+    in_frame.size = (labels.V.colwise().maxCoeff() - labels.V.colwise().minCoeff()).norm() / 30.0;
+  AutoPolycube local;
+  AutoPolycube& r = progress ? *progress : local;
+  auto back = [&] {
+    for (Eigen::MatrixXd* V : {&r.structure.V, &r.patches.V, &r.labels.V, &r.polycube.V})
+      if (V->rows()) *V = *V * opt.frame;
+  };
+  try {
+    autopolycube(segmentation::rotated(labels, opt.frame), in_frame, &r);
+  } catch (...) {
+    back();
+    throw;
+  }
+  back();
+  return r;
+}
+
+}  // namespace
+
 AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
+  if (opt.frame != Eigen::Matrix3d::Identity()) return autopolycube_in_frame(labels, opt, progress);
   segmentation::check_surface(labels);
   if (opt.level < 0 || opt.level > 6) throw GeometryError("level " + std::to_string(opt.level) + " is outside 0..6");
   if (opt.size < 0) throw GeometryError("the element size must not be negative");

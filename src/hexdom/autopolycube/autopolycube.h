@@ -77,6 +77,10 @@ struct AutoPolycubeOptions {
   /// When given: the result of the first repair of these same labels at this same size (see
   /// RepairedLabels; AutoPolycube::repaired of an earlier run), used instead of repairing again.
   const RepairedLabels* repaired = nullptr;
+  /// The frame the labels refer to (CvtOptions::frame): the polycube is built from the surface
+  /// turned into it (x_frame = frame * x) and the structure, patches, labels and polycube come back
+  /// in the input's coordinates; `repaired` stays in the frame. The identity: the model's axes.
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
   LogCallback log;
 };
 

@@ -11,6 +11,11 @@
 namespace hexdom::autopolycube {
 
 namespace {
+// "turned by 45.0 degrees about (0, 0, 1)"
+std::string frame_text(const segmentation::CubeFrame& f) {
+  return fmt("turned by %.1f degrees about ", f.angle_degrees) + fmt("(%.3f, %.3f, %.3f)", f.axis.x(), f.axis.y(), f.axis.z());
+}
+
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -88,9 +93,9 @@ bool try_candidate(const mesh::SurfaceMesh& surface, MeshSurfaceOptions other, c
   return false;
 }
 
-}  // namespace
 
-MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
+// mesh_surface in the frame opt.segment.frame / opt.polycube.frame: the candidates.
+MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
   r = MeshSurfaceRun{};
@@ -136,7 +141,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
     finer.polycube.repaired = &r.polycube.repaired;  // the repair does not depend on the level
     MeshSurfaceRun again;
     try {
-      mesh_surface(surface, finer, &again);
+      mesh_candidates(surface, finer, &again);
     } catch (const Error& e) {
       say(std::string("level ") + std::to_string(finer.level) + ": " + e.what() + "; keeping level " + std::to_string(opt.level));
       return progress ? *progress : local;
@@ -151,6 +156,45 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
     }
   }
   return progress ? *progress : local;
+}
+
+}  // namespace
+
+MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
+  MeshSurfaceOptions o = opt;
+  segmentation::CubeFrame frame;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  if (opt.segment.frame != I || opt.polycube.frame != I) {
+    if (opt.segment.frame != opt.polycube.frame)
+      throw GeometryError("mesh_surface: the segmentation's frame and the polycube's differ");
+    frame.rotation = opt.segment.frame;
+    const Eigen::AngleAxisd aa(frame.rotation);
+    frame.angle_degrees = aa.angle() * 180.0 / M_PI;
+    frame.axis = aa.axis();
+  } else if (opt.align && surface.F.rows() > 0) {
+    frame = segmentation::cube_frame(surface, opt.frame_options);
+    if (frame.turned()) {
+      o.segment.frame = o.polycube.frame = frame.rotation;
+      if (o.size <= 0) {  // the default size of the part square to the frame, as if it had been modelled so
+        const mesh::SurfaceMesh turned = segmentation::rotated(surface, frame.rotation);
+        o.size = (turned.V.colwise().maxCoeff() - turned.V.colwise().minCoeff()).norm() / 30.0;
+      }
+      if (opt.log)
+        opt.log(0, "frame: the faces fit the axes " + frame_text(frame) +
+                       fmt(" (fit %.3f, %.3f in the model's axes): segmenting and building the polycube in that frame",
+                           frame.fit, frame.fit_identity));
+    }
+  }
+  MeshSurfaceRun local;
+  MeshSurfaceRun& r = progress ? *progress : local;
+  try {
+    mesh_candidates(surface, o, &r);
+  } catch (...) {
+    r.frame = frame;
+    throw;
+  }
+  r.frame = frame;
+  return r;
 }
 
 namespace {
@@ -283,6 +327,7 @@ std::string choice_text(const MeshSurfaceRun& r) {
   std::string s = fmt("level %.0f, lambda %g, ", r.level, r.edge_weight) +
                   (r.keep_widths ? "widths of holes kept" : "least-squares plane offsets");
   if (r.polycube.apexes > 0) s += r.collapse_apexes ? ", tet blocks at apexes" : ", hex blocks under the caps";
+  if (r.frame.turned()) s += ", frame: the axes " + frame_text(r.frame);
   return s;
 }
 

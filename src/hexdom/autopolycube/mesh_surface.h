@@ -10,6 +10,7 @@
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/quality/improve.h"
 #include "hexdom/quality/report.h"
+#include "hexdom/segmentation/cube_frame.h"
 #include "hexdom/segmentation/segment_cvt.h"
 
 namespace hexdom::autopolycube {
@@ -49,6 +50,12 @@ struct MeshSurfaceOptions {
   bool try_hex_apexes = true;
   double target_sj = 0.3;       ///< worst scaled Jacobian the candidates are measured against
   double target_volume = 0.01;  ///< relative volume error the candidates are measured against
+  /// Segment and build the polycube in the frame the faces fit best (cube_frame), so that a part
+  /// lying at an angle is meshed as if square to the axes; a part the model's axes already fit (by
+  /// `frame_options.min_gain`) is left as it is. Ignored when `segment.frame` or `polycube.frame`
+  /// is given (not the identity): that frame is used. Every output is in the input's coordinates.
+  bool align = true;
+  segmentation::CubeFrameOptions frame_options;
   /// One line per stage (level 0); with `verbose` also the stages' own messages.
   LogCallback log;
   bool verbose = false;
@@ -68,6 +75,9 @@ struct MeshSurfaceRun {
   /// edge_weight, AutoPolycubeOptions::keep_widths, collapse_apexes, level).
   bool keep_widths = true;
   bool collapse_apexes = true;
+  /// The frame the labels and the polycube refer to (see align); rotation the identity when the
+  /// part was meshed in its own axes.
+  segmentation::CubeFrame frame;
   int segmentations = 0;      ///< segmentations tried
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
 };

@@ -30,6 +30,8 @@
 
 #include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/cad/shape_impl.h"
+#include "hexdom/common/format.h"
+#include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::cad {
 
@@ -318,7 +320,30 @@ TessellateStats tessellation_stats(const Shape& shape, const mesh::SurfaceMesh& 
   return st;
 }
 
+namespace {
+mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& options, TessellateStats* stats);
+}  // namespace
+
 mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& options, TessellateStats* stats) {
+  mesh::SurfaceMesh s = tessellate_once(shape, options, stats);
+  if (options.size > 0 || !options.size_in_frame || s.F.rows() == 0) return s;
+  const segmentation::CubeFrame frame = segmentation::cube_frame(s);
+  if (!frame.turned()) return s;
+  const mesh::SurfaceMesh turned = segmentation::rotated(s, frame.rotation);
+  TessellateOptions again = options;
+  again.size = (turned.V.colwise().maxCoeff() - turned.V.colwise().minCoeff()).norm() / 30.0;
+  if (options.log)
+    options.log(0, fmt("tessellate: the faces fit axes turned by %.1f degrees; size from the box square to them: %g",
+                       frame.angle_degrees, again.size));
+  const double first = stats ? stats->seconds : 0.0;
+  s = tessellate_once(shape, again, stats);
+  if (stats) stats->seconds += first;
+  return s;
+}
+
+namespace {
+
+mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& options, TessellateStats* stats) {
   const auto t_start = std::chrono::steady_clock::now();
   const Shape::Impl& impl = shape.impl();
   const std::string& source = impl.source;
@@ -535,5 +560,7 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
     throw MeshingError(source + ": OpenCASCADE failed while tessellating: " + occt_message(e));
   }
 }
+
+}  // namespace
 
 }  // namespace hexdom::cad

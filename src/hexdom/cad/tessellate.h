@@ -19,8 +19,11 @@
 namespace hexdom::cad {
 
 struct TessellateOptions {
-  /// Target edge length; 0 means the bounding-box diagonal / 30.
+  /// Target edge length; 0 means the bounding-box diagonal / 30, the box square to the frame the
+  /// faces fit (segmentation::cube_frame) when `size_in_frame` and that frame is turned: a part lying
+  /// at an angle gets the size it would get square to the axes.
   double size = 0;
+  bool size_in_frame = true;
   /// Largest distance between a triangle and the surface it approximates (limits the edge length
   /// on curved faces to about sqrt(8 R deflection)); 0 means size / 50.
   double deflection = 0;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hexdom/segmentation/axis_labels.h"
+#include "hexdom/segmentation/cube_frame.h"
 #include "hexdom/segmentation/triangle_adjacency.h"
 
 namespace hexdom::segmentation {
@@ -46,6 +47,11 @@ void build_rings(const Eigen::MatrixXi& TT, int ring, const std::vector<int>* fa
 
 Segmentation segment_cvt(const mesh::SurfaceMesh& s, const CvtOptions& opt) {
   check_surface(s);
+  if (opt.frame != Eigen::Matrix3d::Identity()) {  // the labels of the turned surface are the frame's
+    CvtOptions in_frame = opt;
+    in_frame.frame.setIdentity();
+    return segment_cvt(rotated(s, opt.frame), in_frame);
+  }
   if (opt.ring < 1) throw GeometryError("segmentation: ring must be at least 1, got " + std::to_string(opt.ring));
   if (!(opt.edge_weight >= 0)) throw GeometryError("segmentation: lambda must be >= 0");
   const int nf = static_cast<int>(s.F.rows());

@@ -37,6 +37,9 @@ struct CvtOptions {
   double face_majority = 0.9;   ///< area share above which a curved face takes one label
   /// Fixed labels: (0-based triangle, label 1..6), e.g. from read_manual_labels; never moved.
   std::vector<std::pair<int, int>> manual;
+  /// The frame the labels refer to: +X is the frame's first axis, x_frame = frame * x (a rotation;
+  /// see cube_frame). The identity: the model's own axes. Generators are given in the frame.
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
   LogCallback log;
 };
 

@@ -52,6 +52,7 @@ TEST(MeshSurface, ATiltedHoleKeepsItsWidthAndTheVolume) {
   const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   const double reference = test::enclosed_volume(s);
   autopolycube::MeshSurfaceOptions o;
+  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
   const auto r = autopolycube::mesh_surface(s, o);
@@ -74,6 +75,7 @@ TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
   const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   const double reference = test::enclosed_volume(s);
   autopolycube::MeshSurfaceOptions o;
+  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it
@@ -96,6 +98,7 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
       for (int k = 0; k < 2; ++k) cells.push_back({i, j, k});
   const auto s = test::cell_surface(cells, 2);
   autopolycube::MeshSurfaceOptions o;
+  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 0.5;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it
@@ -118,6 +121,7 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
 TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
   auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   autopolycube::MeshSurfaceOptions o;
+  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it: both candidates are meshed
@@ -142,6 +146,7 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
 TEST(MeshSurface, TheKeptCandidatesOptionsAreReportedAndRebuildItsMesh) {
   const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   autopolycube::MeshSurfaceOptions o;
+  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it: both candidates are measured
@@ -194,4 +199,55 @@ TEST(MeshSurface, TheKeptApexBlocksAreReportedAndRebuildTheMesh) {
   const auto h = autopolycube::mesh_surface(s, hex);
   EXPECT_FALSE(h.collapse_apexes);
   EXPECT_EQ(h.mesh.count(mesh::CellType::Tet), 0);
+}
+
+// A part lying at an angle is segmented and given its polycube in the frame its faces fit: turned
+// 30 degrees about (1, 2, 3), an L of boxes gives the mesh it gives square to the axes (the same
+// cells, the worst SJ within what the improvement's axis-bound searches make of the turn), in the
+// turned part's own coordinates; in the model's axes (align off) its faces lean between labels and
+// the labelling needs repairs.
+TEST(MeshSurface, APartLyingAtAnAngleIsMeshedInTheFrameItsFacesFit) {
+  const auto square = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {2, 0, 1}}, 3);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const auto turned = segmentation::rotated(square, R);
+  autopolycube::MeshSurfaceOptions o;
+  o.size = 0.25;
+  const auto a = autopolycube::mesh_surface(square, o);
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const auto b = autopolycube::mesh_surface(turned, o);
+  EXPECT_FALSE(a.frame.turned());
+  ASSERT_TRUE(b.frame.turned());
+  EXPECT_NE(log.find("frame: the faces fit the axes turned by 30.0 degrees"), std::string::npos) << log;
+  EXPECT_NE(autopolycube::choice_text(b).find("frame: the axes turned by 30.0 degrees"), std::string::npos);
+  for (auto t : {mesh::CellType::Hex, mesh::CellType::Wedge, mesh::CellType::Tet}) EXPECT_EQ(a.mesh.count(t), b.mesh.count(t));
+  EXPECT_EQ(b.polycube.relabelled, 0);
+  EXPECT_EQ(b.quality.hex.inverted, 0);
+  EXPECT_NEAR(b.quality.hex.sj_min, a.quality.hex.sj_min, 0.05);
+  EXPECT_NEAR(b.quality.total_volume, a.quality.total_volume, 1e-6 * a.quality.total_volume);
+  // Everything is in the turned part's coordinates, and the polycube is square to the frame: its
+  // faces' normals, turned back by R, lie along the axes.
+  auto square_share = [&](const mesh::SurfaceMesh& p) {
+    double on = 0, all = 0;
+    for (int f = 0; f < p.F.rows(); ++f) {
+      const Eigen::RowVector3d x0 = p.V.row(p.F(f, 0)), x1 = p.V.row(p.F(f, 1)), x2 = p.V.row(p.F(f, 2));
+      const Eigen::RowVector3d n = (x1 - x0).cross(x2 - x0) * R;
+      all += n.norm();
+      if (n.norm() > 0 && n.cwiseAbs().maxCoeff() > 0.999 * n.norm()) on += n.norm();
+    }
+    return all > 0 ? on / all : 0.0;
+  };
+  EXPECT_GT(square_share(b.polycube.polycube), 0.999);
+  const Eigen::RowVector3d lo = turned.V.colwise().minCoeff(), hi = turned.V.colwise().maxCoeff();
+  for (int v = 0; v < b.mesh.V.rows(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(b.mesh.V(v, k), lo(k) - 1e-6);
+      EXPECT_LE(b.mesh.V(v, k), hi(k) + 1e-6);
+    }
+  // In the model's axes the polycube is square to those instead.
+  o.align = false;
+  o.log = nullptr;
+  const auto c = autopolycube::mesh_surface(turned, o);
+  EXPECT_FALSE(c.frame.turned());
+  EXPECT_LT(square_share(c.polycube.polycube), 0.5);
 }
