@@ -662,9 +662,20 @@ class MeshPartError(RecomputeError):
 
 
 def part_size(shape):
-    """Target element size mesh_part uses when given 0: the bounding-box diagonal / 30 (as
-    `hexdom mesh`)."""
-    return shape.BoundBox.DiagonalLength / 30.0
+    """Target element size mesh_part uses when given 0, as `hexdom mesh`: the bounding-box
+    diagonal / 30; for a part lying at an angle (its faces fit axes turned from the model's,
+    core.cube_frame on a first tessellation), the diagonal of the box square to those axes / 30."""
+    size = shape.BoundBox.DiagonalLength / 30.0
+    if has_cad() and _core_has("cube_frame"):
+        try:
+            V, F, face = core.tessellate_brep(shape.exportBrepToString(), size=size)
+        except core.Error:
+            return size
+        frame = core.cube_frame(core.Surface(V, F, face))
+        if frame["turned"]:
+            W = np.asarray(V) @ np.asarray(frame["rotation"]).T
+            size = float(np.linalg.norm(W.max(axis=0) - W.min(axis=0))) / 30.0
+    return size
 
 
 def make_mesh_part(doc, part, size=0.0, level=1, improve=True):
@@ -703,7 +714,7 @@ def choose_mesh_part(objs, run=None):
     segmentation edge weight, widths of holes, tet or hex blocks at apexes and the level drop
     chosen by measuring the meshes) and sets what it kept on the objects:
     Segmentation.EdgeWeight, Polycube.KeepWidths, .TetApexes and .Level (the Mesh's Level follows
-    it). The rest is left to recompute, which rebuilds the kept candidate with ordinary, editable
+    it), after putting the frame the faces fit (core.cube_frame) on Segmentation.Frame. The rest is left to recompute, which rebuilds the kept candidate with ordinary, editable
     objects. The core call runs in a Progress (a worker thread under the GUI), or in ``run``
     when given. Returns the core.MeshRun of the choice (its mesh before snapping to the CAD
     faces), or None when the Surface or the choice failed or was cancelled: the objects keep their
@@ -716,14 +727,19 @@ def choose_mesh_part(objs, run=None):
         return None
     surface = tessellation.get_surface(surface_obj)
     mesh = objs.get("mesh")
+    # The frame the faces fit goes on the Segmentation first, and the choice is made in the frame
+    # the objects will read back from it (a Rotation property: the same matrix to the last bit).
+    from .objects import segmentation
+    if hasattr(seg, "Frame"):
+        fit = core.cube_frame(surface)
+        segmentation.set_frame(seg, fit["rotation"] if fit["turned"] else None)
+    frame = segmentation.frame_matrix(seg)
     try:
         with Progress("Choosing the polycube of " + surface_obj.Label, 1) as bar:
             chosen = (run or bar.run)("choose the polycube", core.mesh_surface, surface,
                                       size=float(poly.Size.Value), level=int(poly.Level),
                                       improve=bool(getattr(mesh, "Improve", True)),
-                                      allow_inverted=True,
-                                      # the objects segment in the model's axes (no frame property yet)
-                                      align=False)
+                                      allow_inverted=True, align=False, frame=frame)
             bar.step(chosen.choice)
     except Cancelled as e:  # the recompute then marks the next stage cancelled, keeping the objects
         import FreeCAD

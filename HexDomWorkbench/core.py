@@ -407,15 +407,17 @@ class MeshRun:
 
 
 def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
-                 improve=True, allow_inverted=False, align=True):
+                 improve=True, allow_inverted=False, align=True, frame=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
-    (cube_frame; a part lying at an angle), False: in the model's axes. Raises MeshingError when inverted cells remain, unless allow_inverted (then
-    MeshRun.inverted counts them). Returns a MeshRun."""
+    (cube_frame; a part lying at an angle), False: in the model's axes; frame: in the frame of this
+    3 x 3 rotation (x_frame = frame @ x) instead. Raises MeshingError when inverted cells remain,
+    unless allow_inverted (then MeshRun.inverted counts them). Returns a MeshRun."""
     r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
                              float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve),
-                             bool(align))
+                             bool(align),
+                             None if frame is None else np.asarray(frame, np.float64).reshape(3, 3))
     run = MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
                   _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
                   dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),

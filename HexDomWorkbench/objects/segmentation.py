@@ -57,6 +57,12 @@ class Segmentation(BaseHexDomObject):
                             "smoother boundaries, fewer small charts); Mesh Part sets the one "
                             "its automatic polycube took (0.1, else 1, 0.3 or 3)")
             obj.EdgeWeight = DEFAULT_EDGE_WEIGHT
+        if not hasattr(obj, "Frame"):
+            obj.addProperty("App::PropertyRotation", "Frame", "Segmentation",
+                            "Method Automatic: the axes the labels name, turned from the model's "
+                            "by this rotation (x in the frame = Frame applied to x); the identity: "
+                            "the model's axes. Mesh Part sets the frame the faces fit best "
+                            "(core.cube_frame) for a part lying at an angle")
         if not hasattr(obj, "PatchFile"):
             obj.addProperty("App::PropertyFile", "PatchFile", "Segmentation",
                             "Segmented surface (.k shells, part id = patch id) for Method "
@@ -128,7 +134,7 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
         if not weight >= 0:
             raise ValueError("{}: EdgeWeight must be 0 or more".format(obj.Label))
         result = run("segment", api.segment, surface, edits=edits if len(edits) else None,
-                     edge_weight=weight)
+                     edge_weight=weight, frame=frame_matrix(obj))
         return result.labels, result.patch, False
     if method == "Surface patches":
         patches = np.asarray(surface.patch, np.int32)
@@ -180,6 +186,29 @@ def apply_patch_edits(obj, patches, issues):
     patches = np.array(patches, np.int32)
     patches[triangles[ok]] = ids[ok]
     return patches
+
+
+def frame_matrix(obj):
+    """The 3 x 3 rotation of the Segmentation's Frame (x_frame = R @ x), or None for the model's
+    axes (the identity, or a document older than Frame)."""
+    frame = getattr(obj, "Frame", None)
+    if frame is None:
+        return None
+    m = frame.toMatrix()
+    R = np.array([[m.A11, m.A12, m.A13], [m.A21, m.A22, m.A23], [m.A31, m.A32, m.A33]], float)
+    return None if np.allclose(R, np.eye(3), rtol=0, atol=1e-12) else R
+
+
+def set_frame(obj, R):
+    """Sets the Segmentation's Frame to the 3 x 3 rotation R (None: the model's axes); touches
+    it only when the frame changes."""
+    import FreeCAD
+    R = np.eye(3) if R is None else np.asarray(R, float).reshape(3, 3)
+    current = frame_matrix(obj)
+    if np.allclose(np.eye(3) if current is None else current, R, rtol=0, atol=1e-12):
+        return
+    obj.Frame = FreeCAD.Rotation(FreeCAD.Matrix(R[0, 0], R[0, 1], R[0, 2], 0, R[1, 0], R[1, 1], R[1, 2], 0,
+                                                R[2, 0], R[2, 1], R[2, 2], 0, 0, 0, 0, 1))
 
 
 def is_segmentation(obj):

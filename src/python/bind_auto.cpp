@@ -71,7 +71,7 @@ const char* kMeshSurfaceDoc =
     "edge_weight, keep_widths, collapse_apexes (segment with edge_weight, then autopolycube with level,\n"
     "keep_widths and collapse_apexes rebuild its polycube), frame (the cube_frame dict the labels and the\n"
     "polycube refer to: segment and autopolycube with its rotation rebuild them; align=False: the model's\n"
-    "axes) and choice (them as one line of text). Inverted cells left are reported, not raised.";
+    "axes; frame: this 3 x 3 rotation instead of the one the faces fit) and choice (them as one line of text). Inverted cells left are reported, not raised.";
 
 }  // namespace
 
@@ -105,10 +105,11 @@ void bind_auto(py::module_& m) {
 
   m.def("mesh_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve, bool align) {
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           autopolycube::MeshSurfaceOptions opt;
           opt.align = align;
+          if (frame) opt.segment.frame = opt.polycube.frame = checked_rotation(*frame);
           opt.size = size;
           opt.level = level;
           opt.segment.edge_weight = edge_weight;
@@ -138,7 +139,7 @@ void bind_auto(py::module_& m) {
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
-        py::arg("improve") = true, py::arg("align") = true, kMeshSurfaceDoc);
+        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), kMeshSurfaceDoc);
 }
 
 }  // namespace hexdom::python

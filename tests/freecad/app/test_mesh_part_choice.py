@@ -42,7 +42,7 @@ import hexdom_oracles as oracles  # noqa: E402  (VTK's Verdict)
 from test_mesh_part_prisms import _verdict_of  # noqa: E402  (FemMesh -> VTK grid, SMDS orders)
 
 I11O = os.path.join(fc_testdata.data_root(), "cad", "i11o_s1.step")
-NEW_PROPERTIES = {"segmentation": ["EdgeWeight"], "polycube": ["KeepWidths", "TetApexes"]}
+NEW_PROPERTIES = {"segmentation": ["EdgeWeight", "Frame"], "polycube": ["KeepWidths", "TetApexes"]}
 
 
 def _counts(types):
@@ -142,6 +142,7 @@ def test_an_old_document_without_the_new_properties_recomputes_as_before(doc, tm
         o = {k: doc2.getObject(n) for k, n in names.items()}
         assert o["segmentation"].EdgeWeight == pytest.approx(segmentation.DEFAULT_EDGE_WEIGHT)
         assert o["polycube"].KeepWidths and o["polycube"].TetApexes
+        assert segmentation.frame_matrix(o["segmentation"]) is None  # the model's axes
         assert isinstance(o["polycube"].Proxy, polycube.Polycube)
         for obj in o.values():
             obj.touch()
