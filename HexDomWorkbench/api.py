@@ -714,10 +714,14 @@ def choose_mesh_part(objs, run=None):
     segmentation edge weight, widths of holes, tet or hex blocks at apexes and the level drop
     chosen by measuring the meshes) and sets what it kept on the objects:
     Segmentation.EdgeWeight, Polycube.KeepWidths, .TetApexes and .Level (the Mesh's Level follows
-    it), after putting the frame the faces fit (core.cube_frame) on Segmentation.Frame. The rest is left to recompute, which rebuilds the kept candidate with ordinary, editable
-    objects. The core call runs in a Progress (a worker thread under the GUI), or in ``run``
-    when given. Returns the core.MeshRun of the choice (its mesh before snapping to the CAD
-    faces), or None when the Surface or the choice failed or was cancelled: the objects keep their
+    it), after putting the frame the faces fit (core.cube_frame) on Segmentation.Frame; when the
+    mesh came from another tessellation (core.mesh_part tessellates again when the first one's
+    labelling defeats the polycube or cells stay inverted after the snap), the Surface's Size and
+    Deflection become that tessellation's. The rest is left to recompute, which rebuilds the kept
+    candidate with ordinary, editable objects. The core call runs in a Progress (a worker thread
+    under the GUI), or in ``run`` when given. Returns the core.MeshRun of the choice (core.mesh_part's,
+    snapped; with a build without it, core.mesh_surface's on the Surface's triangles, not snapped),
+    or None when the Surface or the choice failed or was cancelled: the objects keep their
     settings, and recomputing them reports the stage at fault (or cancelled)."""
     surface_obj, seg, poly = objs["surface"], objs["segmentation"], objs["polycube"]
     from .objects import tessellation
@@ -734,12 +738,25 @@ def choose_mesh_part(objs, run=None):
         fit = core.cube_frame(surface)
         segmentation.set_frame(seg, fit["rotation"] if fit["turned"] else None)
     frame = segmentation.frame_matrix(seg)
+    # `hexdom mesh`'s own path on the Surface's shape when the build has it (the snap, and another
+    # tessellation when this one's labelling defeats the polycube or cells stay inverted after the
+    # snap); else the choice among the candidates on the Surface's triangles.
+    source = getattr(surface_obj, "Source", None)
+    shape = getattr(source, "Shape", None)
+    whole = (hasattr(getattr(core, "_hexdom", None), "mesh_cad") and has_cad()
+             and shape is not None and not shape.isNull()
+             and abs(float(surface_obj.Size.Value) - float(poly.Size.Value)) <= 1e-12 * float(poly.Size.Value))
+    options = dict(size=float(poly.Size.Value), level=int(poly.Level),
+                   improve=bool(getattr(mesh, "Improve", True)), allow_inverted=True, align=False,
+                   frame=frame)
     try:
         with Progress("Choosing the polycube of " + surface_obj.Label, 1) as bar:
-            chosen = (run or bar.run)("choose the polycube", core.mesh_surface, surface,
-                                      size=float(poly.Size.Value), level=int(poly.Level),
-                                      improve=bool(getattr(mesh, "Improve", True)),
-                                      allow_inverted=True, align=False, frame=frame)
+            if whole:
+                chosen = (run or bar.run)("choose the polycube", core.mesh_part,
+                                          shape.exportBrepToString(), **options)
+            else:
+                chosen = (run or bar.run)("choose the polycube", core.mesh_surface, surface,
+                                          **options)
             bar.step(chosen.choice)
     except Cancelled as e:  # the recompute then marks the next stage cancelled, keeping the objects
         import FreeCAD
@@ -750,6 +767,10 @@ def choose_mesh_part(objs, run=None):
         FreeCAD.Console.PrintLog("HexDom: {}: no choice of polycube ({}); recomputing with the "
                                  "defaults\n".format(poly.Label, e))
         return None
+    factor = getattr(chosen, "tessellation_factor", 1.0)
+    if factor != 1.0:  # the mesh is the one of another tessellation: the Surface makes that one
+        surface_obj.Size = factor * float(surface_obj.Size.Value)
+        surface_obj.Deflection = factor * float(surface_obj.Deflection.Value)
     if seg.EdgeWeight != chosen.edge_weight:
         seg.EdgeWeight = chosen.edge_weight
     for name, value in (("KeepWidths", chosen.keep_widths),

@@ -400,10 +400,22 @@ class MeshRun:
     collapse_apexes: bool = True
     choice: str = ""
     frame: dict = None
+    surface: Surface = None  # mesh_part: the tessellation meshed
+    tessellations: int = 1   # mesh_part: tessellations made (see cad::MeshCadOptions::retessellate)
+    tessellation_factor: float = 1.0  # mesh_part: the kept one's triangle size over the first's
 
     @property
     def inverted(self):
         return sum(self.quality[t]["inverted"] for t in ("hex", "prism", "tet"))
+
+
+def _mesh_run(r):
+    """A MeshRun of the dict _hexdom.mesh_surface returns."""
+    return MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
+                   _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
+                   dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
+                   keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
+                   choice=str(r["choice"]), frame=dict(r["frame"]))
 
 
 def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
@@ -418,11 +430,7 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
                              float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve),
                              bool(align),
                              None if frame is None else np.asarray(frame, np.float64).reshape(3, 3))
-    run = MeshRun(Mesh(*r["mesh"]), Mesh(*r["generated"]), Surface(*r["labels"]),
-                  _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
-                  dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
-                  keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
-                  choice=str(r["choice"]), frame=dict(r["frame"]))
+    run = _mesh_run(r)
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
                            "(allow_inverted=True returns the mesh anyway)")
@@ -430,30 +438,36 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
 
 
 def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=False, **kwargs):
-    """mesh_surface of a CAD part: a .step/.stp, .iges/.igs or .brep/.brp path or BREP text
-    (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD faces kept
-    for the segmentation), then meshed, then (``snap``) its boundary nodes are put exactly on the
-    B-rep with snap_to_brep. Needs _hexdom built with OpenCASCADE. Keyword arguments go to
-    mesh_surface. Raises MeshingError when inverted cells remain, unless allow_inverted. Returns a
-    MeshRun whose seconds include "tessellate" and "snap", and whose ``snap`` is the snap report."""
-    import time
+    """The CAD part's mesh as `hexdom mesh` makes it: a .step/.stp, .iges/.igs or .brep/.brp path or
+    BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
+    faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
+    max_relabels, relax_sweeps, improve, align, frame go to it), and (``snap``) its boundary nodes
+    are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
+    or cells stay inverted, the B-rep is tessellated again with slightly smaller or larger triangles
+    (``tessellations``, ``tessellation_factor`` of the MeshRun). Needs _hexdom built with
+    OpenCASCADE. Raises MeshingError when inverted cells remain, unless allow_inverted. Returns a
+    MeshRun whose seconds include "tessellate" and "snap", ``snap`` the snap report and
+    ``surface`` the tessellation meshed."""
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
-    t0 = time.perf_counter()
+    unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame"}
+    if unknown:
+        raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
-    if "CASCADE Topology" in text:
-        V, F, face = _hexdom.tessellate_brep(text, size=float(size), solid=int(solid))
-    else:
-        V, F, face = _hexdom.tessellate_file(text, size=float(size), solid=int(solid))
-    seconds = time.perf_counter() - t0
-    surface = Surface(V, F, face)
-    run = mesh_surface(surface, size=size, level=level, allow_inverted=True, **kwargs)
-    run.seconds = {"tessellate": seconds, **run.seconds}
+    frame = kwargs.pop("frame", None)
+    r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap), level=int(level),
+                         frame=None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
+                         **kwargs)
+    run = _mesh_run(r["run"])
+    run.surface = Surface(*r["surface"])
+    run.seconds = {"tessellate": float(r["tessellate_seconds"]), **run.seconds}
+    run.tessellations = int(r["tessellations"])
+    run.tessellation_factor = float(r["tessellation_factor"])
     if snap:
-        t0 = time.perf_counter()
-        run.mesh, run.snap = snap_to_brep(run.mesh, text, surface, solid=solid)
-        run.quality = run.snap["quality"]
-        run.seconds["snap"] = time.perf_counter() - t0
+        run.snap = dict(r["snap"])
+        run.snap["max_distance"] = run.snap["max_after"]
+        run.quality = run.snap["quality"]  # the same report (the run's is after the snap too)
+        run.seconds["snap"] = float(r["snap_seconds"])
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
                            "(allow_inverted=True returns the mesh anyway)")

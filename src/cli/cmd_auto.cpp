@@ -8,9 +8,11 @@
 #include "commands.h"
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/cad/mesh_cad.h"
 #include "hexdom/cad/read_shape.h"
 #include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
+#include "hexdom/common/format.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/text.h"
 #include "hexdom/segmentation/labels_of_parts.h"
@@ -179,28 +181,10 @@ void add_mesh(CLI::App& app) {
     cad::Shape shape;
     double reference_volume = 0;
     const char* reference = "surface";
-    if (is_cad_file(a->in)) {
-      const auto t0 = std::chrono::steady_clock::now();
-      cad::ReadOptions ro;
-      ro.solid = a->solid;
-      ro.log = print_log;
-      shape = cad::read_shape(a->in, ro);
-      cad::TessellateOptions to;
-      to.size = a->opt.size;
-      to.size_in_frame = !a->no_align;
-      cad::TessellateStats st;
-      surface = cad::tessellate(shape, to, &st);
-      reference_volume = st.brep_volume;
-      reference = "B-rep";
-      char line[200];
-      std::snprintf(line, sizeof line, "tessellate: %d triangles on %d CAD faces in %.2f s", st.triangles, st.faces,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      print_log(0, line);
-    } else {
-      surface = io::read_surface(a->in);
-    }
-    if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
     autopolycube::MeshSurfaceRun run;
+    bool snapped = false;
+    cad::SnapReport snap;
+    double snap_seconds = 0;
     auto write_intermediate = [&](bool all) {
       if (run.labels.F.rows() > 0) io::write_mesh(stem + "_labels.k", mesh::from_surface(run.labels));
       if (run.polycube.polycube.F.rows() > 0) io::write_mesh(stem + "_polycube.vtk", mesh::from_surface(run.polycube.polycube));
@@ -209,30 +193,74 @@ void add_mesh(CLI::App& app) {
         io::write_mesh(stem + "_patches.k", mesh::from_surface(run.polycube.patches));
       }
     };
-    try {
-      autopolycube::mesh_surface(surface, a->opt, &run);
-    } catch (const Error&) {
+    auto failed = [&] {
       write_intermediate(true);
       print_log(1, "stage " + run.stage + " failed; wrote " + stem + "_labels.k" +
                        (run.polycube.polycube.F.rows() ? " and " + stem + "_polycube.vtk" : std::string()) + " for inspection");
-      throw;
+    };
+    if (is_cad_file(a->in)) {
+      cad::ReadOptions ro;
+      ro.solid = a->solid;
+      ro.log = print_log;
+      shape = cad::read_shape(a->in, ro);
+      cad::MeshCadOptions co;
+      co.tessellation.size = a->opt.size;
+      co.tessellation.size_in_frame = !a->no_align;
+      co.mesh = a->opt;
+      co.log = print_log;
+      co.snap = !a->no_snap;
+      if (a->opt.verbose) co.snap_options.log = print_log;
+      // The tessellation's line comes before the stages' lines: the first tessellation is made
+      // here, then mesh_cad_part meshes it (and tessellates again only when it must).
+      cad::MeshCadRun cr;
+      auto first = co.mesh.log;
+      bool said = false;
+      co.mesh.log = [&](int level, const std::string& m) {
+        if (!said) {
+          said = true;
+          char line[200];
+          std::snprintf(line, sizeof line, "tessellate: %d triangles on %d CAD faces in %.2f s", cr.stats.triangles, cr.stats.faces,
+                        cr.stats.seconds);
+          print_log(0, line);
+        }
+        if (first) first(level, m);
+      };
+      try {
+        cad::mesh_cad_part(shape, co, &cr);
+      } catch (const Error&) {
+        run = std::move(cr.run);
+        failed();
+        throw;
+      }
+      surface = std::move(cr.surface);
+      run = std::move(cr.run);
+      snapped = cr.snapped;
+      snap = cr.snap.report;
+      snap_seconds = cr.snap_seconds;
+      reference_volume = cr.stats.brep_volume;
+      reference = "B-rep";
+      if (cr.tessellation_factor != 1)
+        print_log(0, fmt("tessellate: the mesh is the one of the tessellation at %.2f x the size (%.0f triangles)",
+                         cr.tessellation_factor, cr.stats.triangles));
+    } else {
+      surface = io::read_surface(a->in);
+      try {
+        autopolycube::mesh_surface(surface, a->opt, &run);
+      } catch (const Error&) {
+        failed();
+        throw;
+      }
     }
+    if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
     print_log(0, "kept: " + autopolycube::choice_text(run));
-    if (!shape.is_empty() && !a->no_snap) {
-      const auto t0 = std::chrono::steady_clock::now();
-      cad::SnapOptions so;
-      if (a->opt.verbose) so.log = print_log;
-      cad::SnapResult sr = cad::snap_to_brep(shape, run.mesh, surface, so);
-      run.mesh = std::move(sr.mesh);
-      run.quality = sr.quality;
-      const cad::SnapReport& q = sr.report;
+    if (snapped) {
+      const cad::SnapReport& q = snap;
       char line[400];
       std::snprintf(line, sizeof line,
                     "snap: %d boundary nodes onto %d faces, %d edges, %d vertices; B-rep distance max %.3g -> %.3g "
                     "(%.2e of the diagonal); worst SJ %.3f -> %.3f, %d inverted, in %.2f s",
                     q.boundary_nodes, q.face_nodes, q.edge_nodes, q.vertex_nodes, q.max_before, q.max_after,
-                    q.diagonal > 0 ? q.max_after / q.diagonal : 0.0, q.worst_sj_before, q.worst_sj, q.inverted,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                    q.diagonal > 0 ? q.max_after / q.diagonal : 0.0, q.worst_sj_before, q.worst_sj, q.inverted, snap_seconds);
       print_log(0, line);
     }
     if (a->keep) write_intermediate(true);

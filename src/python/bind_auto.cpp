@@ -75,6 +75,24 @@ const char* kMeshSurfaceDoc =
 
 }  // namespace
 
+py::dict run_dict(const autopolycube::MeshSurfaceRun& r) {
+  py::dict d;
+  d["mesh"] = mesh_tuple(r.mesh);
+  d["generated"] = mesh_tuple(r.generated);
+  d["labels"] = surface_tuple(r.labels);
+  d["polycube"] = polycube_dict(r.polycube);
+  d["quality"] = report_dict(r.quality);
+  d["generated_quality"] = report_dict(r.generated_quality);
+  d["seconds"] = std::vector<double>(r.seconds, r.seconds + 4);
+  d["level"] = r.level;
+  d["edge_weight"] = r.edge_weight;
+  d["keep_widths"] = r.keep_widths;
+  d["collapse_apexes"] = r.collapse_apexes;
+  d["choice"] = autopolycube::choice_text(r);
+  d["frame"] = frame_dict(r.frame);
+  return d;
+}
+
 void bind_auto(py::module_& m) {
   m.def("autopolycube",
         [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
@@ -121,21 +139,7 @@ void bind_auto(py::module_& m) {
             py::gil_scoped_release nogil;
             autopolycube::mesh_surface(s, opt, &r);
           }
-          py::dict d;
-          d["mesh"] = mesh_tuple(r.mesh);
-          d["generated"] = mesh_tuple(r.generated);
-          d["labels"] = surface_tuple(r.labels);
-          d["polycube"] = polycube_dict(r.polycube);
-          d["quality"] = report_dict(r.quality);
-          d["generated_quality"] = report_dict(r.generated_quality);
-          d["seconds"] = std::vector<double>(r.seconds, r.seconds + 4);
-          d["level"] = r.level;
-          d["edge_weight"] = r.edge_weight;
-          d["keep_widths"] = r.keep_widths;
-          d["collapse_apexes"] = r.collapse_apexes;
-          d["choice"] = autopolycube::choice_text(r);
-          d["frame"] = frame_dict(r.frame);
-          return d;
+          return run_dict(r);
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,

@@ -7,6 +7,7 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "hexdom/cad/mesh_cad.h"
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
 #include "hexdom/cad/snap.h"
@@ -41,6 +42,34 @@ cad::Shape read_source(const std::string& source, int solid) {
   cad::ReadOptions ro;
   ro.solid = solid;
   return cad::read_shape_or_brep(source, ro);
+}
+
+py::dict snap_dict(const cad::SnapResult& r) {
+  const cad::SnapReport& q = r.report;
+  py::dict d;
+  d["boundary_nodes"] = q.boundary_nodes;
+  d["face_nodes"] = q.face_nodes;
+  d["edge_nodes"] = q.edge_nodes;
+  d["vertex_nodes"] = q.vertex_nodes;
+  d["max_before"] = q.max_before;
+  d["mean_before"] = q.mean_before;
+  d["max_after"] = q.max_after;
+  d["mean_after"] = q.mean_after;
+  d["max_move"] = q.max_move;
+  d["diagonal"] = q.diagonal;
+  d["inverted_snapped"] = q.inverted_snapped;
+  d["inverted"] = q.inverted;
+  d["worst_sj_before"] = q.worst_sj_before;
+  d["worst_sj_snapped"] = q.worst_sj_snapped;
+  d["worst_sj"] = q.worst_sj;
+  d["seconds_project"] = q.seconds_project;
+  d["seconds_restore"] = q.seconds_restore;
+  d["quality"] = report_dict(r.quality);
+  Eigen::VectorXi kind(r.kind.size()), entity(r.entity.size());
+  for (size_t i = 0; i < r.kind.size(); ++i) kind(i) = static_cast<int>(r.kind[i]), entity(i) = r.entity[i];
+  d["kind"] = kind;
+  d["entity"] = entity;
+  return d;
 }
 
 const char* kTessellateDoc =
@@ -175,35 +204,52 @@ void bind_cad(py::module_& m) {
             py::gil_scoped_release nogil;
             r = cad::snap_to_brep(read_source(source, solid), mesh, surface, opt);
           }
-          const cad::SnapReport& q = r.report;
-          py::dict d;
-          d["boundary_nodes"] = q.boundary_nodes;
-          d["face_nodes"] = q.face_nodes;
-          d["edge_nodes"] = q.edge_nodes;
-          d["vertex_nodes"] = q.vertex_nodes;
-          d["max_before"] = q.max_before;
-          d["mean_before"] = q.mean_before;
-          d["max_after"] = q.max_after;
-          d["mean_after"] = q.mean_after;
-          d["max_move"] = q.max_move;
-          d["diagonal"] = q.diagonal;
-          d["inverted_snapped"] = q.inverted_snapped;
-          d["inverted"] = q.inverted;
-          d["worst_sj_before"] = q.worst_sj_before;
-          d["worst_sj_snapped"] = q.worst_sj_snapped;
-          d["worst_sj"] = q.worst_sj;
-          d["seconds_project"] = q.seconds_project;
-          d["seconds_restore"] = q.seconds_restore;
-          d["quality"] = report_dict(r.quality);
-          Eigen::VectorXi kind(r.kind.size()), entity(r.entity.size());
-          for (size_t i = 0; i < r.kind.size(); ++i) kind(i) = static_cast<int>(r.kind[i]), entity(i) = r.entity[i];
-          d["kind"] = kind;
-          d["entity"] = entity;
-          return py::make_tuple(mesh_tuple(r.mesh), d);
+          return py::make_tuple(mesh_tuple(r.mesh), snap_dict(r));
         },
         py::arg("source"), py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region"), py::arg("surface_V"),
         py::arg("surface_F"), py::arg("face_id"), py::arg("solid") = 0, py::arg("edge_tolerance") = 0.25,
         py::arg("smooth") = 3, py::arg("optimize") = 20, kSnapDoc);
+
+  m.def("mesh_cad",
+        [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
+          cad::MeshCadOptions opt;
+          opt.tessellation.size = size;
+          opt.tessellation.size_in_frame = align;
+          opt.mesh.size = size;
+          opt.mesh.level = level;
+          opt.mesh.segment.edge_weight = edge_weight;
+          opt.mesh.polycube.max_relabels = max_relabels;
+          opt.mesh.relax_sweeps = relax_sweeps;
+          opt.mesh.improve = improve;
+          opt.mesh.align = align;
+          if (frame) opt.mesh.segment.frame = opt.mesh.polycube.frame = checked_rotation(*frame);
+          opt.snap = snap;
+          cad::MeshCadRun r;
+          {
+            py::gil_scoped_release nogil;
+            cad::mesh_cad_part(read_source(source, solid), opt, &r);
+          }
+          py::dict d;
+          d["surface"] = surface_tuple(r.surface);
+          d["run"] = run_dict(r.run);
+          d["snap"] = r.snapped ? py::object(snap_dict(r.snap)) : py::object(py::none());
+          d["tessellate_seconds"] = r.stats.seconds;
+          d["snap_seconds"] = r.snap_seconds;
+          d["tessellations"] = r.tessellations;
+          d["tessellation_factor"] = r.tessellation_factor;
+          return d;
+        },
+        py::arg("source"), py::arg("size") = 0.0, py::arg("solid") = 0, py::arg("snap") = true, py::arg("level") = 1,
+        py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
+        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(),
+        "A CAD part (file path or BREP text) meshed as `hexdom mesh` does: tessellate, mesh_surface, snap onto\n"
+        "the B-rep; when the tessellation's labelling defeats the automatic polycube or cells stay inverted, the\n"
+        "B-rep is tessellated again with triangles of 0.97, 1.03, 0.94, 1.06 x the size (the polycube grid kept)\n"
+        "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
+        "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
+        "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor. Raises the first\n"
+        "tessellation's error when none gives a mesh.");
 }
 
 }  // namespace hexdom::python

@@ -3,7 +3,11 @@
 
 #include <pybind11/pybind11.h>
 
+#include "hexdom/autopolycube/mesh_surface.h"
+
 namespace hexdom::python {
+/// A MeshSurfaceRun as _hexdom.mesh_surface returns it (bind_auto.cpp); also mesh_cad's "run".
+pybind11::dict run_dict(const autopolycube::MeshSurfaceRun& r);
 void bind_segmentation(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);
 void bind_auto(pybind11::module_& m);

@@ -160,6 +160,22 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
 
 }  // namespace
 
+bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options) {
+  return better(b, a, reference, options);
+}
+
+double default_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt) {
+  if (opt.size > 0 || surface.V.rows() == 0) return opt.size;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d R = opt.segment.frame;
+  if (R == I && opt.align) {
+    const segmentation::CubeFrame f = segmentation::cube_frame(surface, opt.frame_options);
+    if (f.turned()) R = f.rotation;
+  }
+  const Eigen::MatrixXd V = surface.V * R.transpose();
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm() / 30.0;
+}
+
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceOptions o = opt;
   segmentation::CubeFrame frame;

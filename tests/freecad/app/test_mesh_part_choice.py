@@ -42,6 +42,7 @@ import hexdom_oracles as oracles  # noqa: E402  (VTK's Verdict)
 from test_mesh_part_prisms import _verdict_of  # noqa: E402  (FemMesh -> VTK grid, SMDS orders)
 
 I11O = os.path.join(fc_testdata.data_root(), "cad", "i11o_s1.step")
+I10O = os.path.join(fc_testdata.data_root(), "cad", "i10o_simp.step")
 NEW_PROPERTIES = {"segmentation": ["EdgeWeight", "Frame"], "polycube": ["KeepWidths", "TetApexes"]}
 
 
@@ -176,3 +177,35 @@ def test_edge_weight_reaches_the_segmentation(doc, monkeypatch):
     seg.EdgeWeight = -1.0
     with pytest.raises(api.RecomputeError, match="EdgeWeight must be 0 or more"):
         api.recompute_document(doc, [seg])
+
+
+@pytest.mark.skipif(not api.has_cad(), reason="_hexdom built without OpenCASCADE")
+@pytest.mark.skipif(not os.path.isfile(I10O), reason="i10o_simp.step not found under HEXDOM_DATA ({}): set "
+                                                     "HEXDOM_DATA".format(I10O))
+def test_mesh_part_takes_the_tessellation_hexdom_mesh_takes(doc):
+    """When the Surface's tessellation gives no polycube, `hexdom mesh` tessellates again
+    (cad::mesh_cad_part); Mesh Part makes the same choice and sets the Surface's Size and Deflection
+    to the tessellation kept. Measured on i10o_simp through FreeCAD at size 6.3: the first three
+    tessellations' labellings defeat the repair, the one at 0.94 x the size meshes (2,192 hexes,
+    worst 0.468); the Polycube keeps the element size 6.3."""
+    part = doc.addObject("Part::Feature", "i10o")
+    part.Shape = Part.read(I10O)
+    doc.recompute()
+    objs = hexdom.mesh_part(doc, part, size=6.3)
+    surface, poly, mesh = objs["surface"], objs["polycube"], objs["mesh"]
+    run = core.mesh_part(part.Shape.exportBrepToString(), size=6.3, allow_inverted=True)
+    FreeCAD.Console.PrintMessage("i10o at 6.3: {} tessellations, kept {:.2f} x; Mesh Part {} hex, "
+                                 "worst {:.4f}\n".format(
+        run.tessellations, run.tessellation_factor, mesh.HexCount, mesh.MinHexSJ))
+    assert run.tessellations > 1 and run.tessellation_factor != 1.0
+    assert surface.Size.Value == pytest.approx(6.3 * run.tessellation_factor)
+    assert surface.Deflection.Value == pytest.approx(6.3 * run.tessellation_factor / 50.0)
+    assert poly.Size.Value == pytest.approx(6.3)
+    assert surface.TriangleCount == len(run.surface.F)
+    sj, types, g = _verdict_of(mesh)
+    types_cli = np.asarray(run.mesh.types)
+    sj_cli, _ = oracles.verdict_metrics(oracles.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types))
+    assert _counts(types) == _counts(types_cli)
+    assert sj[types == oracles.HEX].min() == pytest.approx(sj_cli[types_cli == oracles.HEX].min(), abs=1e-3)
+    assert np.all(sj > 0) and mesh.InvertedCount == 0
+    assert sj[types == oracles.HEX].min() >= 0.3

@@ -140,3 +140,4 @@ def test_the_frame_reaches_segment_and_autopolycube(doc, monkeypatch):
     assert all(doc.getObject(o.Name) is not None for o in objs.values())
     for key in ("surface", "segmentation"):
         assert "Invalid" not in objs[key].State and "Error" not in objs[key].State
+
