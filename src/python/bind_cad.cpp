@@ -245,7 +245,8 @@ void bind_cad(py::module_& m) {
         py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(),
         "A CAD part (file path or BREP text) meshed as `hexdom mesh` does: tessellate, mesh_surface, snap onto\n"
         "the B-rep; when the tessellation's labelling defeats the automatic polycube or cells stay inverted, the\n"
-        "B-rep is tessellated again with triangles of 0.97, 1.03, 0.94, 1.06 x the size (the polycube grid kept)\n"
+        "B-rep is tessellated again with triangles of 0.97, 1.03, 0.94, 1.06 x the size (the first two for\n"
+        "inverted cells; the polycube grid kept)\n"
         "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
         "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
         "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor. Raises the first\n"

@@ -1,5 +1,6 @@
 #include "hexdom/cad/mesh_cad.h"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 
@@ -50,7 +51,10 @@ MeshCadRun mesh_cad_part(const Shape& shape, const MeshCadOptions& opt, MeshCadR
   const std::string why = meshed ? fmt(r.snapped ? "%.0f inverted cells after the snap" : "%.0f inverted cells remain",
                                        inverted_cells(r.run.quality))
                                  : "the automatic polycube failed at stage " + r.run.stage;
-  for (double f : opt.retessellate) {
+  const size_t tries = meshed ? std::min(opt.retessellate.size(), static_cast<size_t>(std::max(0, opt.retessellate_inverted)))
+                               : opt.retessellate.size();
+  for (size_t k = 0; k < tries; ++k) {
+    const double f = opt.retessellate[k];
     say(why + ": tessellating again with triangles of " + fmt("%.2f", f) + " x the size (" + fmt("%g", f * first_size) +
         "), the polycube grid kept at " + fmt("%g", mo.size));
     TessellateOptions to = opt.tessellation;

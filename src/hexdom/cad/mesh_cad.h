@@ -27,6 +27,9 @@ struct MeshCadOptions {
   /// Measured: i10o_simp turned 30 degrees about (1, 2, 3) meshes only at 1.06; i01o_m1 at 1.1 x the
   /// default size keeps 3 inverted cells after the snap, none at 0.97.
   std::vector<double> retessellate = {0.97, 1.03, 0.94, 1.06};
+  /// When the first tessellation gave a mesh, only with inverted cells, only this many of them are
+  /// tried (each try is a whole run: i01o_m1's five took 103 s where one takes 20 s).
+  int retessellate_inverted = 2;
   bool snap = true;          ///< snap the boundary nodes onto the B-rep (each tessellation's mesh)
   SnapOptions snap_options;
   LogCallback log;  ///< one line per new tessellation
