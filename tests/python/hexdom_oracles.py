@@ -315,3 +315,18 @@ def parse_k(path):
                 ids += [0] * (nn - len(ids))
                 (solids if section == "solid" else shells).append((int(f[0]), int(f[1]), ids))
     return {"nodes": nodes, "shells": shells, "solids": solids}
+
+
+def vtu_sj_types(path):
+    """A .vtu mesh read by VTK: (grid, Verdict scaled Jacobian per cell, VTK type per cell)."""
+    g = read_vtu(path)
+    sj, _ = verdict_metrics(g)
+    types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+    return g, sj, types
+
+
+def max_brep_distance(FreeCAD, Part, shape, g):
+    """Largest distance (FreeCAD's distToShape) from a boundary node of the grid to the shape's faces."""
+    faces = Part.Compound(shape.Faces)
+    return max(faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in boundary_points(g))
+

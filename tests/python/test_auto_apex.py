@@ -89,9 +89,7 @@ def meshed(freecad, tmp_path_factory, core):
             cache[name] = (shape, r, out)
         shape, r, out = cache[name]
         assert r.returncode == 0, f"hexdom mesh {name} exited {r.returncode}: {r.stderr.strip()[-400:]}"
-        g = oracle.read_vtu(out)
-        sj, _ = oracle.verdict_metrics(g)
-        types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+        g, sj, types = oracle.vtu_sj_types(out)
         return shape, g, sj, types, r.stdout + r.stderr
     return get
 
@@ -110,10 +108,8 @@ def test_triangular_part_meshes_with_no_inverted_cell(name, meshed):
 def test_triangular_part_boundary_lies_on_the_brep(name, meshed, freecad):
     FreeCAD, Part = freecad
     shape, g, _, _, _ = meshed(name)
-    faces = Part.Compound(shape.Faces)
-    P = oracle.boundary_points(g)
-    d = np.array([faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in P])
-    assert d.max() <= 1e-7 * shape.BoundBox.DiagonalLength, f"{name}: {d.max():.3g} off the B-rep"
+    d = oracle.max_brep_distance(FreeCAD, Part, shape, g)
+    assert d <= 1e-7 * shape.BoundBox.DiagonalLength, f"{name}: {d:.3g} off the B-rep"
 
 
 @pytest.mark.parametrize("name", _marks(_VOLUME_DEFECT))

@@ -93,9 +93,7 @@ def parts(freecad, tmp_path_factory, core):
             cache[key] = (shape, r, out)
         shape, r, out = cache[key]
         assert r.returncode == 0, f"hexdom mesh {name} {turn}: exit {r.returncode}: {r.stderr.strip()[-400:]}"
-        g = oracle.read_vtu(out)
-        sj, _ = oracle.verdict_metrics(g)
-        types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+        g, sj, types = oracle.vtu_sj_types(out)
         return shape, g, sj, types, r.stdout + r.stderr
     return get
 
@@ -112,10 +110,8 @@ def test_turned_part_meets_the_targets(name, turn, parts, freecad):
     assert hexes.min() >= 0.3
     volume = float(oracle.signed_volumes(g).sum())
     assert volume == pytest.approx(shape.Volume, rel=0.01)
-    faces = Part.Compound(shape.Faces)
-    P = oracle.boundary_points(g)
-    d = np.array([faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in P])
-    assert d.max() <= 1e-7 * shape.BoundBox.DiagonalLength, f"{name} {turn}: {d.max():.3g} off the B-rep"
+    d = oracle.max_brep_distance(FreeCAD, Part, shape, g)
+    assert d <= 1e-7 * shape.BoundBox.DiagonalLength, f"{name} {turn}: {d:.3g} off the B-rep"
 
 
 @pytest.mark.parametrize("name", _parts_marked(PARTS))

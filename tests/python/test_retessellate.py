@@ -54,17 +54,13 @@ def test_a_labelling_the_repair_cannot_use_gets_another_tessellation(cad, tmp_pa
     assert r.returncode == 0, log[-800:]
     assert "the automatic polycube failed at stage autopolycube: tessellating again with triangles of 0.97" in log
     assert "kept the tessellation at 0.97 x the size" in log
-    g = oracle.read_vtu(out)
-    sj, _ = oracle.verdict_metrics(g)
-    types = np.array([g.GetCellType(i) for i in range(g.GetNumberOfCells())])
+    g, sj, types = oracle.vtu_sj_types(out)
     assert np.all(sj > 0)
     assert sj[types == oracle.HEX].min() >= 0.3
     shape = Part.read(path)
     shape = shape.Solids[0] if shape.Solids else shape
     assert float(oracle.signed_volumes(g).sum()) == pytest.approx(shape.Volume, rel=0.01)
-    faces = Part.Compound(shape.Faces)
-    d = np.array([faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in oracle.boundary_points(g)])
-    assert d.max() <= 1e-7 * shape.BoundBox.DiagonalLength
+    assert oracle.max_brep_distance(FreeCAD, Part, shape, g) <= 1e-7 * shape.BoundBox.DiagonalLength
     assert f"the polycube grid kept at {size:g}" in log
 
 
