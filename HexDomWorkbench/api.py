@@ -84,10 +84,13 @@ def nearest_label(normals):
         np.int32)
 
 
-def labels_from_normals(V, F, patch=None):
+def labels_from_normals(V, F, patch=None, frame=None):
     """Polycube label per triangle: the axis nearest its normal, or with ``patch`` the axis
-    nearest the area-weighted mean normal of the triangle's patch (one label per patch)."""
+    nearest the area-weighted mean normal of the triangle's patch (one label per patch). frame:
+    a 3 x 3 rotation whose axes the labels name (None: the model's)."""
     normals, areas = triangle_normals(V, F)
+    if frame is not None:
+        normals = normals @ np.asarray(frame, float).reshape(3, 3).T
     if patch is None:
         return nearest_label(normals)
     patch = np.asarray(patch)

@@ -59,9 +59,9 @@ class Segmentation(BaseHexDomObject):
             obj.EdgeWeight = DEFAULT_EDGE_WEIGHT
         if not hasattr(obj, "Frame"):
             obj.addProperty("App::PropertyRotation", "Frame", "Segmentation",
-                            "Method Automatic: the axes the labels name, turned from the model's "
-                            "by this rotation (x in the frame = Frame applied to x); the identity: "
-                            "the model's axes. Mesh Part sets the frame the faces fit best "
+                            "The axes the labels name, turned from the model's by this "
+                            "rotation (x in the frame = Frame applied to x); the identity: the "
+                            "model's axes. Mesh Part sets the frame the faces fit best "
                             "(core.cube_frame) for a part lying at an angle")
         if not hasattr(obj, "PatchFile"):
             obj.addProperty("App::PropertyFile", "PatchFile", "Segmentation",
@@ -150,7 +150,7 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
                              np.int32)
     else:
         raise ValueError("{}: unknown Method '{}'".format(obj.Label, method))
-    labels = api.labels_from_normals(surface.V, surface.F, patches)
+    labels = api.labels_from_normals(surface.V, surface.F, patches, frame=frame_matrix(obj))
     return labels, patches, True
 
 

@@ -68,10 +68,12 @@ class PatchEditor:
     V (#V x 3), F (#F x 3): the triangles; patches (#F): patch id per triangle (positive);
     labels (#F): label 1..6 per triangle (None: the axis nearest each patch's mean normal);
     face_ids (#F): CAD face (or file part) id per triangle, for selecting whole faces.
-    ``check_options`` go to core.check_patches.
+    ``check_options`` go to core.check_patches. frame (3 x 3 rotation, the Segmentation's Frame):
+    the axes the labels name, for the labels taken from normals (None: the model's axes).
     """
 
-    def __init__(self, V, F, patches, labels=None, face_ids=None, check_options=None):
+    def __init__(self, V, F, patches, labels=None, face_ids=None, check_options=None, frame=None):
+        self.frame = np.eye(3) if frame is None else np.asarray(frame, float).reshape(3, 3)
         self.V = np.ascontiguousarray(V, float).reshape(-1, 3)
         self.F = np.ascontiguousarray(F, np.int32).reshape(-1, 3)
         n = len(self.F)
@@ -298,7 +300,7 @@ class PatchEditor:
         ``label`` (default: the axis nearest their mean normal). Returns the new id."""
         tris = self._triangles(triangles)
         if label is None:
-            label = nearest_label((self.normals[tris] * self.areas[tris, None]).sum(axis=0))
+            label = nearest_label(self.frame @ (self.normals[tris] * self.areas[tris, None]).sum(axis=0))
         label = label_number(label)
         patches = np.asarray(core.reassign_triangles(self.surface(), tris, 0), np.int32)
         new_id = int(patches[tris[0]])
@@ -436,5 +438,5 @@ class PatchEditor:
         ids, inverse = np.unique(patches, return_inverse=True)
         mean = np.zeros((len(ids), 3))
         np.add.at(mean, inverse, self.normals * self.areas[:, None])
-        return (np.argmax(mean @ AXES.T, axis=1) + 1).astype(np.int32)[inverse]
+        return (np.argmax(mean @ self.frame.T @ AXES.T, axis=1) + 1).astype(np.int32)[inverse]
 

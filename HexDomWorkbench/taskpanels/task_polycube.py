@@ -117,7 +117,8 @@ class _TaskPanel:
             labels = np.asarray(seg.Labels, np.int32)
             if own is not None:
                 from .. import api
-                labels = api.labels_from_normals(surface.V, surface.F, surface.patch)
+                labels = api.labels_from_normals(surface.V, surface.F, surface.patch,
+                                                 frame=segmentation.frame_matrix(seg))
             _, first = np.unique(numbers, return_index=True)
             for n, t in zip(np.unique(numbers).tolist(), first.tolist()):
                 self.patch_labels[n] = int(labels[t]) if len(labels) > t else 0

@@ -54,7 +54,8 @@ class _TaskPanel:
         face_ids = np.asarray(getattr(obj.Surface, "FaceId", []), np.int32)
         self.editor = PatchEditor(surface.V, surface.F, surface.patch,
                                   labels if len(labels) == len(surface.F) else None,
-                                  face_ids if len(face_ids) == len(surface.F) else None)
+                                  face_ids if len(face_ids) == len(surface.F) else None,
+                                  frame=segmentation.frame_matrix(obj))
         self.pick_mode = "facet"
         self.highlighted = None
         self.last_error = ""

@@ -496,3 +496,20 @@ def test_rockerarm_structure_loads_with_no_problem():
     assert b.import_structure(ROCKERARM_STRUCTURE) == 12
     assert b.counts() == {"hex": 60, "prism": 11, "tet": 2}
     assert b.problems() == []
+
+
+def test_labels_taken_from_normals_name_the_frames_axes():
+    """The bracket's patches turned 45 degrees about Z, edited with the Segmentation's Frame: the
+    labels the editor takes from normals (patches without labels, a new patch) are the square
+    bracket's, not the model's axes' (which put the turned side faces between two labels)."""
+    s, square = bracket_editor()
+    t = np.radians(45.0)
+    R = np.array([[np.cos(t), -np.sin(t), 0], [np.sin(t), np.cos(t), 0], [0, 0, 1]])
+    V = s.V @ R.T
+    framed = PatchEditor(V, s.F, s.patch, frame=R.T)  # the frame undoes the turn
+    assert np.array_equal(framed.labels, square.labels)
+    plain = PatchEditor(V, s.F, s.patch)
+    assert not np.array_equal(plain.labels, square.labels)
+    planted = island(framed)
+    assert framed.patch_label(framed.new_patch(planted)) == square.patch_label(5)
+    assert np.array_equal(api.labels_from_normals(V, s.F, s.patch, frame=R.T), square.labels)
