@@ -210,21 +210,7 @@ void add_mesh(CLI::App& app) {
       co.log = print_log;
       co.snap = !a->no_snap;
       if (a->opt.verbose) co.snap_options.log = print_log;
-      // The tessellation's line comes before the stages' lines: the first tessellation is made
-      // here, then mesh_cad_part meshes it (and tessellates again only when it must).
       cad::MeshCadRun cr;
-      auto first = co.mesh.log;
-      bool said = false;
-      co.mesh.log = [&](int level, const std::string& m) {
-        if (!said) {
-          said = true;
-          char line[200];
-          std::snprintf(line, sizeof line, "tessellate: %d triangles on %d CAD faces in %.2f s", cr.stats.triangles, cr.stats.faces,
-                        cr.stats.seconds);
-          print_log(0, line);
-        }
-        if (first) first(level, m);
-      };
       try {
         cad::mesh_cad_part(shape, co, &cr);
       } catch (const Error&) {

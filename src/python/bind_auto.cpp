@@ -93,6 +93,21 @@ py::dict run_dict(const autopolycube::MeshSurfaceRun& r) {
   return d;
 }
 
+autopolycube::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
+                                                      int relax_sweeps, bool improve, bool align,
+                                                      const std::optional<Eigen::Matrix3d>& frame) {
+  autopolycube::MeshSurfaceOptions opt;
+  opt.align = align;
+  if (frame) opt.segment.frame = opt.polycube.frame = checked_rotation(*frame);
+  opt.size = size;
+  opt.level = level;
+  opt.segment.edge_weight = edge_weight;
+  opt.polycube.max_relabels = max_relabels;
+  opt.relax_sweeps = relax_sweeps;
+  opt.improve = improve;
+  return opt;
+}
+
 void bind_auto(py::module_& m) {
   m.def("autopolycube",
         [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
@@ -125,15 +140,8 @@ void bind_auto(py::module_& m) {
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
-          autopolycube::MeshSurfaceOptions opt;
-          opt.align = align;
-          if (frame) opt.segment.frame = opt.polycube.frame = checked_rotation(*frame);
-          opt.size = size;
-          opt.level = level;
-          opt.segment.edge_weight = edge_weight;
-          opt.polycube.max_relabels = max_relabels;
-          opt.relax_sweeps = relax_sweeps;
-          opt.improve = improve;
+          const autopolycube::MeshSurfaceOptions opt =
+              mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame);
           autopolycube::MeshSurfaceRun r;
           {
             py::gil_scoped_release nogil;

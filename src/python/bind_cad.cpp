@@ -216,14 +216,7 @@ void bind_cad(py::module_& m) {
           cad::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
-          opt.mesh.size = size;
-          opt.mesh.level = level;
-          opt.mesh.segment.edge_weight = edge_weight;
-          opt.mesh.polycube.max_relabels = max_relabels;
-          opt.mesh.relax_sweeps = relax_sweeps;
-          opt.mesh.improve = improve;
-          opt.mesh.align = align;
-          if (frame) opt.mesh.segment.frame = opt.mesh.polycube.frame = checked_rotation(*frame);
+          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame);
           opt.snap = snap;
           cad::MeshCadRun r;
           {

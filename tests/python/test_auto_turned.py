@@ -58,6 +58,12 @@ def _bracket(FreeCAD, Part):
     return base.fuse(upright).removeSplitter().cut(hole)
 
 
+def generated_cells(log):
+    """The cells of the last "generate:" line of a `hexdom mesh` log (None when there is none)."""
+    lines = [ln for ln in log.splitlines() if "generate:" in ln]
+    return lines[-1].split("generate:")[1].split(" cells")[0].strip() if lines else None
+
+
 @pytest.fixture(scope="module")
 def parts(freecad, tmp_path_factory, core):
     if not core._hexdom.has_opencascade():
@@ -122,14 +128,10 @@ def test_turned_part_gets_the_cells_of_the_part_square_to_the_axes(name, parts):
     _, _, _, _, square_log = parts(name, None)
     assert "frame:" not in square_log, "a part square to the axes is meshed in the model's axes"
 
-    def generated(log):
-        lines = [ln for ln in log.splitlines() if "generate:" in ln]
-        return lines[-1].split("generate:")[1].split(" cells")[0].strip()
-
-    kept = int(generated(square_log))
+    kept = int(generated_cells(square_log))
     for turn in TURNS:
         _, _, _, _, log = parts(name, turn)
-        cells = int(generated(log))
+        cells = int(generated_cells(log))
         print(f"{name} {turn}: {cells} cells generated, {kept} square to the axes")
         if name == "bracket":  # planar faces only: the very same polycube
             assert cells == kept, (turn, log[-600:])
@@ -151,11 +153,6 @@ def test_no_align_meshes_in_the_models_axes(parts, tmp_path):
         assert generated_cells(r.stderr) != generated_cells(log)
     else:
         assert (tmp_path / "m_labels.k").exists() and not (tmp_path / "m.vtu").exists()
-
-
-def generated_cells(log):
-    lines = [ln for ln in log.splitlines() if "generate:" in ln]
-    return lines[-1].split("generate:")[1].split(" cells")[0].strip() if lines else None
 
 
 def _turn(axis, degrees):

@@ -47,8 +47,8 @@ namespace {
 AutoPolycube autopolycube_in_frame(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
   AutoPolycubeOptions in_frame = opt;
   in_frame.frame.setIdentity();
-  if (in_frame.size <= 0 && labels.V.rows())  // the default size of the input, not of the turned box
-    in_frame.size = (labels.V.colwise().maxCoeff() - labels.V.colwise().minCoeff()).norm() / 30.0;
+  if (in_frame.size <= 0)  // the default size of the input, not of the turned box
+    in_frame.size = segmentation::frame_diagonal(labels, Eigen::Matrix3d::Identity()) / 30.0;
   AutoPolycube local;
   AutoPolycube& r = progress ? *progress : local;
   auto back = [&] {

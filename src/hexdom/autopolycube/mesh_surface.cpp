@@ -164,18 +164,6 @@ bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double referen
   return better(b, a, reference, options);
 }
 
-double default_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt) {
-  if (opt.size > 0 || surface.V.rows() == 0) return opt.size;
-  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-  Eigen::Matrix3d R = opt.segment.frame;
-  if (R == I && opt.align) {
-    const segmentation::CubeFrame f = segmentation::cube_frame(surface, opt.frame_options);
-    if (f.turned()) R = f.rotation;
-  }
-  const Eigen::MatrixXd V = surface.V * R.transpose();
-  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm() / 30.0;
-}
-
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceOptions o = opt;
   segmentation::CubeFrame frame;
@@ -183,18 +171,13 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   if (opt.segment.frame != I || opt.polycube.frame != I) {
     if (opt.segment.frame != opt.polycube.frame)
       throw GeometryError("mesh_surface: the segmentation's frame and the polycube's differ");
-    frame.rotation = opt.segment.frame;
-    const Eigen::AngleAxisd aa(frame.rotation);
-    frame.angle_degrees = aa.angle() * 180.0 / M_PI;
-    frame.axis = aa.axis();
+    frame = segmentation::frame_of(opt.segment.frame);
   } else if (opt.align && surface.F.rows() > 0) {
     frame = segmentation::cube_frame(surface, opt.frame_options);
     if (frame.turned()) {
       o.segment.frame = o.polycube.frame = frame.rotation;
-      if (o.size <= 0) {  // the default size of the part square to the frame, as if it had been modelled so
-        const mesh::SurfaceMesh turned = segmentation::rotated(surface, frame.rotation);
-        o.size = (turned.V.colwise().maxCoeff() - turned.V.colwise().minCoeff()).norm() / 30.0;
-      }
+      // The default size of the part square to the frame, as if it had been modelled so.
+      if (o.size <= 0) o.size = segmentation::frame_diagonal(surface, frame.rotation) / 30.0;
       if (opt.log)
         opt.log(0, "frame: the faces fit the axes " + frame_text(frame) +
                        fmt(" (fit %.3f, %.3f in the model's axes): segmenting and building the polycube in that frame",

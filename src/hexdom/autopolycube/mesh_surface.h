@@ -94,10 +94,6 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
 /// then the higher worst SJ.
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options);
 
-/// The element size mesh_surface uses with these options: `size`, or when 0 the bounding-box
-/// diagonal / 30 of the surface, turned into the frame it is meshed in (see align).
-double default_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options);
-
 /// "segment: 12 charts in 0.21 s"-style summary of a run, one line per finished stage, then the
 /// kept candidate's options (choice_text).
 std::string to_text(const MeshSurfaceRun& run);

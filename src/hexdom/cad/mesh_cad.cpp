@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "hexdom/common/format.h"
+#include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::cad {
 
@@ -31,22 +32,35 @@ MeshCadRun mesh_cad_part(const Shape& shape, const MeshCadOptions& opt, MeshCadR
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  // mesh_and_snap of `run`, true when it gave a mesh; what defeated it (a labelling the repair
+  // cannot use, a failed cut) is said when `why` is given, or kept in `error`.
+  auto attempt = [&](const autopolycube::MeshSurfaceOptions& mo, MeshCadRun& run, std::exception_ptr* error) {
+    auto defeated = [&](const Error& e) {
+      if (error) *error = std::current_exception();
+      else say(fmt("tessellation at %.2f x the size: ", run.tessellation_factor) +
+               std::string(e.what()).substr(0, std::string(e.what()).find('\n')));
+      return false;
+    };
+    try {
+      mesh_and_snap(shape, mo, opt, run);
+      return true;
+    } catch (const GeometryError& e) {
+      return defeated(e);
+    } catch (const MeshingError& e) {
+      return defeated(e);
+    }
+  };
   r.surface = tessellate(shape, opt.tessellation, &r.stats);
   r.tessellations = 1;
+  say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
   const double reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
   std::exception_ptr first_error;
-  try {
-    mesh_and_snap(shape, opt.mesh, opt, r);
-  } catch (const GeometryError&) {
-    first_error = std::current_exception();
-  } catch (const MeshingError&) {
-    first_error = std::current_exception();
-  }
-  bool meshed = !first_error;
+  bool meshed = attempt(opt.mesh, r, &first_error);
   if (meshed && inverted_cells(r.run.quality) == 0) return r;
-  // Later tessellations: the same grid (the first surface's element size), other triangles.
+  // Later tessellations: the same grid (the element size the first run took, in its frame), other
+  // triangles.
   autopolycube::MeshSurfaceOptions mo = opt.mesh;
-  mo.size = autopolycube::default_size(r.surface, opt.mesh);
+  if (mo.size <= 0) mo.size = segmentation::frame_diagonal(r.surface, r.run.frame.rotation) / 30.0;
   const double first_size = r.stats.size;
   const std::string why = meshed ? fmt(r.snapped ? "%.0f inverted cells after the snap" : "%.0f inverted cells remain",
                                        inverted_cells(r.run.quality))
@@ -63,15 +77,7 @@ MeshCadRun mesh_cad_part(const Shape& shape, const MeshCadOptions& opt, MeshCadR
     again.tessellation_factor = f;
     again.surface = tessellate(shape, to, &again.stats);
     ++r.tessellations;
-    try {
-      mesh_and_snap(shape, mo, opt, again);
-    } catch (const GeometryError& e) {
-      say(fmt("tessellation at %.2f x the size: ", f) + std::string(e.what()).substr(0, std::string(e.what()).find('\n')));
-      continue;
-    } catch (const MeshingError& e) {
-      say(fmt("tessellation at %.2f x the size: ", f) + std::string(e.what()).substr(0, std::string(e.what()).find('\n')));
-      continue;
-    }
+    if (!attempt(mo, again, nullptr)) continue;
     if (!meshed || autopolycube::better_run(again.run, r.run, reference, mo)) {
       const int tessellations = r.tessellations;
       r = std::move(again);

@@ -329,9 +329,8 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
   if (options.size > 0 || !options.size_in_frame || s.F.rows() == 0) return s;
   const segmentation::CubeFrame frame = segmentation::cube_frame(s);
   if (!frame.turned()) return s;
-  const mesh::SurfaceMesh turned = segmentation::rotated(s, frame.rotation);
   TessellateOptions again = options;
-  again.size = (turned.V.colwise().maxCoeff() - turned.V.colwise().minCoeff()).norm() / 30.0;
+  again.size = segmentation::frame_diagonal(s, frame.rotation) / 30.0;
   if (options.log)
     options.log(0, fmt("tessellate: the faces fit axes turned by %.1f degrees; size from the box square to them: %g",
                        frame.angle_degrees, again.size));

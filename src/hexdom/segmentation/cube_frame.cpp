@@ -179,12 +179,28 @@ CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& o
   // Re-orthonormalise (products of many small rotations drift by rounding).
   Eigen::Quaterniond q(chosen);
   q.normalize();
-  out.rotation = q.toRotationMatrix();
+  const CubeFrame turned = frame_of(q.toRotationMatrix());
+  out.rotation = turned.rotation;
+  out.angle_degrees = turned.angle_degrees;
+  out.axis = turned.axis;
   out.fit = fit_of(ns, out.rotation, nullptr);
-  const Eigen::AngleAxisd aa(out.rotation);
-  out.angle_degrees = aa.angle() * 180.0 / M_PI;
-  out.axis = aa.axis();
   return out;
+}
+
+CubeFrame frame_of(const Eigen::Matrix3d& rotation) {
+  CubeFrame f;
+  f.rotation = rotation;
+  if (rotation == Eigen::Matrix3d::Identity()) return f;
+  const Eigen::AngleAxisd aa(rotation);
+  f.angle_degrees = aa.angle() * 180.0 / M_PI;
+  f.axis = aa.axis();
+  return f;
+}
+
+double frame_diagonal(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotation) {
+  if (surface.V.rows() == 0) return 0.0;
+  const Eigen::MatrixXd V = surface.V * rotation.transpose();
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
 }
 
 mesh::SurfaceMesh rotated(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotation) {

@@ -43,4 +43,11 @@ CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& o
 /// The surface with its vertices turned into the frame (x -> rotation * x); patch ids kept.
 mesh::SurfaceMesh rotated(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotation);
 
+/// Diagonal of the bounding box of the surface turned into the frame (the model's box for the
+/// identity): what the default element sizes (diagonal / 30) are taken from. 0 for no vertex.
+double frame_diagonal(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotation);
+
+/// A CubeFrame of a given rotation: its angle and axis (the fits left at 0).
+CubeFrame frame_of(const Eigen::Matrix3d& rotation);
+
 }  // namespace hexdom::segmentation
