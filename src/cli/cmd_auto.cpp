@@ -7,8 +7,8 @@
 
 #include "commands.h"
 #include "hexdom/autopolycube/autopolycube.h"
-#include "hexdom/autopolycube/mesh_surface.h"
-#include "hexdom/cad/mesh_cad.h"
+#include "hexdom/pipeline/mesh_surface.h"
+#include "hexdom/pipeline/mesh_cad.h"
 #include "hexdom/cad/read_shape.h"
 #include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
@@ -143,7 +143,7 @@ void add_mesh(CLI::App& app) {
     std::string in, out, report;
     bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
     int solid = 0;
-    autopolycube::MeshSurfaceOptions opt;
+    pipeline::MeshSurfaceOptions opt;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("input", a->in, "closed triangle surface (.k, .stl, .obj, .vtk) or CAD part (.step, .stp, .iges, .igs, .brep, .brp)")
@@ -181,7 +181,7 @@ void add_mesh(CLI::App& app) {
     cad::Shape shape;
     double reference_volume = 0;
     const char* reference = "surface";
-    autopolycube::MeshSurfaceRun run;
+    pipeline::MeshSurfaceRun run;
     bool snapped = false;
     cad::SnapReport snap;
     double snap_seconds = 0;
@@ -203,16 +203,16 @@ void add_mesh(CLI::App& app) {
       ro.solid = a->solid;
       ro.log = print_log;
       shape = cad::read_shape(a->in, ro);
-      cad::MeshCadOptions co;
+      pipeline::MeshCadOptions co;
       co.tessellation.size = a->opt.size;
       co.tessellation.size_in_frame = !a->no_align;
       co.mesh = a->opt;
       co.log = print_log;
       co.snap = !a->no_snap;
       if (a->opt.verbose) co.snap_options.log = print_log;
-      cad::MeshCadRun cr;
+      pipeline::MeshCadRun cr;
       try {
-        cad::mesh_cad_part(shape, co, &cr);
+        pipeline::mesh_cad_part(shape, co, &cr);
       } catch (const Error&) {
         run = std::move(cr.run);
         failed();
@@ -231,14 +231,14 @@ void add_mesh(CLI::App& app) {
     } else {
       surface = io::read_surface(a->in);
       try {
-        autopolycube::mesh_surface(surface, a->opt, &run);
+        pipeline::mesh_surface(surface, a->opt, &run);
       } catch (const Error&) {
         failed();
         throw;
       }
     }
     if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
-    print_log(0, "kept: " + autopolycube::choice_text(run));
+    print_log(0, "kept: " + pipeline::choice_text(run));
     if (snapped) {
       const cad::SnapReport& q = snap;
       char line[400];

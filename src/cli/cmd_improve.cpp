@@ -4,7 +4,7 @@
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/text.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 
 namespace hexdom::cli {
 
@@ -13,7 +13,7 @@ void add_improve(CLI::App& app) {
   struct Args {
     std::string in, out, surface, sharp, report;
     bool allow_inverted = false;
-    quality::ImproveOptions opt;
+    optimize::ImproveOptions opt;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("-i,--input", a->in, "volume mesh (.vtk, .k)")->required();
@@ -35,7 +35,7 @@ void add_improve(CLI::App& app) {
     if (!a->surface.empty()) a->opt.surface = io::read_surface(a->surface);
     if (!a->sharp.empty()) a->opt.sharp_nodes = io::read_sharp_nodes(a->sharp);
     a->opt.log = print_log;
-    auto r = quality::improve(m, a->opt);
+    auto r = optimize::improve(m, a->opt);
     io::write_mesh(a->out, r.mesh);
     if (!a->report.empty())
       io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(r.after) << "\n"; });

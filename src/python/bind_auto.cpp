@@ -8,7 +8,7 @@
 #include "bindings.h"
 #include "convert.h"
 #include "hexdom/autopolycube/autopolycube.h"
-#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/pipeline/mesh_surface.h"
 
 namespace py = pybind11;
 
@@ -75,7 +75,7 @@ const char* kMeshSurfaceDoc =
 
 }  // namespace
 
-py::dict run_dict(const autopolycube::MeshSurfaceRun& r) {
+py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   py::dict d;
   d["mesh"] = mesh_tuple(r.mesh);
   d["generated"] = mesh_tuple(r.generated);
@@ -88,15 +88,15 @@ py::dict run_dict(const autopolycube::MeshSurfaceRun& r) {
   d["edge_weight"] = r.edge_weight;
   d["keep_widths"] = r.keep_widths;
   d["collapse_apexes"] = r.collapse_apexes;
-  d["choice"] = autopolycube::choice_text(r);
+  d["choice"] = pipeline::choice_text(r);
   d["frame"] = frame_dict(r.frame);
   return d;
 }
 
-autopolycube::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
+pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame) {
-  autopolycube::MeshSurfaceOptions opt;
+  pipeline::MeshSurfaceOptions opt;
   opt.align = align;
   if (frame) opt.segment.frame = opt.polycube.frame = checked_rotation(*frame);
   opt.size = size;
@@ -140,12 +140,12 @@ void bind_auto(py::module_& m) {
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
-          const autopolycube::MeshSurfaceOptions opt =
+          const pipeline::MeshSurfaceOptions opt =
               mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame);
-          autopolycube::MeshSurfaceRun r;
+          pipeline::MeshSurfaceRun r;
           {
             py::gil_scoped_release nogil;
-            autopolycube::mesh_surface(s, opt, &r);
+            pipeline::mesh_surface(s, opt, &r);
           }
           return run_dict(r);
         },

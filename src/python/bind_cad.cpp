@@ -7,7 +7,7 @@
 
 #include "bindings.h"
 #include "convert.h"
-#include "hexdom/cad/mesh_cad.h"
+#include "hexdom/pipeline/mesh_cad.h"
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
 #include "hexdom/cad/snap.h"
@@ -213,15 +213,15 @@ void bind_cad(py::module_& m) {
   m.def("mesh_cad",
         [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
-          cad::MeshCadOptions opt;
+          pipeline::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame);
           opt.snap = snap;
-          cad::MeshCadRun r;
+          pipeline::MeshCadRun r;
           {
             py::gil_scoped_release nogil;
-            cad::mesh_cad_part(read_source(source, solid), opt, &r);
+            pipeline::mesh_cad_part(read_source(source, solid), opt, &r);
           }
           py::dict d;
           d["surface"] = surface_tuple(r.surface);

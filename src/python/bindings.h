@@ -6,13 +6,13 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::python {
 /// A MeshSurfaceRun as _hexdom.mesh_surface returns it (bind_auto.cpp); also mesh_cad's "run".
-pybind11::dict run_dict(const autopolycube::MeshSurfaceRun& r);
+pybind11::dict run_dict(const pipeline::MeshSurfaceRun& r);
 /// The MeshSurfaceOptions of mesh_surface's and mesh_cad's keyword arguments (bind_auto.cpp).
-autopolycube::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
+pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame);
 void bind_segmentation(pybind11::module_& m);

@@ -8,7 +8,7 @@
 #include "convert.h"
 #include "hexdom/common/error.h"
 #include "hexdom/generation/generate.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/mesh/mesh.h"
@@ -142,7 +142,7 @@ PYBIND11_MODULE(_hexdom, m) {
                       double feature_angle, const std::vector<int>& sharp_nodes,
                       const std::optional<Eigen::MatrixXd>& surface_V, const std::optional<Eigen::MatrixXi>& surface_F) {
     mesh::Mesh msh = make_mesh(V, cells, types, region);
-    quality::ImproveOptions opt;
+    optimize::ImproveOptions opt;
     opt.pillow = pillow;
     opt.smooth = smooth;
     opt.optimize = optimize;
@@ -153,8 +153,8 @@ PYBIND11_MODULE(_hexdom, m) {
       opt.surface.F = *surface_F;
       opt.surface.patch = Eigen::VectorXi::Zero(surface_F->rows());
     }
-    quality::ImproveResult r;
-    { py::gil_scoped_release nogil; r = quality::improve(msh, opt); }
+    optimize::ImproveResult r;
+    { py::gil_scoped_release nogil; r = optimize::improve(msh, opt); }
     return py::make_tuple(r.mesh.V, r.mesh.cells, r.mesh.types, r.mesh.region);
   }, py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region") = py::none(), py::arg("pillow") = false,
      py::arg("smooth") = 0, py::arg("optimize") = 0, py::arg("feature_angle") = 35.0,

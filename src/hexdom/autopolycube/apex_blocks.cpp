@@ -22,8 +22,7 @@ using Cell = std::pair<mesh::CellType, std::array<int, 8>>;
 double cell_quality(const Cell& c, const Eigen::MatrixXd& X) {
   quality::CellPoints cp = quality::CellPoints::Zero();
   for (int i = 0; i < mesh::node_count(c.first); ++i) cp.row(i) = X.row(c.second[i]);
-  const double sj = quality::scaled_jacobian(c.first, cp);
-  return std::isfinite(sj) && sj < 2 ? sj : -1.0;
+  return quality::signed_sj(c.first, cp);
 }
 
 // The tet or prism of triangle `t` (and `u` for a prism), turned to positive orientation.
@@ -384,8 +383,7 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
     std::string why;
     for (const Column& c : columns) {
       for (int blk : c.blocks) {
-        const double sj = quality::scaled_jacobian(mesh::CellType::Hex, quality::cell_points(T, blk));
-        before = std::min(before, std::isfinite(sj) && sj < 2 ? sj : -1.0);
+        before = std::min(before, quality::signed_sj(mesh::CellType::Hex, quality::cell_points(T, blk)));
       }
       auto V = [&](int di, int dj, int level) { return vertex_of.at(gp(c.i + di, c.j + dj, level)); };
       // Two diagonals: (0,0)-(1,1) and (1,0)-(0,1); the better one that splits the end square.

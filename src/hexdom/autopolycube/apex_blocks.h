@@ -36,8 +36,8 @@ struct ApexCapOptions {
   /// ... and every triangle's unit normal has at least this component along it (the ends of the thin
   /// wedge's knife edge, whose end faces are at right angles to the missing axis, are no tips).
   double min_lean = 0.01;
-  /// ... and the angles of its triangles at it sum to at most this share of a full turn (i10o_simp's
-  /// hole exit has vertices with labels of two axes on a crease: a full turn).
+  /// ... and the angles of its triangles at it sum to at most this share of a full turn (a vertex on a
+  /// crease where labels of two axes meet turns a full turn: no tip).
   double max_angle = 0.8;
   /// The cap: the triangles within this distance of the apex, cut at that sphere (the input's
   /// geometry kept); 0: the apex's 1-ring.

@@ -199,8 +199,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       r.min_block_quality = 1.0;
       r.inverted_blocks = 0;
       for (int b = 0; b < st.structure.num_cells(); ++b) {
-        const double sj = quality::scaled_jacobian(st.structure.type(b), quality::cell_points(st.structure, b));
-        const double q = std::isfinite(sj) && sj < 2 ? sj : -1.0;
+        const double q = quality::signed_sj(st.structure.type(b), quality::cell_points(st.structure, b));
         r.min_block_quality = std::min(r.min_block_quality, q);
         r.inverted_blocks += q <= 0;
       }

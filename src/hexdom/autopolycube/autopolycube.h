@@ -31,8 +31,7 @@ namespace hexdom::autopolycube {
 /// The labelling after the label repair and the chord split that autopolycube does first, and what
 /// that took. It depends only on the input labels, the element size and max_relabels (not on the
 /// level nor on keep_widths), so a caller that builds several polycubes of one labelling (mesh_surface's
-/// candidates) repairs once: on rockerarm's raw surface that repair relabels 21 charts and is a third
-/// of autopolycube's time.
+/// candidates) repairs once.
 struct RepairedLabels {
   mesh::SurfaceMesh labels;  ///< chords split, no chart problem left
   int relabelled = 0, chords = 0;
@@ -67,9 +66,7 @@ struct AutoPolycubeOptions {
   /// labelled with the axis its neighbours lack (split_oblique_faces.h), before the label repair;
   /// false: labels as given (the repair then merges such a face with a neighbour or gives up).
   bool oblique_faces = true;
-  /// The cap's radius in element sizes (ApexCapOptions::radius = this * size). Measured on a cone
-  /// R 25 x 40 (level 1, tet blocks): 1-ring cap -2.60% volume (a polycube 2 cells across), 0.5:
-  /// -2.57%, 1: -1.18% (3 cells across), 1.5: -1.26%; the sharp cone R 10 x 60 stays 1 cell across.
+  /// The cap's radius in element sizes (ApexCapOptions::radius = this * size).
   double apex_cap_radius = 1.0;
   /// The blocks under a cap collapse to tets and prisms (collapse_apexes); false: they stay hexes,
   /// the cap a face of its own (route of a frustum).

@@ -163,8 +163,7 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
     return cp;
   };
   auto shape_quality = [&](const mesh::DegenerateHex& d, const Eigen::MatrixXd& pos) {
-    const double sj = quality::scaled_jacobian(d.type, points(d, pos));
-    return std::isfinite(sj) && sj < 2 ? sj : -1.0;
+    return quality::signed_sj(d.type, points(d, pos));
   };
   // Every boundary face of the structure under `s` matches one patch (one boundary loop) by its
   // corners, each class has at most one corner; on success the class positions go to `pos`.

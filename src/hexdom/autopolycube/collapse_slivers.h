@@ -1,7 +1,7 @@
 // Prism blocks where the polycube has a thin strip chart: the knife edge of a wedge-like feature,
 // where the label repair put a band of a third label between two nearly opposite charts. In the
 // polycube that band is a row of squares at least one cell wide; in reality either its edges across
-// are much shorter than its edges along (a sliver), or, as measured on the knife edges here, the
+// are much shorter than its edges along (a sliver), or the
 // band lies in the plane of the side it was cut from, so the hex blocks under it have an angle of
 // nearly 180 degrees where the band meets that side (scaled Jacobian about 0). Collapsing the
 // strip's edges across turns those blocks into prisms (the paper's degenerate cubes) and the
@@ -27,10 +27,7 @@ struct CollapseSliversOptions {
   double max_ratio = 0.35;
   double quality_slack = 0.0;
   /// A strip whose hex blocks' worst scaled Jacobian is at most this collapses too, whatever its
-  /// ratio, when the prisms' worst is higher by at least min_gain. Measured: the band along the 15
-  /// degree knife edge of the thin wedge (remeshed to 0.15) is 1.56 across and 0.8 along (ratio
-  /// 2.4), its hex blocks have worst SJ 0.000 and the prisms 0.180 (mesh: worst hex SJ 0.220 ->
-  /// 0.360, prisms 0.299).
+  /// ratio, when the prisms' worst is higher by at least min_gain.
   double poor_quality = 0.2;
   double min_gain = 0.05;
   /// Keep a collapse only when the blocks it changes keep their volume within this share: a strip

@@ -14,9 +14,8 @@ namespace {
 constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 
 double block_quality(const mesh::Mesh& T, int b) {
-  return quality::scaled_jacobian(mesh::CellType::Hex, quality::cell_points(T, b));
+  return quality::signed_sj(mesh::CellType::Hex, quality::cell_points(T, b));
 }
-double quality_value(double sj) { return std::isfinite(sj) && sj < 2 ? sj : -1.0; }
 }  // namespace
 
 GridStructure grid_structure(const PolycubeGrid& grid, const std::map<std::array<int, 3>, int>& grid_vertex,
@@ -101,7 +100,7 @@ GridStructure grid_structure(const PolycubeGrid& grid, const std::map<std::array
   for (int b = 0; b < T.num_cells(); ++b)
     for (int i = 0; i < 8; ++i) blocks_of[T.cells(b, i)].push_back(b);
   Eigen::VectorXd q(T.num_cells());
-  for (int b = 0; b < T.num_cells(); ++b) q(b) = quality_value(block_quality(T, b));
+  for (int b = 0; b < T.num_cells(); ++b) q(b) = block_quality(T, b);
   out.min_quality_harmonic = T.num_cells() ? q.minCoeff() : 1.0;
   // The scaled Jacobian does not see an edge shrink (a block flattened to a slab keeps its corner
   // angles), so raising the worst block around a vertex could push it onto its neighbour (rockerarm:
@@ -141,7 +140,7 @@ GridStructure grid_structure(const PolycubeGrid& grid, const std::map<std::array
             T.V(v, dir / 2) += dir % 2 ? -step : step;
             const double shortest_after = shortest_edge(v);
             double w = 1e300;
-            for (int b : blocks_of[v]) w = std::min(w, quality_value(block_quality(T, b)));
+            for (int b : blocks_of[v]) w = std::min(w, block_quality(T, b));
             if (w > worst + 1e-9 &&
                 (shortest_after >= shortest_allowed[v] || shortest_after >= shortest_before)) {
               worst = w;
@@ -154,7 +153,7 @@ GridStructure grid_structure(const PolycubeGrid& grid, const std::map<std::array
       }
       if ((T.V.row(v) - start).norm() > 0) {
         ++moved;
-        for (int b : blocks_of[v]) q(b) = quality_value(block_quality(T, b));
+        for (int b : blocks_of[v]) q(b) = block_quality(T, b);
       }
     }
     if (moved == 0) break;

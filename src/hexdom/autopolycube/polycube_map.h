@@ -32,13 +32,9 @@ struct PolycubeMapOptions {
   /// corners is below this share of its input chord gets at least length_share times its input length in
   /// cells (the arc, at most 1.25 times the chord, rounded), when that is 2 or more cells beyond the
   /// span: the side charts of a cone get planes that compromise between the base and the tip, and
-  /// the base rim too few nodes (cone R25 x 40: 24 around it, -1.16% volume; with this 32, -0.66%).
-  /// 0: least-squares offsets only.
+  /// the base rim too few nodes. 0: least-squares offsets only.
   double keep_lengths = 0.6;
-  /// Measured on the cones (R25 x 40 / R10 x 60, level 1, worst SJ and volume after the snap): 0.5
-  /// and 0.6: 0.429 -0.66% / unchanged (one cell across); 0.7: 0.340 -0.43% / 0.170 -5.9%; 0.75:
-  /// 0.262 -0.43% / prisms 0.308, tets 0.297, -1.31%; 1: 0.124 / 0.000 -0.80% (the tip's blocks
-  /// crowd under a cap of one element size).
+  /// The share of its input length a curve of keep_lengths keeps in cells (docs/tuning-notes.md).
   double length_share = 0.6;
   /// Untangle folded charts by the barrier energy of untangle_plane_map (otherwise only local moves).
   bool untangle = true;

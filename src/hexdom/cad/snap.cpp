@@ -20,7 +20,7 @@
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/metrics.h"
 
 namespace hexdom::cad {
@@ -272,17 +272,17 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     for (int k = 1; restore && k < steps; ++k) {
       const double a = static_cast<double>(k) / steps;
       for (int v : boundary) w.V.row(v) = start.row(v) + a * (target.row(v) - start.row(v));
-      quality::ImproveOptions io;
+      optimize::ImproveOptions io;
       io.smooth = opt.smooth;
       io.optimize = opt.optimize;
       io.floor = floor;
       io.fixed_nodes = boundary;
-      w = quality::improve(w, io).mesh;
+      w = optimize::improve(w, io).mesh;
     }
     for (int v : boundary) w.V.row(v) = target.row(v);
     out.worst_snapped = worst_sj(w, &out.inverted_snapped);
     if (restore) {
-      quality::ImproveOptions io;
+      optimize::ImproveOptions io;
       io.smooth = opt.smooth;
       io.optimize = opt.optimize;
       io.floor = floor;
@@ -307,7 +307,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
           if (!std::isfinite(d)) return w.V.row(v).transpose();  // stays where it is
           return Eigen::Vector3d(q.X(), q.Y(), q.Z());
         };
-      w = quality::improve(w, io).mesh;
+      w = optimize::improve(w, io).mesh;
     }
     out.mesh = std::move(w);
     return out;

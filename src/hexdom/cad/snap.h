@@ -8,7 +8,7 @@
 // goes onto the edge; every other boundary node goes onto the nearest of its CAD faces (trimmed).
 // "Near" is `edge_tolerance` times the node's shortest boundary edge, so a mesh that does not follow
 // a CAD edge (a smooth blend crossed by the polycube) is not pulled onto it. Then the interior nodes
-// are untangled and optimised (quality::improve), the boundary nodes sliding along their own CAD face
+// are untangled and optimised (optimize::improve), the boundary nodes sliding along their own CAD face
 // or edge (`slide`, exact projections) or held fixed, the vertex nodes always fixed.
 //
 // Unlike the rest of hexdom_cad this uses the quality stage of hexdom_core, for the last step.
@@ -28,24 +28,23 @@ struct SnapOptions {
   /// shortest boundary edge from it.
   double edge_tolerance = 0.25;
   /// Quality restoration of the interior nodes afterwards: smoothing passes and optimisation rounds
-  /// (quality::improve with the boundary nodes fixed); both 0 skips it.
+  /// (optimize::improve with the boundary nodes fixed); both 0 skips it.
   int smooth = 3;
   int optimize = 20;
   /// During the restoration, boundary nodes may slide along their own CAD face or edge (vertex
   /// nodes stay); false holds every boundary node where the projection put it.
   bool slide = true;
   /// The restoration keeps every cell at or above min(keep, worst SJ before the snap) there, even
-  /// while the cells the projection inverted are untangled (quality::ImproveOptions::floor):
-  /// without it, untangling a thin layer cell let cells the snap never touched drop to the level of
-  /// the worst (i10o_simp: 0.72 -> 0.07). When that leaves cells inverted, the restoration is run
-  /// again without it and the better kept. Negative: no floor.
+  /// while the cells the projection inverted are untangled (optimize::ImproveOptions::floor):
+  /// without it, untangling a thin layer cell lets cells the snap never touched drop to the level of
+  /// the worst. When that leaves cells inverted, the restoration is run again without it and the
+  /// better kept. Negative: no floor.
   double keep = 0.3;
   /// When the direct snap (all boundary nodes at once, then the restoration) ends with inverted
   /// cells or below the worst SJ before it, the snap is made again in this many equal steps, the
   /// interior restored with the boundary held after each but the last, so that the thin cells along
   /// the boundary (a pillow layer) follow instead of inverting; the better result is kept (fewer
-  /// inverted cells, then the better worst cell). 1: direct only. i10o_simp: 0.201 -> 0.125
-  /// direct, 0.201 in 2 steps.
+  /// inverted cells, then the better worst cell). 1: direct only.
   int steps = 2;
   LogCallback log;
 };

@@ -1,5 +1,6 @@
 #include "hexdom/mesh/cell_faces.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <unordered_map>
 
@@ -58,6 +59,19 @@ std::vector<BoundaryFace> boundary_faces(const Mesh& m) {
     return a.cell != b.cell ? a.cell < b.cell : a.local < b.local;
   });
   return out;
+}
+
+Eigen::Vector3d face_area_vector(const Mesh& m, const BoundaryFace& f) {
+  using Vec = Eigen::Vector3d;
+  Vec n = Vec::Zero();
+  Vec c = Vec::Zero();
+  for (int i = 0; i < f.n; ++i) c += m.V.row(f.v[i]).transpose();
+  c /= f.n;
+  for (int i = 0; i < f.n; ++i) {
+    const Vec a = m.V.row(f.v[i]).transpose(), b = m.V.row(f.v[(i + 1) % f.n]).transpose();
+    n += (a - c).cross(b - c);
+  }
+  return 0.5 * n;
 }
 
 }  // namespace hexdom::mesh

@@ -28,4 +28,9 @@ struct BoundaryFace {
 /// GeometryError naming the nodes of a face shared by more than two cells (non-conforming mesh).
 std::vector<BoundaryFace> boundary_faces(const Mesh& mesh);
 
+/// Area vector of a boundary face: half the sum of the cross products of consecutive corners taken
+/// about the corners' centroid; it points out of the mesh, and its length is the area of a planar
+/// face.
+Eigen::Vector3d face_area_vector(const Mesh& mesh, const BoundaryFace& face);
+
 }  // namespace hexdom::mesh

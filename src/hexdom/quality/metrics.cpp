@@ -191,6 +191,10 @@ double volume(CellType type, const CellPoints& P) {
 
 bool is_inverted(double sj) { return !(sj > 0) || sj >= kDblMax; }
 
+double signed_sj(double sj) { return std::isfinite(sj) && sj < 2 ? sj : -1.0; }
+
+double signed_sj(mesh::CellType type, const CellPoints& P) { return signed_sj(scaled_jacobian(type, P)); }
+
 CellPoints cell_points(const mesh::Mesh& m, int c) {
   CellPoints P = CellPoints::Zero();
   const int k = mesh::node_count(m.type(c));

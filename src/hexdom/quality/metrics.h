@@ -34,6 +34,12 @@ double volume(mesh::CellType type, const CellPoints& P);
 /// True when the cell is inverted or degenerate: scaled Jacobian <= 0, DBL_MAX or NaN.
 bool is_inverted(double scaled_jacobian);
 
+/// The scaled Jacobian where it is defined (a finite value below 2), else -1: a value to order and
+/// compare cells by, in which a degenerate cell (zero-length edge, NaN) ranks with inverted ones.
+double signed_sj(double scaled_jacobian);
+/// signed_sj of the cell's scaled Jacobian.
+double signed_sj(mesh::CellType type, const CellPoints& P);
+
 /// Points of cell `c` of `mesh`.
 CellPoints cell_points(const mesh::Mesh& mesh, int c);
 

@@ -17,7 +17,7 @@ struct CheckOptions {
   /// Degrees. A patch's orientation is the axis nearest to its area-weighted normal; two touching
   /// patches have opposite orientations when those axes are opposite and their normals are more
   /// than this angle apart. The paper's patches of prism and tet faces lie between two axes, and
-  /// their neighbours may have opposite nearest axes at less than 135 degrees (ant: up to 124).
+  /// their neighbours may have opposite nearest axes at less than 135 degrees.
   double opposite_angle = 135.0;
   /// Degrees. A vertex whose angle defect (360 minus the sum of its triangle angles) exceeds this
   /// in magnitude is a corner of the shape (a cube corner has 90, a re-entrant corner -90) and must
@@ -25,7 +25,7 @@ struct CheckOptions {
   double corner_defect = 70.0;
   /// Degrees; 0 (default) skips this test. A boundary curve between two patches that turns by more
   /// than this at one of its vertices has a corner there that only two patches share. Meant for
-  /// smooth models; the paper's accepted patches turn by up to 79 degrees (ant).
+  /// smooth models.
   double corner_angle = 0.0;
   /// The turn at a vertex is measured between chords to the points this many mean edge lengths
   /// before and after it along the curve (at the ends, as far as the curve goes).

@@ -1,6 +1,6 @@
 // The frame a part's faces fit: the rotation that turns the triangle normals closest to the six
-// axis directions, so that a part lying at an angle in its model (a bracket turned 45 degrees about
-// Z in an assembly) is segmented and given a polycube as if it were square to the axes.
+// axis directions, so that a part lying at an angle in its model (placed turned in an assembly) is
+// segmented and given a polycube as if it were square to the axes.
 #pragma once
 
 #include <Eigen/Core>

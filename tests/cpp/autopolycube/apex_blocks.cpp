@@ -7,7 +7,7 @@
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/polycube/patch_layout.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/metrics.h"
 #include "hexdom/quality/report.h"
 #include "test_common.h"
@@ -101,9 +101,9 @@ TEST(ApexBlocks, APyramidsTipBecomesTetBlocksAndTheColumnsBelowPrisms) {
   EXPECT_EQ(m.count(mesh::CellType::Tet), 8 * r.tet_blocks);
   EXPECT_EQ(m.count(mesh::CellType::Wedge), 8 * r.prism_blocks);
   for (const auto& [vs, n] : test::cell_faces(m)) ASSERT_LE(n, 2);
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.surface = r.patches;
-  const auto imp = quality::improve(m, io);
+  const auto imp = optimize::improve(m, io);
   EXPECT_EQ(imp.after.hex.inverted + imp.after.prism.inverted + imp.after.tet.inverted, 0);
   EXPECT_GT(imp.after.tet.sj_min, 0);
   EXPECT_GT(imp.after.prism.sj_min, 0);
@@ -121,9 +121,9 @@ TEST(ApexBlocks, WithoutTheCollapseTheCapIsAFaceOfHexBlocks) {
   generation::GenerateOptions go;
   go.level = 1;
   const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.surface = r.patches;
-  const auto imp = quality::improve(m, io);
+  const auto imp = optimize::improve(m, io);
   EXPECT_EQ(imp.after.hex.inverted, 0);
   EXPECT_NEAR(imp.after.total_volume, 16.0, 0.01 * 16.0);
 }

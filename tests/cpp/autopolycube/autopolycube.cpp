@@ -7,7 +7,7 @@
 #include "hexdom/generation/generate.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/polycube/patch_layout.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/report.h"
 #include "hexdom/segmentation/segment_cvt.h"
 #include "test_common.h"
@@ -122,9 +122,9 @@ TEST(Autopolycube, CylinderMapsOntoABoxOfCells) {
   generation::GenerateOptions go;
   go.level = 1;
   const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.surface = r.patches;
-  const auto imp = quality::improve(m, io);
+  const auto imp = optimize::improve(m, io);
   EXPECT_EQ(imp.after.hex.inverted, 0);
   EXPECT_GT(imp.after.hex.sj_min, 0.2);
   EXPECT_NEAR(imp.after.total_volume, test::enclosed_volume(s), 0.01 * test::enclosed_volume(s));
@@ -208,9 +208,9 @@ TEST_P(AutopolycubePaper, SegmentAutopolycubeGenerateImproveHasNoInvertedCell) {
   generation::GenerateOptions go;
   go.level = 1;
   const mesh::Mesh m = generation::generate(r.patches, r.structure, go);
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.surface = r.patches;
-  const auto imp = quality::improve(m, io);
+  const auto imp = optimize::improve(m, io);
   EXPECT_EQ(imp.after.hex.inverted + imp.after.prism.inverted + imp.after.tet.inverted, 0);
 }
 

@@ -7,7 +7,7 @@
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/polycube/patch_layout.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/metrics.h"
 #include "hexdom/quality/report.h"
 #include "test_common.h"
@@ -94,9 +94,9 @@ TEST(CollapseSlivers, KnifeEdgeStripGivesPrismBlocksAndTriangularPatches) {
   }
   for (const auto& [e, n] : boundary_edges) ASSERT_EQ(n, 2) << "boundary edge " << e.first << " " << e.second;
   EXPECT_GT(mesh_triangles, 0);  // the prisms' end triangles on the surface
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.surface = r.patches;
-  const auto imp = quality::improve(m, io);
+  const auto imp = optimize::improve(m, io);
   EXPECT_EQ(imp.after.hex.inverted + imp.after.prism.inverted, 0);
   EXPECT_GT(imp.after.prism.sj_min, 0);
   EXPECT_NEAR(imp.after.total_volume, test::enclosed_volume(s), 0.01 * test::enclosed_volume(s));

@@ -5,7 +5,7 @@
 #include "auto_test_util.h"
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/generation/generate.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/metrics.h"
 #include "hexdom/segmentation/axis_labels.h"
 #include "test_common.h"
@@ -130,9 +130,9 @@ TEST(SplitObliqueFaces, TheTetrahedronHasAPolycubeOnlyWithTheSplit) {
   generation::GenerateOptions go;
   go.level = 1;
   const mesh::Mesh generated = generation::generate(r.patches, r.structure, go);
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.surface = r.patches;
-  const quality::ImproveResult ir = quality::improve(generated, io);
+  const optimize::ImproveResult ir = optimize::improve(generated, io);
   EXPECT_GT(ir.pillow_cells, 0);
   EXPECT_EQ(ir.after.hex.inverted, 0);
   EXPECT_GT(ir.after.hex.sj_min, 0.15);

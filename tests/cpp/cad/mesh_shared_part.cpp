@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 
 #include "cad_test_util.h"
-#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/pipeline/mesh_surface.h"
 #include "hexdom/cad/snap.h"
 #include "hexdom/quality/metrics.h"
 
@@ -21,7 +21,7 @@ TEST(ImproveOnSharedPart, LayerOverTheSmoothRegionsOpensTheCrescentCornerOnARoun
   HEXDOM_REQUIRE_DATA(path);
   const cad::Shape shape = cad::read_shape(path);
   const mesh::SurfaceMesh surface = cad::tessellate(shape, cad::TessellateOptions{});
-  const autopolycube::MeshSurfaceRun run = autopolycube::mesh_surface(surface);
+  const pipeline::MeshSurfaceRun run = pipeline::mesh_surface(surface);
   ASSERT_EQ(run.level, 1);
   EXPECT_GT(run.mesh.num_cells(), run.generated.num_cells());  // a pillowed run was kept
   const Eigen::VectorXd sj = quality::compute_metrics(run.mesh).scaled_jacobian;
@@ -40,7 +40,7 @@ TEST(ImproveOnSharedPart, LayerOverTheSmoothRegionsOpensTheCrescentCornerOnARoun
 TEST(AutoPathOnACadPart, AConesRimKeepsEnoughNodesForItsVolume) {
   const cad::Shape shape = cad::read_shape(test::write_part(BRepPrimAPI_MakeCone(25.0, 0.0, 40.0).Shape(), "cone_r25"));
   const mesh::SurfaceMesh surface = cad::tessellate(shape, cad::TessellateOptions{});
-  const autopolycube::MeshSurfaceRun run = autopolycube::mesh_surface(surface);
+  const pipeline::MeshSurfaceRun run = pipeline::mesh_surface(surface);
   const cad::SnapResult snapped = cad::snap_to_brep(shape, run.mesh, surface, cad::SnapOptions{});
   const double volume = M_PI * 25.0 * 25.0 * 40.0 / 3.0;
   EXPECT_NEAR(snapped.quality.total_volume, volume, 0.01 * volume);

@@ -7,7 +7,7 @@
 
 #include "cad_test_util.h"
 #include "hexdom/cad/snap.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/report.h"
 
 using namespace hexdom;
@@ -133,15 +133,15 @@ TEST(ImproveFixedNodes, FixedNodesNeverMove) {
   const mesh::Mesh m = grid(3, 3, 3, [](double u, double v, double w) {
     return Eigen::Vector3d(u + 0.15 * std::sin(7 * v + 3 * w), v + 0.1 * std::cos(5 * u), w + 0.1 * u * v);
   });
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.smooth = 2;
   io.optimize = 5;
   for (int v = 0; v < m.num_nodes(); v += 2) io.fixed_nodes.push_back(v);
-  const quality::ImproveResult r = quality::improve(m, io);
+  const optimize::ImproveResult r = optimize::improve(m, io);
   for (int v : io.fixed_nodes) EXPECT_EQ(r.mesh.V.row(v), m.V.row(v)) << v;
   EXPECT_GT((r.mesh.V - m.V).norm(), 0);  // the others did move
   io.fixed_nodes = {m.num_nodes()};
-  EXPECT_THROW(quality::improve(m, io), GeometryError);
+  EXPECT_THROW(optimize::improve(m, io), GeometryError);
 }
 
 TEST(ImproveProjectHook, DecidesWhereMovingBoundaryNodesGo) {
@@ -149,7 +149,7 @@ TEST(ImproveProjectHook, DecidesWhereMovingBoundaryNodesGo) {
   const mesh::Mesh m = grid(3, 3, 3, [](double u, double v, double w) {
     return Eigen::Vector3d(u + 0.15 * std::sin(7 * v + 3 * w), v + 0.1 * std::cos(5 * u), w + 0.1 * u * v);
   });
-  quality::ImproveOptions io;
+  optimize::ImproveOptions io;
   io.smooth = 2;
   io.optimize = 5;
   int calls = 0;
@@ -157,7 +157,7 @@ TEST(ImproveProjectHook, DecidesWhereMovingBoundaryNodesGo) {
     ++calls;
     return m.V.row(v).transpose();
   };
-  const quality::ImproveResult r = quality::improve(m, io);
+  const optimize::ImproveResult r = optimize::improve(m, io);
   EXPECT_GT(calls, 0);
   for (int v = 0; v < m.num_nodes(); ++v) {
     const int i = v % 4, j = (v / 4) % 4, k = v / 16;

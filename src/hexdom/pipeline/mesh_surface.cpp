@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/pipeline/mesh_surface.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include "hexdom/common/format.h"
 #include "hexdom/generation/generate.h"
 
-namespace hexdom::autopolycube {
+namespace hexdom::pipeline {
 
 namespace {
 // "turned by 45.0 degrees about (0, 0, 1)"
@@ -220,13 +220,13 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   std::vector<double> weights{opt.segment.edge_weight};
   for (double w : opt.retry_edge_weights)
     if (std::find(weights.begin(), weights.end(), w) == weights.end()) weights.push_back(w);
-  AutoPolycubeOptions ao = opt.polycube;
+  autopolycube::AutoPolycubeOptions ao = opt.polycube;
   ao.size = size;
   ao.level = opt.level;
   ao.log = inner;
   std::exception_ptr first_error;
   mesh::SurfaceMesh first_labels;
-  AutoPolycube first_polycube;
+  autopolycube::AutoPolycube first_polycube;
   for (size_t attempt = 0; attempt < weights.size(); ++attempt) {
     r.stage = "segment";
     auto t = Clock::now();
@@ -247,7 +247,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     ao.repaired = attempt == 0 && opt.polycube.repaired && opt.polycube.repaired->labels.F.rows() > 0 ? opt.polycube.repaired
                                                                                                       : nullptr;
     try {
-      autopolycube(r.labels, ao, &r.polycube);
+      autopolycube::autopolycube(r.labels, ao, &r.polycube);
     } catch (const Error& e) {  // GeometryError (labelling) or MeshingError (cutting)
       r.seconds[1] += since(t);
       if (!first_error) {
@@ -289,10 +289,10 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   r.stage = "improve";
   t = Clock::now();
   if (opt.improve) {
-    quality::ImproveOptions io = opt.improvement;
+    optimize::ImproveOptions io = opt.improvement;
     io.surface = r.polycube.patches;
     io.log = inner;
-    quality::ImproveResult ir = quality::improve(r.generated, io);
+    optimize::ImproveResult ir = optimize::improve(r.generated, io);
     r.mesh = std::move(ir.mesh);
     r.quality = ir.after;
   } else {
@@ -330,4 +330,4 @@ std::string choice_text(const MeshSurfaceRun& r) {
   return s;
 }
 
-}  // namespace hexdom::autopolycube
+}  // namespace hexdom::pipeline

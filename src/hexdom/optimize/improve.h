@@ -1,4 +1,5 @@
-// Mesh quality improvement: pillowing, smoothing by vertex kind, and Jacobian optimisation.
+// Mesh quality improvement: pillowing, smoothing by node kind, and Jacobian optimisation, in the
+// recommended sequence or as chosen stages.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,9 +8,10 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/pillow.h"
 #include "hexdom/quality/report.h"
 
-namespace hexdom::quality {
+namespace hexdom::optimize {
 
 struct ImproveOptions {
   /// Stages. With all three off (the default), the recommended sequence runs: pillow once, then
@@ -28,8 +30,7 @@ struct ImproveOptions {
   /// falls below the worst cell of its type, so the worst hex, prism and tet are kept (0: none).
   int mean_passes = 12;
   /// With explicit stages (smooth / optimize), run the mean passes after them too (the recommended
-  /// sequence always does): smoothing lowers the mean of an optimised mesh (the snap's restoration:
-  /// i10o_simp 0.744 -> 0.613).
+  /// sequence always does): smoothing lowers the mean of an optimised mesh.
   bool mean_after = false;
   /// Boundary edges whose faces meet at more than this angle (degrees between normals) are sharp.
   double feature_angle = 35.0;
@@ -57,7 +58,7 @@ struct ImproveOptions {
 
 struct ImproveResult {
   mesh::Mesh mesh;
-  QualityReport before, after;
+  quality::QualityReport before, after;
   int pillow_cells = 0;  ///< cells added by pillowing
   int rounds = 0;        ///< smoothing/optimisation rounds run
   int feature_nodes = 0, corner_nodes = 0;
@@ -71,21 +72,4 @@ struct ImproveResult {
 /// lowering any type's worst. Throws GeometryError for a mesh that is not a conforming volume mesh.
 ImproveResult improve(const mesh::Mesh& mesh, const ImproveOptions& options = {});
 
-/// Adds one layer of cells along the boundary (quads -> hexes, triangles -> prisms) and moves the
-/// old boundary nodes inward; the new boundary nodes keep the old boundary positions. Returns the
-/// new mesh; `old_to_new` (#V of the input) receives each old boundary node's new boundary copy
-/// (-1 for interior nodes).
-mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, std::vector<int>* old_to_new = nullptr);
-
-/// \overload Pillows only the boundary faces f with faces[f] != 0 (#faces of
-/// mesh::boundary_faces(mesh), in its order): a layer over part of the boundary. An old node on the
-/// edge of that part (it also lies on a face left out) moves inward along the faces left out
-/// (their tangent plane, or the line where two of them meet), so the layer's side faces lie on them
-/// and the old mesh stays conforming; with a curved face left out, it ends off that face by the
-/// order of depth squared times the curvature (project it back). Throws GeometryError naming the
-/// node where no such move exists: at a corner of three faces left out, or where the faces left
-/// out do not lie ahead of the layer (a reflex edge).
-mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, const std::vector<char>& faces,
-                  std::vector<int>* old_to_new = nullptr);
-
-}  // namespace hexdom::quality
+}  // namespace hexdom::optimize

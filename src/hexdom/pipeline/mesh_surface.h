@@ -8,12 +8,12 @@
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 #include "hexdom/quality/report.h"
 #include "hexdom/segmentation/cube_frame.h"
 #include "hexdom/segmentation/segment_cvt.h"
 
-namespace hexdom::autopolycube {
+namespace hexdom::pipeline {
 
 struct MeshSurfaceOptions {
   double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30
@@ -22,22 +22,22 @@ struct MeshSurfaceOptions {
   /// Its size and level are taken from above. The candidates after the first (without the widths of
   /// holes, level s - 1) get the first one's repaired labelling (AutoPolycubeOptions::repaired) for
   /// the edge weight it took, so the label repair runs once per run, not once per candidate.
-  AutoPolycubeOptions polycube;
+  autopolycube::AutoPolycubeOptions polycube;
   /// When autopolycube cannot use the segmentation, segment again with these edge weights (lambda)
   /// in turn, then give up with the first attempt's error. Smoother labellings have fewer small
-  /// charts for the label repair to merge (mount1's ears need lambda 1).
+  /// charts for the label repair to merge.
   std::vector<double> retry_edge_weights = {1.0, 0.3, 3.0};
   int relax_sweeps = 10;              ///< generation's relaxation sweeps
   bool improve = true;                ///< run the improvement stage (recommended sequence)
-  quality::ImproveOptions improvement;  ///< its surface is the patch surface
+  optimize::ImproveOptions improvement;  ///< its surface is the patch surface
   /// When inverted cells remain after improvement at level s > 0, run again from the polycube on
-  /// with level s - 1 (the same element size, a grid of half the spacing, so thin features such as
-  /// rockerarm's bore wall get their own cells) and keep the better result.
+  /// with level s - 1 (the same element size, a grid of half the spacing, so thin features get their
+  /// own cells) and keep the better result.
   bool refine_when_inverted = true;
   /// The same at level s > 0 when no cell is inverted but the worst scaled Jacobian is below this
-  /// (by default target_sj's 0.3): a finer grid follows thin or crowded features (i01o_m1's bolt
-  /// holes beside a round rim: 0.079 at level 1, 0.115 at level 0). The finer run is kept only when
-  /// it is better by the candidates' order (see try_without_widths). 0: only when cells are inverted.
+  /// (by default target_sj's 0.3): a finer grid follows thin or crowded features. The finer run is
+  /// kept only when it is better by the candidates' order (see try_without_widths). 0: only when
+  /// cells are inverted.
   double refine_below_sj = 0.3;
   /// The polycube keeps the widths of holes (AutoPolycubeOptions::keep_widths, on in `polycube`);
   /// when the mesh then misses a target (an inverted cell, a worst scaled Jacobian below target_sj,
@@ -63,7 +63,7 @@ struct MeshSurfaceOptions {
 
 struct MeshSurfaceRun {
   mesh::SurfaceMesh labels;   ///< the segmentation (label 1..6 per triangle of the input)
-  AutoPolycube polycube;      ///< structure, patch surface, repaired labels, polycube surface
+  autopolycube::AutoPolycube polycube;      ///< structure, patch surface, repaired labels, polycube surface
   mesh::Mesh generated;       ///< the mesh as generated
   mesh::Mesh mesh;            ///< the final mesh (improved, unless improve is off)
   quality::QualityReport generated_quality, quality;
@@ -102,4 +102,4 @@ std::string to_text(const MeshSurfaceRun& run);
 /// blocks at apexes" (the last part only when the polycube has apex caps).
 std::string choice_text(const MeshSurfaceRun& run);
 
-}  // namespace hexdom::autopolycube
+}  // namespace hexdom::pipeline

@@ -1,25 +1,25 @@
-#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/pipeline/mesh_surface.h"
 
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "auto_test_util.h"
+#include "autopolycube/auto_test_util.h"
 #include "hexdom/generation/generate.h"
 #include "test_common.h"
 
 using namespace hexdom;
 
 namespace {
-double volume_error(const autopolycube::MeshSurfaceRun& r, double reference) {
+double volume_error(const pipeline::MeshSurfaceRun& r, double reference) {
   return std::abs(r.quality.total_volume - reference) / reference;
 }
 
 // The kept candidate rebuilt stage by stage from the options the run reports, as the workbench's
 // objects do it (Segmentation EdgeWeight, Polycube KeepWidths / TetApexes / Level, Mesh Level):
 // no repair handed down, no candidate choice.
-mesh::Mesh rebuild(const mesh::SurfaceMesh& s, const autopolycube::MeshSurfaceOptions& o, const autopolycube::MeshSurfaceRun& r) {
+mesh::Mesh rebuild(const mesh::SurfaceMesh& s, const pipeline::MeshSurfaceOptions& o, const pipeline::MeshSurfaceRun& r) {
   segmentation::CvtOptions so = o.segment;
   so.edge_weight = r.edge_weight;
   mesh::SurfaceMesh labels = s;
@@ -33,9 +33,9 @@ mesh::Mesh rebuild(const mesh::SurfaceMesh& s, const autopolycube::MeshSurfaceOp
   generation::GenerateOptions go;
   go.level = r.level;
   go.relax_sweeps = o.relax_sweeps;
-  quality::ImproveOptions io = o.improvement;
+  optimize::ImproveOptions io = o.improvement;
   io.surface = p.patches;
-  return quality::improve(generation::generate(p.patches, p.structure, go), io).mesh;
+  return optimize::improve(generation::generate(p.patches, p.structure, go), io).mesh;
 }
 
 void expect_same_mesh(const mesh::Mesh& a, const mesh::Mesh& b) {
@@ -51,18 +51,18 @@ void expect_same_mesh(const mesh::Mesh& a, const mesh::Mesh& b) {
 TEST(MeshSurface, ATiltedHoleKeepsItsWidthAndTheVolume) {
   const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   const double reference = test::enclosed_volume(s);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
-  const auto r = autopolycube::mesh_surface(s, o);
+  const auto r = pipeline::mesh_surface(s, o);
   EXPECT_EQ(r.quality.hex.inverted, 0);
   EXPECT_LT(volume_error(r, reference), 0.015) << r.quality.total_volume << " vs " << reference;
 
-  autopolycube::MeshSurfaceOptions old = o;
+  pipeline::MeshSurfaceOptions old = o;
   old.polycube.keep_widths = false;
   old.try_without_widths = false;
-  const auto q = autopolycube::mesh_surface(s, old);
+  const auto q = pipeline::mesh_surface(s, old);
   // 2.8% without the widths (60 blocks, the tunnel 1 x 1), 1.0% with them (55 blocks, 2 x 2): a
   // 16-gon for the hole instead of an 8-gon.
   EXPECT_LT(volume_error(r, reference), 0.5 * volume_error(q, reference))
@@ -74,14 +74,14 @@ TEST(MeshSurface, ATiltedHoleKeepsItsWidthAndTheVolume) {
 TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
   const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   const double reference = test::enclosed_volume(s);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const auto r = autopolycube::mesh_surface(s, o);
+  const auto r = pipeline::mesh_surface(s, o);
   EXPECT_NE(log.find("again without keeping the widths of holes"), std::string::npos) << log;
   // Neither meets the SJ target, nor the volume one (1.0% and 2.8%), so the higher worst SJ decides:
   // 0.94 with the widths, 0.88 without.
@@ -97,7 +97,7 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
     for (int j = 0; j < 4; ++j)
       for (int k = 0; k < 2; ++k) cells.push_back({i, j, k});
   const auto s = test::cell_surface(cells, 2);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 0.5;
   o.level = 1;
@@ -105,7 +105,7 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
   o.refine_when_inverted = false;
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const auto r = autopolycube::mesh_surface(s, o);
+  const auto r = pipeline::mesh_surface(s, o);
   EXPECT_EQ(r.polycube.widened, 0);
   EXPECT_EQ(log.find("without keeping the widths of holes"), std::string::npos) << log;
   EXPECT_EQ(r.segmentations, 1);
@@ -113,14 +113,14 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
   // The tilted hole's walls are kept apart: there the second candidate is meshed (test above).
   const auto h = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
   o.size = 1.0;
-  EXPECT_GT(autopolycube::mesh_surface(h, o).polycube.widened, 0);
+  EXPECT_GT(pipeline::mesh_surface(h, o).polycube.widened, 0);
 }
 
 // The second candidate (without the widths of holes) and a finer level take the first candidate's
 // label repair instead of repairing the same labelling again.
 TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
   auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
@@ -133,7 +133,7 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
     handed += m.rfind("labels: the repair of an earlier run", 0) == 0;
     repairs += m.rfind("autopolycube:", 0) == 0;
   };
-  const auto r = autopolycube::mesh_surface(s, o);
+  const auto r = pipeline::mesh_surface(s, o);
   EXPECT_EQ(repairs, 2) << log;  // two candidates
   EXPECT_EQ(handed, 1) << log;   // the second one took the first one's repair
   EXPECT_EQ(r.quality.hex.inverted, 0);
@@ -145,31 +145,31 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
 // the one with the widths kept; with keep_widths off from the start, it says so.
 TEST(MeshSurface, TheKeptCandidatesOptionsAreReportedAndRebuildItsMesh) {
   const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
   o.size = 1.0;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it: both candidates are measured
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const auto r = autopolycube::mesh_surface(s, o);
+  const auto r = pipeline::mesh_surface(s, o);
   EXPECT_NE(log.find("kept the polycube with the widths of holes"), std::string::npos) << log;
   EXPECT_TRUE(r.keep_widths);
   EXPECT_TRUE(r.collapse_apexes);  // the default; no apex here
   EXPECT_EQ(r.edge_weight, 0.1);
-  EXPECT_NE(autopolycube::choice_text(r).find("level " + std::to_string(r.level) + ", lambda 0.1"), std::string::npos) << autopolycube::choice_text(r);
-  EXPECT_NE(autopolycube::choice_text(r).find("widths of holes kept"), std::string::npos);
-  EXPECT_NE(autopolycube::to_text(r).find("kept          level"), std::string::npos) << autopolycube::to_text(r);
+  EXPECT_NE(pipeline::choice_text(r).find("level " + std::to_string(r.level) + ", lambda 0.1"), std::string::npos) << pipeline::choice_text(r);
+  EXPECT_NE(pipeline::choice_text(r).find("widths of holes kept"), std::string::npos);
+  EXPECT_NE(pipeline::to_text(r).find("kept          level"), std::string::npos) << pipeline::to_text(r);
   expect_same_mesh(rebuild(s, o, r), r.mesh);
 
-  autopolycube::MeshSurfaceOptions old = o;
+  pipeline::MeshSurfaceOptions old = o;
   old.polycube.keep_widths = false;
   old.refine_when_inverted = false;
-  const auto q = autopolycube::mesh_surface(s, old);
+  const auto q = pipeline::mesh_surface(s, old);
   EXPECT_FALSE(q.keep_widths);
   EXPECT_EQ(q.level, 1);
-  EXPECT_NE(autopolycube::choice_text(q).find("level 1, lambda 0.1, least-squares plane offsets"), std::string::npos)
-      << autopolycube::choice_text(q);
+  EXPECT_NE(pipeline::choice_text(q).find("level 1, lambda 0.1, least-squares plane offsets"), std::string::npos)
+      << pipeline::choice_text(q);
   expect_same_mesh(rebuild(s, old, q), q.mesh);
 }
 
@@ -178,25 +178,25 @@ TEST(MeshSurface, TheKeptCandidatesOptionsAreReportedAndRebuildItsMesh) {
 // blocks, and the reported options rebuild it.
 TEST(MeshSurface, TheKeptApexBlocksAreReportedAndRebuildTheMesh) {
   const auto s = test::pyramid_surface(4.0, 3.0, 16);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.size = 0.25;
   o.level = 1;
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const auto r = autopolycube::mesh_surface(s, o);
+  const auto r = pipeline::mesh_surface(s, o);
   EXPECT_EQ(r.polycube.apexes, 1);
   const bool tets = log.find("kept the tet blocks at the apexes") != std::string::npos ||
                     log.find("with tet blocks at the apexes: again") == std::string::npos;
   EXPECT_EQ(r.collapse_apexes, tets) << log;
   EXPECT_EQ(r.mesh.count(mesh::CellType::Tet) > 0, r.collapse_apexes) << log;
-  EXPECT_NE(autopolycube::choice_text(r).find(r.collapse_apexes ? "tet blocks at apexes" : "hex blocks under the caps"),
+  EXPECT_NE(pipeline::choice_text(r).find(r.collapse_apexes ? "tet blocks at apexes" : "hex blocks under the caps"),
             std::string::npos)
-      << autopolycube::choice_text(r);
+      << pipeline::choice_text(r);
   expect_same_mesh(rebuild(s, o, r), r.mesh);
 
-  autopolycube::MeshSurfaceOptions hex = o;  // the hex blocks asked for: reported as such
+  pipeline::MeshSurfaceOptions hex = o;  // the hex blocks asked for: reported as such
   hex.polycube.collapse_apexes = false;
-  const auto h = autopolycube::mesh_surface(s, hex);
+  const auto h = pipeline::mesh_surface(s, hex);
   EXPECT_FALSE(h.collapse_apexes);
   EXPECT_EQ(h.mesh.count(mesh::CellType::Tet), 0);
 }
@@ -210,16 +210,16 @@ TEST(MeshSurface, APartLyingAtAnAngleIsMeshedInTheFrameItsFacesFit) {
   const auto square = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {2, 0, 1}}, 3);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const auto turned = segmentation::rotated(square, R);
-  autopolycube::MeshSurfaceOptions o;
+  pipeline::MeshSurfaceOptions o;
   o.size = 0.25;
-  const auto a = autopolycube::mesh_surface(square, o);
+  const auto a = pipeline::mesh_surface(square, o);
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const auto b = autopolycube::mesh_surface(turned, o);
+  const auto b = pipeline::mesh_surface(turned, o);
   EXPECT_FALSE(a.frame.turned());
   ASSERT_TRUE(b.frame.turned());
   EXPECT_NE(log.find("frame: the faces fit the axes turned by 30.0 degrees"), std::string::npos) << log;
-  EXPECT_NE(autopolycube::choice_text(b).find("frame: the axes turned by 30.0 degrees"), std::string::npos);
+  EXPECT_NE(pipeline::choice_text(b).find("frame: the axes turned by 30.0 degrees"), std::string::npos);
   for (auto t : {mesh::CellType::Hex, mesh::CellType::Wedge, mesh::CellType::Tet}) EXPECT_EQ(a.mesh.count(t), b.mesh.count(t));
   EXPECT_EQ(b.polycube.relabelled, 0);
   EXPECT_EQ(b.quality.hex.inverted, 0);
@@ -247,7 +247,7 @@ TEST(MeshSurface, APartLyingAtAnAngleIsMeshedInTheFrameItsFacesFit) {
   // In the model's axes the polycube is square to those instead.
   o.align = false;
   o.log = nullptr;
-  const auto c = autopolycube::mesh_surface(turned, o);
+  const auto c = pipeline::mesh_surface(turned, o);
   EXPECT_FALSE(c.frame.turned());
   EXPECT_LT(square_share(c.polycube.polycube), 0.5);
 }

@@ -1,4 +1,4 @@
-#include "hexdom/quality/improve.h"
+#include "hexdom/optimize/improve.h"
 
 #include <cmath>
 #include <cstdio>
@@ -77,7 +77,7 @@ TEST(Pillow, LayerOverPartOfTheBoundaryEndsOnTheFacesLeftOut) {
     mask[f] = on_x1;
   }
   std::vector<int> copy;
-  const mesh::Mesh p = quality::pillow(m, 0.2, mask, &copy);
+  const mesh::Mesh p = optimize::pillow(m, 0.2, mask, &copy);
   EXPECT_EQ(p.num_cells(), 8 + 4);  // the 4 quads of the face x = 1
   EXPECT_GT(sj_of(p).minCoeff(), 0.0);
   EXPECT_NEAR(quality::compute_metrics(p).volume.sum(), 1.0, 1e-12);  // the boundary keeps its place
@@ -123,8 +123,8 @@ TEST(Pillow, LayerCannotEndInsideAFlatFace) {
     if (on_x1) mask[f] = 1, chosen = 1;
   }
   ASSERT_EQ(chosen, 1);
-  EXPECT_THROW(quality::pillow(m, 0.2, mask), GeometryError);
-  EXPECT_THROW(quality::pillow(m, 0.2, std::vector<char>(3, 1)), GeometryError);  // wrong size
+  EXPECT_THROW(optimize::pillow(m, 0.2, mask), GeometryError);
+  EXPECT_THROW(optimize::pillow(m, 0.2, std::vector<char>(3, 1)), GeometryError);  // wrong size
 }
 
 TEST(Improve, LayerOverTheRoundSideOfAPolycubeCylinder) {
@@ -132,7 +132,7 @@ TEST(Improve, LayerOverTheRoundSideOfAPolycubeCylinder) {
   const mesh::Mesh m = polycube_cylinder(n, k);
   const Eigen::VectorXd sj0 = sj_of(m);
   ASSERT_LT(sj0.minCoeff(), 0.35);  // 0.290: the corner hexes, their two side faces nearly in line
-  const auto r = quality::improve(m);
+  const auto r = optimize::improve(m);
   // The layer covers the round side only (4 n k quads), not the caps: they get a ring of layer
   // sides instead, and their corner quads can open up (0.862 measured).
   EXPECT_EQ(r.pillow_cells, 4 * n * k);
@@ -140,11 +140,11 @@ TEST(Improve, LayerOverTheRoundSideOfAPolycubeCylinder) {
   EXPECT_GE(sj1.minCoeff(), 0.5);
   // A layer everywhere copies the caps' corner quads, three nodes on the rim, as they are: however
   // long it is optimised, their hexes stay poor (0.276 measured).
-  quality::ImproveOptions full;
+  optimize::ImproveOptions full;
   full.pillow = true;
   full.smooth = 10;
   full.optimize = 40;
-  EXPECT_LT(sj_of(quality::improve(m, full).mesh).minCoeff(), 0.4);
+  EXPECT_LT(sj_of(optimize::improve(m, full).mesh).minCoeff(), 0.4);
   const double v0 = quality::compute_metrics(m).volume.sum(), v1 = quality::compute_metrics(r.mesh).volume.sum();
   EXPECT_NEAR(v1, v0, 0.01 * v0);
   for (const auto& f : mesh::boundary_faces(r.mesh))
@@ -158,7 +158,7 @@ TEST(Improve, LayerOverTheRoundSideOfAPolycubeCylinder) {
 TEST(Pillow, NoHexKeepsMoreThanOneBoundaryFace) {
   const mesh::Mesh m = cube_grid(2, 0.0);
   std::vector<int> copy;
-  const mesh::Mesh p = quality::pillow(m, 0.2, &copy);
+  const mesh::Mesh p = optimize::pillow(m, 0.2, &copy);
   // 24 boundary quads of the 2x2x2 cube each get a layer hex.
   EXPECT_EQ(p.num_cells(), 8 + 24);
   std::map<int, int> per_cell;
@@ -178,7 +178,7 @@ TEST(Improve, RaisesTheMeanWithoutLoweringTheWorstAndKeepsTheCube) {
   const mesh::Mesh m = cube_grid(4, 0.35);
   const Eigen::VectorXd sj0 = sj_of(m);
   ASSERT_LT(sj0.minCoeff(), 0.7);  // the jitter made bad cells
-  const auto r = quality::improve(m);
+  const auto r = optimize::improve(m);
   const Eigen::VectorXd sj1 = sj_of(r.mesh);
   EXPECT_GT(sj1.minCoeff(), 0.0);
   EXPECT_GE(sj1.minCoeff(), sj0.minCoeff());
@@ -209,10 +209,10 @@ TEST(Improve, RaisesTheMeanWithoutLoweringTheWorstAndKeepsTheCube) {
 TEST(Improve, FeatureCurveNodesStayOnTheCubeEdges) {
   // Nodes on the 12 cube edges may slide along them only (explicit stages keep node numbers).
   const mesh::Mesh m = cube_grid(4, 0.3);
-  quality::ImproveOptions opt;
+  optimize::ImproveOptions opt;
   opt.smooth = 5;
   opt.optimize = 10;
-  const auto r = quality::improve(m, opt);
+  const auto r = optimize::improve(m, opt);
   ASSERT_EQ(r.mesh.num_nodes(), m.num_nodes());
   EXPECT_EQ(r.corner_nodes, 8);
   EXPECT_EQ(r.feature_nodes, 12 * 3);
@@ -242,15 +242,15 @@ TEST(Improve, FloorKeepsTheCellsUntanglingDoesNotNeed) {
   m.V(pushed, 2) += 1.3 / 4;
   const Eigen::VectorXd sj0 = sj_of(m);
   ASSERT_LE(sj0.minCoeff(), 0.0);
-  quality::ImproveOptions opt;
+  optimize::ImproveOptions opt;
   opt.smooth = 3;
   opt.optimize = 20;
   opt.fixed_nodes = {pushed};
   const double floor = 0.6;
   opt.floor = floor;
-  const Eigen::VectorXd sj1 = sj_of(quality::improve(m, opt).mesh);
+  const Eigen::VectorXd sj1 = sj_of(optimize::improve(m, opt).mesh);
   opt.floor = -2;
-  const Eigen::VectorXd sj2 = sj_of(quality::improve(m, opt).mesh);
+  const Eigen::VectorXd sj2 = sj_of(optimize::improve(m, opt).mesh);
   int dropped = 0;
   for (int c = 0; c < m.num_cells(); ++c) {
     if (sj0(c) < floor) continue;
@@ -267,12 +267,12 @@ TEST(Improve, MeanAfterExplicitStagesRaisesTheMeanAndKeepsTheWorst) {
   // Explicit smoothing pulls an optimised mesh back toward centroids and lowers its mean; with
   // mean_after the mean passes follow the stages, raising the mean without lowering the worst.
   const mesh::Mesh m = polycube_cylinder(6, 3);  // the round side keeps the cells below 1
-  quality::ImproveOptions opt;
+  optimize::ImproveOptions opt;
   opt.smooth = 3;
   opt.optimize = 10;
-  const Eigen::VectorXd plain = sj_of(quality::improve(m, opt).mesh);
+  const Eigen::VectorXd plain = sj_of(optimize::improve(m, opt).mesh);
   opt.mean_after = true;
-  const Eigen::VectorXd with_mean = sj_of(quality::improve(m, opt).mesh);
+  const Eigen::VectorXd with_mean = sj_of(optimize::improve(m, opt).mesh);
   std::printf("mean %.4f -> %.4f, worst %.4f -> %.4f\n", plain.mean(), with_mean.mean(), plain.minCoeff(), with_mean.minCoeff());
   EXPECT_GE(with_mean.minCoeff(), plain.minCoeff() - 1e-12);
   EXPECT_GT(with_mean.mean(), plain.mean() + 0.003);  // measured 0.8641 -> 0.8700, worst 0.2903 kept

@@ -1,4 +1,4 @@
-// A CAD part meshed with no manual step: tessellate, the automatic path (autopolycube::mesh_surface),
+// A CAD part meshed with no manual step: tessellate, the automatic path (pipeline::mesh_surface),
 // then the boundary nodes snapped onto the B-rep (snap.h). The tessellation is only a means: when
 // its labelling defeats the automatic polycube, or cells stay inverted after the snap, the B-rep is
 // tessellated again with slightly smaller, then larger triangles (the polycube grid keeps the first
@@ -7,41 +7,38 @@
 
 #include <vector>
 
-#include "hexdom/autopolycube/mesh_surface.h"
+#include "hexdom/pipeline/mesh_surface.h"
 #include "hexdom/cad/shape.h"
 #include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
-namespace hexdom::cad {
+namespace hexdom::pipeline {
 
 struct MeshCadOptions {
-  TessellateOptions tessellation;          ///< its size: the triangles' (0: see TessellateOptions)
-  autopolycube::MeshSurfaceOptions mesh;   ///< its size: the polycube grid's (0: mesh_surface's default)
+  cad::TessellateOptions tessellation;          ///< its size: the triangles' (0: see cad::TessellateOptions)
+  MeshSurfaceOptions mesh;   ///< its size: the polycube grid's (0: mesh_surface's default)
   /// Triangle sizes, times the first tessellation's, of the tessellations tried in turn when the
   /// first one's mesh could not be made (a labelling the repair cannot use, a cut that fails) or
   /// keeps inverted cells; the first that gives a mesh without inverted cells ends the search, the
-  /// best by the candidates' order (autopolycube::better_run) is kept. Measured on i10o_simp at 0.9
-  /// x the default size (the repair cycles on the first tessellation): 0.97 and 1.03 both mesh.
-  /// Measured: i10o_simp turned 30 degrees about (1, 2, 3) meshes only at 1.06; i01o_m1 at 1.1 x the
-  /// default size keeps 3 inverted cells after the snap, none at 0.97.
+  /// best by the candidates' order (pipeline::better_run) is kept.
   std::vector<double> retessellate = {0.97, 1.03, 0.94, 1.06};
   /// When the first tessellation gave a mesh, only with inverted cells, only this many of them are
-  /// tried (each try is a whole run: i01o_m1's five took 103 s where one takes 20 s).
+  /// tried (each try is a whole run).
   int retessellate_inverted = 2;
   bool snap = true;          ///< snap the boundary nodes onto the B-rep (each tessellation's mesh)
-  SnapOptions snap_options;
+  cad::SnapOptions snap_options;
   LogCallback log;  ///< one line per new tessellation
 };
 
 struct MeshCadRun {
   mesh::SurfaceMesh surface;        ///< the tessellation the kept mesh was made from
-  TessellateStats stats;            ///< its figures
+  cad::TessellateStats stats;            ///< its figures
   /// The kept run as mesh_surface gives it, but for `mesh` and `quality`: after the snap when `snapped`.
-  autopolycube::MeshSurfaceRun run;
+  pipeline::MeshSurfaceRun run;
   bool snapped = false;
-  SnapResult snap;                  ///< the snap's report, quality and node kinds, when snapped (its mesh is run.mesh)
+  cad::SnapResult snap;                  ///< the snap's report, quality and node kinds, when snapped (its mesh is run.mesh)
   double snap_seconds = 0;
   double tessellation_factor = 1;   ///< its triangle size over the first tessellation's
   int tessellations = 0;            ///< tessellations made
@@ -51,6 +48,6 @@ struct MeshCadRun {
 /// is given it holds, also when this throws, the first tessellation and what its run produced (for
 /// the files written for inspection). Throws the first tessellation's error when no tessellation
 /// gives a mesh; inverted cells that remain are reported in run.quality, not thrown.
-MeshCadRun mesh_cad_part(const Shape& shape, const MeshCadOptions& options = {}, MeshCadRun* progress = nullptr);
+MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& options = {}, MeshCadRun* progress = nullptr);
 
-}  // namespace hexdom::cad
+}  // namespace hexdom::pipeline

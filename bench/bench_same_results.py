@@ -1,0 +1,157 @@
+"""Same results before and after a refactoring: the figures a behaviour-keeping change must not move.
+
+For `hexdom mesh` on the shared CAD parts (../shared/data/cad) and the bundled bracket, and for
+`hexdom generate` (level 2) + `hexdom improve` on the six paper models' hand-built structures, prints
+per run: cells per type, worst and mean scaled Jacobian per type, the total volume, and two
+fingerprints of the written mesh (sum of the node coordinates, and a hash of the connectivity) that
+change when any node moves or any cell changes.
+
+Run:   HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_same_results.py [--save F] [--compare F] [names]
+--save writes the figures as JSON; --compare reads such a file (e.g. made before the change) and prints
+every figure that differs by more than 1e-9, per run. Prints, never asserts.
+"""
+
+import argparse
+import glob
+import hashlib
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import meshio
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.environ.get("HEXDOM_DATA", os.path.join(ROOT, "..", "shared", "data"))
+BUILD = os.environ.get("HEXDOM_BUILD_DIR", os.path.join(ROOT, "build"))
+HEXDOM = os.path.join(BUILD, "bin", "hexdom")
+
+PAPER = {  # model: (patch file, hand-built structure)
+    "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_polycube_withtet.k"),
+    "mount1": ("mount1_patch_hexdom.k", "mount1_polycube_hexdom_withtet.k"),
+    "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k"),
+    "fertility": ("fertility_indexPatch_hexdom.k", "fertility_polycube_hexdom_withtet.k"),
+    "ant": ("ant_indexPatch_hexdom.k", "ant_polycube_withtet.k"),
+    "mountwithhole": ("mountwithhole_patch_hexdom.k", "mountwithhole_polycube_withtet.k"),
+}
+CAD = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
+       "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
+
+
+def fingerprint(path):
+    m = meshio.read(path)
+    h = hashlib.sha1()
+    for block in m.cells:
+        h.update(block.type.encode())
+        h.update(block.data.astype("int64").tobytes())
+    return {"coordinate_sum": float(abs(m.points).sum()), "connectivity": h.hexdigest()[:16]}
+
+
+def figures(report_path, mesh_path):
+    with open(report_path) as f:
+        q = json.load(f)
+    out = {}
+    for t in ("hex", "prism", "tet"):
+        out[t + "_count"] = q[t]["count"]
+        if q[t]["count"]:
+            out[t + "_sj_min"] = q[t]["sj_min"]
+            out[t + "_sj_mean"] = q[t]["sj_mean"]
+    out["inverted"] = sum(q[t]["inverted"] for t in ("hex", "prism", "tet"))
+    out["volume"] = q["total_volume"]
+    out.update(fingerprint(mesh_path))
+    return out
+
+
+def run(cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError((p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1])
+
+
+def mesh_part(path, tmp):
+    out, rep = os.path.join(tmp, "m.vtu"), os.path.join(tmp, "m.json")
+    run([HEXDOM, "mesh", path, "-o", out, "--report", rep, "--allow-inverted"])
+    return figures(rep, out)
+
+
+def paper_model(model, tmp):
+    d = os.path.join(DATA, "hexdom", model)
+    gen, out, rep = os.path.join(tmp, "g.vtk"), os.path.join(tmp, "i.vtu"), os.path.join(tmp, "i.json")
+    patches = os.path.join(d, PAPER[model][0])
+    run([HEXDOM, "generate", "-i", patches, "-p", os.path.join(d, PAPER[model][1]), "-s", "2", "-o", gen])
+    run([HEXDOM, "improve", "-i", gen, "--surface", patches, "-o", out, "--report", rep, "--allow-inverted"])
+    return figures(rep, out)
+
+
+def cases(names):
+    bracket = os.path.join(ROOT, "examples", "data", "bracket.step")
+    all_cases = [("bracket", lambda t: mesh_part(bracket, t))]
+    for stem in CAD:
+        paths = glob.glob(os.path.join(DATA, "cad", stem + ".*"))
+        all_cases.append((stem, (lambda p: lambda t: mesh_part(p, t))(paths[0]) if paths else None))
+    for model in PAPER:
+        ok = os.path.exists(os.path.join(DATA, "hexdom", model))
+        all_cases.append((model + " (hand, level 2)", (lambda m: lambda t: paper_model(m, t))(model) if ok else None))
+    return [c for c in all_cases if not names or c[0].split()[0] in names]
+
+
+def differences(before, after):
+    keys = sorted(set(before) | set(after))
+    out = []
+    for k in keys:
+        a, b = before.get(k), after.get(k)
+        if isinstance(a, float) and isinstance(b, float):
+            if abs(a - b) > 1e-9 * max(1.0, abs(a)):
+                out.append(f"{k} {a!r} -> {b!r}")
+        elif a != b:
+            out.append(f"{k} {a!r} -> {b!r}")
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--save")
+    ap.add_argument("--compare")
+    ap.add_argument("names", nargs="*")
+    args = ap.parse_args()
+    before = json.load(open(args.compare)) if args.compare else None
+    results, same = {}, 0
+    for name, fn in cases(args.names):
+        if fn is None:
+            print(f"{name:30s} skipped: shared data missing under {DATA}")
+            continue
+        t0 = time.perf_counter()
+        with tempfile.TemporaryDirectory() as tmp:
+            try:
+                r = fn(tmp)
+            except RuntimeError as e:
+                r = {"error": str(e)[:200]}
+        results[name] = r
+        sec = time.perf_counter() - t0
+        if "error" in r:
+            line = f"failed: {r['error']}"
+        else:
+            cells = "/".join(str(r[t + "_count"]) for t in ("hex", "prism", "tet"))
+            line = (f"cells {cells:>16s} hex SJ min {r.get('hex_sj_min', float('nan')):.12f} "
+                    f"mean {r.get('hex_sj_mean', float('nan')):.12f} inverted {r['inverted']} "
+                    f"coords {r['coordinate_sum']:.9e} conn {r['connectivity']}")
+        verdict = ""
+        if before is not None:
+            if name not in before:
+                verdict = " | not in the compared file"
+            else:
+                d = differences(before[name], r)
+                same += not d
+                verdict = " | same" if not d else " | DIFFERS: " + "; ".join(d)
+        print(f"{name:30s} {sec:6.1f}s {line}{verdict}", flush=True)
+    if before is not None:
+        print(f"{same} of {len(results)} runs give the same figures as {args.compare}")
+    if args.save:
+        with open(args.save, "w") as f:
+            json.dump(results, f, indent=1, sort_keys=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

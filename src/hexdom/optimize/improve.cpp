@@ -1,0 +1,295 @@
+#include "hexdom/optimize/improve.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "hexdom/optimize/improver.h"
+#include "hexdom/optimize/node_kinds.h"
+#include "hexdom/optimize/pillow.h"
+#include "hexdom/quality/metrics.h"
+
+namespace hexdom::optimize {
+
+using quality::QualityReport;
+using quality::quality_report;
+using quality::TypeStats;
+using Vec = Eigen::Vector3d;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// One candidate mesh on its way through the stages: `input`, pillowed or not, with its topology
+// and the improver working on it.
+class Run {
+ public:
+  // `layer`: the boundary faces to pillow (smooth_layer_faces); null or empty: all of them.
+  // Throws GeometryError when the layer cannot be made.
+  Run(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow, const std::vector<char>* sharp_in,
+      const BoundaryConstraints& cons, const std::function<void(const std::string&)>& log, const std::vector<char>* layer = nullptr)
+      : with_pillow_(with_pillow), log_(log) {
+    m_ = input;
+    std::vector<char> sharp;
+    if (sharp_in) sharp = *sharp_in;
+    std::vector<int> copy;
+    const bool partial = with_pillow && layer && !layer->empty();
+    partial_ = partial;
+    // The layer's edge nodes go back onto the surface after pillow_faces has checked the layer
+    // (below), and that can invert a cell pillow_faces found valid. Where it does, the depth is halved at that cell's moved nodes and the layer made
+    // again, as pillow_faces does for its own check.
+    std::vector<double> scale(input.num_nodes(), 1.0);
+    for (int attempt = 0;; ++attempt) {
+      if (with_pillow) {
+        m_ = pillow_faces(input, opt.pillow_depth, partial ? layer : nullptr, &copy, &scale);
+        r_.pillow_cells = m_.num_cells() - input.num_cells();
+        sharp.clear();
+        if (sharp_in) {  // the copies take the flags; old nodes under the layer are no longer on the boundary
+          sharp.assign(m_.num_nodes(), 0);
+          for (int v = 0; v < input.num_nodes(); ++v)
+            if ((*sharp_in)[v]) sharp[copy[v] >= 0 ? copy[v] : v] = 1;
+        }
+      }
+      // The pillowed boundary has the original geometry, so the angle test finds the same features.
+      t_ = node_kinds(m_, opt.feature_angle, sharp_in ? &sharp : nullptr);
+      if (!partial) break;
+      std::vector<char> inverted_before(m_.num_cells(), 0);
+      for (int c = 0; c < m_.num_cells(); ++c) inverted_before[c] = cell_sj(m_, c) <= 0;
+      // Old nodes on the edge of the layer moved along the faces left out, in straight lines: back
+      // onto the surface (and onto their feature curve when they moved along one).
+      for (int v = 0; v < input.num_nodes(); ++v) {
+        if (copy[v] < 0 || t_.node_faces[v].empty()) continue;
+        Vec x = m_.V.row(v).transpose();
+        if (t_.kind[v] == Curve && !cons.curves.empty()) x = cons.curves.project(x);
+        if (t_.kind[v] != Interior) m_.V.row(v) = cons.surface.project(x).transpose();
+      }
+      if (attempt == 8) break;
+      bool shrunk = false;
+      for (int c = 0; c < m_.num_cells(); ++c) {
+        if (inverted_before[c] || cell_sj(m_, c) > 0) continue;
+        for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) {
+          const int v = m_.cells(c, i);
+          if (v < input.num_nodes() && copy[v] >= 0 && scale[v] > 1.0 / 256) { scale[v] *= 0.5; shrunk = true; }
+        }
+      }
+      if (!shrunk) break;
+    }
+    for (auto k : t_.kind) {
+      r_.feature_nodes += k == Curve;
+      r_.corner_nodes += k == Corner;
+    }
+    for (int v : opt.fixed_nodes) t_.kind[!copy.empty() && copy[v] >= 0 ? copy[v] : v] = Corner;  // never moved
+    if (with_pillow && cons.project) {  // node numbers changed: the projection hook no longer applies
+      unhooked_ = std::make_unique<BoundaryConstraints>(cons);
+      unhooked_->project = nullptr;
+    }
+    imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
+    imp_->set_keep(opt.floor);
+    log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +
+         ": worst scaled Jacobian " + std::to_string(imp_->worst()) + "; " + std::to_string(r_.feature_nodes) +
+         " feature-curve nodes, " + std::to_string(r_.corner_nodes) + " corners");
+  }
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  std::string name() const {
+    return with_pillow_ ? (partial_ ? "pillowed (smooth regions)" : "pillowed") : "without pillowing";
+  }
+  double worst() const { return imp_->worst(); }
+  double worst_hex() const { return imp_->worst_hex(); }
+  int rounds() const { return r_.rounds; }
+  int inverted() const { return imp_->inverted(); }
+
+  // Floors of the worst stage: none while cells are inverted (they would only slow untangling),
+  // then each type's worst unless that type is (nearly) the worst of the mesh.
+  void update_floors() {
+    if (imp_->inverted() == 0) imp_->set_floors(-2, 0.05);
+    else imp_->clear_floors();
+  }
+
+  // Smoothing and optimisation rounds until the worst cell stops improving.
+  void worst_stage(int max_rounds) {
+    const int stale_limit = 2;  // rounds without gain before stopping
+    const auto t0 = std::chrono::steady_clock::now();
+    double worst = imp_->worst();
+    int stale = 0;
+    // Untangling gets one more stale round: its gains are small but decisive.
+    for (int round = 0; round < max_rounds && stale < stale_limit + (imp_->inverted() > 0); ++round) {
+      update_floors();
+      if (imp_->inverted() > 0) imp_->mark_all();  // untangling: every node may help
+      imp_->smooth_pass();
+      const double thr = std::max(worst + 0.2, 0.3);
+      for (int k = 0; k < 4; ++k) imp_->optimize_round(thr);
+      const double w = imp_->worst();
+      // While cells are inverted every gain counts; after that, gains below 1e-3 do not show.
+      stale = w > worst + (worst <= 0 ? 1e-4 : 1e-3) ? 0 : stale + 1;
+      worst = std::max(worst, w);
+      r_.rounds = round + 1;
+    }
+    log_(name() + ": worst scaled Jacobian " + std::to_string(imp_->worst()) + imp_->worst_place() + " after " + std::to_string(r_.rounds) +
+         " rounds (" + std::to_string(seconds_since(t0)) + " s)");
+  }
+
+  // Mean-stage passes, each revisiting only the nodes near a move of the pass before, until a pass
+  // raises the mean scaled Jacobian by less than `min_gain`. The worst cell is kept.
+  void mean_stage(int max_passes, double min_gain) {
+    const auto t0 = std::chrono::steady_clock::now();
+    imp_->set_floors(0.0);
+    imp_->mark_all();
+    const double mean0 = imp_->mean();
+    double mean = mean0;
+    int passes = 0;
+    while (passes < max_passes) {
+      const int moved = imp_->mean_pass();
+      ++passes;
+      const double m1 = imp_->mean();
+      const bool done = moved == 0 || m1 < mean + min_gain;
+      mean = m1;
+      if (done) break;
+    }
+    log_(name() + ": mean scaled Jacobian " + std::to_string(mean0) + " -> " + std::to_string(mean) + " in " +
+         std::to_string(passes) + " passes (" + std::to_string(seconds_since(t0)) + " s)");
+  }
+
+  void smooth(int passes) {
+    for (int i = 0; i < passes; ++i) {
+      update_floors();
+      imp_->smooth_pass();
+    }
+  }
+  void optimize(int rounds) {
+    for (int i = 0; i < rounds; ++i) {
+      update_floors();
+      imp_->optimize_round(std::max(imp_->worst() + 0.2, 0.3));
+    }
+  }
+  void set_rounds(int n) { r_.rounds = n; }
+  // The optimisation rounds also search a pattern of directions around the worst cells (see
+  // Improver::optimize_round). The run without a layer: where a polycube edge lies on a round, its
+  // worst cell has two faces there, and their corners tie (docs/tuning-notes.md). A pillowed run turns it on only after its gradient rounds miss the bar (improve()).
+  void search_pattern() { imp_->set_pattern(true); }
+
+  ImproveResult finish() {
+    r_.mesh = std::move(m_);
+    r_.after = quality_report(r_.mesh);
+    return std::move(r_);
+  }
+
+ private:
+  bool with_pillow_, partial_ = false;
+  std::function<void(const std::string&)> log_;
+  ImproveResult r_;
+  mesh::Mesh m_;
+  NodeKinds t_;
+  std::unique_ptr<BoundaryConstraints> unhooked_;  // a copy without the projection hook, for a pillowed mesh
+  std::unique_ptr<Improver> imp_;
+};
+
+double worst_of(const QualityReport& q) {
+  double w = 2;
+  for (const TypeStats* s : {&q.hex, &q.prism, &q.tet})
+    if (s->count) w = std::min(w, s->sj_min);
+  return w;
+}
+
+}  // namespace
+
+ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
+  for (int c = 0; c < input.num_cells(); ++c)
+    if (!mesh::is_volume(input.type(c)))
+      throw GeometryError("cell " + std::to_string(c + 1) + " is a " + mesh::type_name(input.type(c)) +
+                          ": improvement takes hex, prism and tet cells only");
+  auto log = [&](const std::string& s) { if (opt.log) opt.log(0, s); };
+  const bool recommended = !opt.pillow && opt.smooth == 0 && opt.optimize == 0;
+  std::vector<char> sharp;
+  const bool have_sharp = !opt.sharp_nodes.empty();
+  if (have_sharp) {
+    sharp.assign(input.num_nodes(), 0);
+    for (int v : opt.sharp_nodes) {
+      if (v < 0 || v >= input.num_nodes())
+        throw GeometryError("sharp node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
+      sharp[v] = 1;
+    }
+  }
+  for (int v : opt.fixed_nodes)
+    if (v < 0 || v >= input.num_nodes())
+      throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
+  // The surface and feature curves come from the input, before pillowing renumbers nodes.
+  const NodeKinds t0 = node_kinds(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
+  BoundaryConstraints cons = boundary_constraints(input, t0, opt.surface);
+  cons.project = opt.project;
+  const QualityReport before = quality_report(input);
+  const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
+  const std::vector<char> layer = smooth_layer_faces(input, t0);
+
+  ImproveResult r;
+  if (!recommended) {
+    Run run(input, opt, opt.pillow, sp, cons, log);
+    run.smooth(opt.smooth);
+    run.optimize(opt.optimize);
+    run.set_rounds(std::max(opt.smooth, opt.optimize));
+    if (opt.mean_after && opt.mean_passes > 0) run.mean_stage(opt.mean_passes, 3e-3);
+    r = run.finish();
+  } else {
+    // Pillowing is preferred (no hex keeps two faces on the boundary). Where a polycube edge lies
+    // on a smooth surface, a layer over those smooth regions only comes first (smooth_layer_faces),
+    // then the layer everywhere, then no layer: where the boundary is pinched or a layer cannot be
+    // made valid it can end worse. The first run with no inverted cell whose worst hex reaches 0.4
+    // (and the input's) is kept without trying the next; otherwise the best of the runs made is:
+    // fewer inverted cells first, then the better worst hex (the worst cell when there are no
+    // hexes), near ties (0.02) going to the earlier run unless it ends below the input's worst.
+    const double worst_hex_before = before.hex.count ? before.hex.sj_min : worst_of(before);
+    auto good_enough = [&](const Run& x) { return x.inverted() == 0 && x.worst_hex() >= std::max(0.4, worst_hex_before); };
+    std::vector<std::unique_ptr<Run>> runs;
+    std::vector<int> plain_rounds;  // each run's rounds before the pattern search
+    bool plain_good = false;  // a pillowed run reached the bar with the gradient alone
+    for (const std::vector<char>* faces : {&layer, static_cast<const std::vector<char>*>(nullptr)}) {
+      if (faces && faces->empty()) continue;
+      try {
+        runs.push_back(std::make_unique<Run>(input, opt, true, sp, cons, log, faces));
+        runs.back()->worst_stage(opt.max_rounds);
+      } catch (const GeometryError& e) {
+        if (opt.log) opt.log(1, std::string(faces ? "layer on the smooth regions skipped: " : "pillowing skipped: ") + e.what());
+        continue;
+      }
+      plain_rounds.push_back(runs.back()->rounds());
+      if (good_enough(*runs.back())) { plain_good = true; break; }
+      // Below the bar, the pillowed run goes on with the pattern search (Improver::optimize_round).
+      // Where a polycube corner lies on a round edge of a face under the layer, the layer cell's
+      // corner there is capped by the angle between the face's two edges on the arc, which the
+      // gradient alone does not open and the pattern does. What it reaches does not end the sequence
+      // (a pillowed run lifted past the bar would stop it before a better run without a layer); it
+      // takes part in the final choice. Figures: docs/tuning-notes.md.
+      runs.back()->search_pattern();
+      runs.back()->worst_stage(opt.max_rounds);
+    }
+    if (!plain_good) {
+      // Against a valid pillowed mesh, the run without a layer gets twice the rounds of the best
+      // pillowed one (at least 10): untangling that creeps on beyond that would not win.
+      int rival_rounds = -1;
+      for (size_t i = 0; i < runs.size(); ++i)
+        if (runs[i]->inverted() == 0) rival_rounds = std::max(rival_rounds, plain_rounds[i]);
+      runs.push_back(std::make_unique<Run>(input, opt, false, sp, cons, log));
+      runs.back()->search_pattern();
+      runs.back()->worst_stage(rival_rounds >= 0 ? std::min(opt.max_rounds, std::max(10, 2 * rival_rounds)) : opt.max_rounds);
+    }
+    Run* kept = runs.front().get();
+    for (const auto& x : runs)
+      if (x->inverted() < kept->inverted() ||
+          (x->inverted() == kept->inverted() &&
+           (kept->worst_hex() < x->worst_hex() - 0.02 || (kept->worst_hex() < worst_hex_before && x->worst_hex() > kept->worst_hex()))))
+        kept = x.get();
+    Run& best = *kept;
+    if (kept != runs.front().get()) log("kept the result " + best.name() + ": its worst cell is better");
+    // The mean only on the mesh kept: it never changes the worst cell the choice was made on.
+    best.mean_stage(opt.mean_passes, 3e-3);
+    r = best.finish();
+  }
+  r.before = before;
+  return r;
+}
+
+}  // namespace hexdom::optimize

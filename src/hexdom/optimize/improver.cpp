@@ -1,0 +1,350 @@
+#include "hexdom/optimize/improver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "hexdom/common/format.h"
+#include "hexdom/mesh/cell_faces.h"
+#include "hexdom/quality/metrics.h"
+
+namespace hexdom::optimize {
+
+using mesh::CellType;
+using quality::CellPoints;
+using quality::cell_points;
+using quality::is_inverted;
+using quality::scaled_jacobian;
+using quality::volume;
+using Vec = Eigen::Vector3d;
+
+namespace {
+
+// Corner coordinates of cell c (rows past its node count left unset).
+inline CellPoints gather(const mesh::Mesh& m, int c) {
+  CellPoints P;
+  const int n = mesh::node_count(m.type(c));
+  const double* x = m.V.data();
+  const Eigen::Index rows = m.V.rows();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Index v = m.cells(c, i);
+    P(i, 0) = x[v];
+    P(i, 1) = x[v + rows];
+    P(i, 2) = x[v + 2 * rows];
+  }
+  for (int i = n; i < 8; ++i) P.row(i).setZero();
+  return P;
+}
+
+// Weight of a cell in the volume-weighted centre: its volume, for hexes and prisms taken from the
+// Jacobian at the centre (exact for parallelepipeds and straight prisms, and far cheaper than
+// quadrature, which matters in a loop over every node's cells).
+double centre_volume(CellType t, const CellPoints& P) {
+  auto r = [&](int i) { return Vec(P.row(i).transpose()); };
+  if (t == CellType::Hex) {
+    const Vec a = r(1) - r(0) + r(2) - r(3) + r(5) - r(4) + r(6) - r(7);
+    const Vec b = r(3) - r(0) + r(2) - r(1) + r(7) - r(4) + r(6) - r(5);
+    const Vec c = r(4) - r(0) + r(5) - r(1) + r(6) - r(2) + r(7) - r(3);
+    return a.dot(b.cross(c)) / 64.0;
+  }
+  if (t == CellType::Wedge) {
+    const Vec a = r(1) - r(0) + r(4) - r(3), b = r(2) - r(0) + r(5) - r(3);
+    const Vec c = r(3) - r(0) + r(4) - r(1) + r(5) - r(2);
+    return -a.dot(b.cross(c)) / 24.0;  // VTK wedges: first triangle's normal points away from the second
+  }
+  return volume(t, P);
+}
+
+}  // namespace
+
+double cell_sj(const mesh::Mesh& m, int c) {
+  const double sj = scaled_jacobian(m.type(c), gather(m, c));
+  return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj;
+}
+
+Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c) : m_(m), t_(t), c_(c) {
+  sj_.resize(m.num_cells());
+  for (int q = 0; q < m.num_cells(); ++q) sj_[q] = cell_sj(m, q);
+  dirty_.assign(m.num_nodes(), 1);
+  climb_.assign(m.num_nodes(), 1);
+  edge_.assign(m.num_nodes(), 0.0);
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    double s = 0;
+    int k = 0;
+    for (int q : t.node_cells[v]) {
+      auto P = cell_points(m, q);
+      const int n = mesh::node_count(m.type(q));
+      for (int i = 0; i < n; ++i) { s += (P.row(i) - m.V.row(v)).norm(); ++k; }
+    }
+    edge_[v] = k ? s / k : 0.0;  // mean distance to the corners of incident cells
+  }
+}
+
+double Improver::worst_hex() const {
+  double w = 2;
+  for (int q = 0; q < m_.num_cells(); ++q)
+    if (m_.type(q) == CellType::Hex) w = std::min(w, sj_[q]);
+  return w < 2 ? w : worst();
+}
+
+int Improver::inverted() const {
+  int n = 0;
+  for (double x : sj_) n += x <= 0;
+  return n;
+}
+
+std::string Improver::worst_place() const {
+  if (sj_.empty()) return "";
+  const int q = static_cast<int>(std::min_element(sj_.begin(), sj_.end()) - sj_.begin());
+  const auto P = cell_points(m_, q);
+  const Vec c = P.topRows(mesh::node_count(m_.type(q))).colwise().mean().transpose();
+  return fmt(" at (%.4g, %.4g, %.4g)", c(0), c(1), c(2));
+}
+
+double Improver::local_min(int v) const {
+  double w = 2;
+  for (int q : t_.node_cells[v]) w = std::min(w, sj_[q]);
+  return w;
+}
+
+Vec Improver::constrain(int v, const Vec& x) const {
+  if (c_.project && (t_.kind[v] == Surface || t_.kind[v] == Curve)) return c_.project(v, x);
+  switch (t_.kind[v]) {
+    case Surface: return c_.surface.project(x);
+    // On the feature curve (chords of the boundary), then back onto the surface it bounds.
+    case Curve: return c_.curves.empty() ? c_.surface.project(x) : c_.surface.project(c_.curves.project(x));
+    case Corner: return m_.V.row(v).transpose();
+    default: return x;
+  }
+}
+
+double Improver::shortest_edge(int v, const Vec& x) const {
+  double s = std::numeric_limits<double>::max();
+  for (int u : t_.edge_nbrs[v]) s = std::min(s, (m_.V.row(u).transpose() - x).norm());
+  return s;
+}
+
+void Improver::mark_around(int v) {
+  for (int q : t_.node_cells[v])
+    for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) {
+      dirty_[m_.cells(q, i)] = 1;
+      climb_[m_.cells(q, i)] = 1;
+    }
+}
+
+void Improver::mark_all() {
+  std::fill(dirty_.begin(), dirty_.end(), 1);
+  std::fill(climb_.begin(), climb_.end(), 1);
+}
+
+bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
+  if (negligible(v, x)) return false;
+  const double before = local_min(v);
+  const Vec old = m_.V.row(v).transpose();
+  const double s_old = shortest_edge(v, old), s_new = shortest_edge(v, x);
+  if (s_new < s_old && s_new < 0.2 * edge_[v]) return false;
+  m_.V.row(v) = x.transpose();
+  double after = 2;
+  trial_.clear();
+  bool below_floor = false;
+  for (int q : t_.node_cells[v]) {
+    const double sj = cell_sj(m_, q);
+    trial_.push_back(sj);
+    after = std::min(after, sj);
+    below_floor |= sj < sj_[q] && (sj < floor_[type_slot(q)] || crosses_keep(q, sj));
+  }
+  if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
+  if (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0)) {
+    for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
+    mark_around(v);
+    return true;
+  }
+  m_.V.row(v) = old.transpose();
+  return false;
+}
+
+bool Improver::smoothing_target(int v, Vec* out) const {
+  if (t_.kind[v] == Corner || t_.node_cells[v].empty()) return false;
+  Vec target = Vec::Zero();
+  double wsum = 0;
+  if (t_.kind[v] == Interior) {
+    for (int q : t_.node_cells[v]) {
+      const CellPoints P = gather(m_, q);
+      const int n = mesh::node_count(m_.type(q));
+      // Valid cells: the cheap centre volume; inverted or tangled ones: the true volume (the centre
+      // volume of a tangled hex misweights it, and untangling stalls).
+      const double vol = sj_[q] > 0 ? centre_volume(m_.type(q), P) : volume(m_.type(q), P);
+      const double w = std::max(std::fabs(vol), 1e-300);
+      target += w * P.topRows(n).colwise().mean().transpose();
+      wsum += w;
+    }
+  } else if (t_.kind[v] == Surface) {
+    for (int f : t_.node_faces[v]) {
+      const auto& bf = t_.faces[f];
+      Vec c = Vec::Zero();
+      for (int i = 0; i < bf.n; ++i) c += m_.V.row(bf.v[i]).transpose();
+      const double w = mesh::face_area_vector(m_, bf).norm();
+      target += w * c / bf.n;
+      wsum += w;
+    }
+  } else {
+    for (int u : t_.curve_nbrs[v]) target += m_.V.row(u).transpose();
+    wsum = static_cast<double>(t_.curve_nbrs[v].size());
+  }
+  if (!(wsum > 0)) return false;
+  *out = target / wsum;
+  return true;
+}
+
+int Improver::smooth_pass() {
+  int moved = 0;
+  for (int v = 0; v < m_.num_nodes(); ++v) {
+    if (!dirty_[v]) continue;
+    dirty_[v] = 0;
+    Vec target;
+    if (!smoothing_target(v, &target)) continue;
+    const Vec old = m_.V.row(v).transpose();
+    for (double step : {1.0, 0.5, 0.25}) {
+      if (try_move(v, constrain(v, old + step * (target - old)), true)) { ++moved; break; }
+    }
+  }
+  return moved;
+}
+
+double Improver::local_sum(int v) const {
+  double s = 0;
+  for (int q : t_.node_cells[v]) s += sj_[q];
+  return s;
+}
+
+void Improver::set_floors(double extra, double only_above) {
+  for (double& f : floor_) f = 2;
+  for (int q = 0; q < m_.num_cells(); ++q) floor_[type_slot(q)] = std::min(floor_[type_slot(q)], sj_[q]);
+  const double w = std::min({floor_[0], floor_[1], floor_[2]});
+  for (double& f : floor_) f = only_above > 0 && f < w + only_above ? -2 : std::max(f, extra);
+}
+
+bool Improver::try_move_mean(int v, const Vec& x) {
+  if (negligible(v, x)) return false;
+  const Vec old = m_.V.row(v).transpose();
+  const double s_old = shortest_edge(v, old), s_new = shortest_edge(v, x);
+  if (s_new < s_old && s_new < 0.2 * edge_[v]) return false;
+  m_.V.row(v) = x.transpose();
+  double before_sum = 0, after_sum = 0;
+  bool ok = true;
+  trial_.clear();
+  for (int q : t_.node_cells[v]) {
+    const double sj = cell_sj(m_, q);
+    trial_.push_back(sj);
+    before_sum += sj_[q];
+    after_sum += sj;
+    if (sj < sj_[q] && (sj < floor_[type_slot(q)] || sj <= 0 || crosses_keep(q, sj))) { ok = false; break; }
+  }
+  if (ok && after_sum > before_sum + 1e-7) {
+    for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
+    mark_around(v);
+    return true;
+  }
+  m_.V.row(v) = old.transpose();
+  return false;
+}
+
+int Improver::mean_pass() {
+  int moved = 0;
+  for (int v = 0; v < m_.num_nodes(); ++v) {
+    if (!dirty_[v]) continue;
+    dirty_[v] = 0;
+    if (t_.kind[v] == Corner || t_.node_cells[v].empty()) continue;
+    const Vec x0 = m_.V.row(v).transpose();
+    const double h = 1e-4 * edge_[v];
+    if (!(h > 0)) continue;
+    const double f0 = local_sum(v);
+    Vec g;
+    for (int k = 0; k < 3; ++k) {
+      Vec x = x0;
+      x(k) += h;
+      m_.V.row(v) = x.transpose();
+      double f = 0;
+      for (int q : t_.node_cells[v]) f += cell_sj(m_, q);
+      g(k) = (f - f0) / h;
+    }
+    m_.V.row(v) = x0.transpose();
+    if (!(g.norm() > 0)) continue;
+    const Vec d = g.normalized();
+    for (double a : {0.1, 0.02})
+      if (try_move_mean(v, constrain(v, x0 + a * edge_[v] * d))) { ++moved; break; }
+  }
+  return moved;
+}
+
+double Improver::mean() const {
+  double s = 0;
+  for (double x : sj_) s += x;
+  return sj_.empty() ? 1.0 : s / static_cast<double>(sj_.size());
+}
+
+int Improver::optimize_round(double threshold) {
+  std::vector<char> mark(m_.num_nodes(), 0);
+  std::vector<int> nodes;
+  for (int q = 0; q < m_.num_cells(); ++q) {
+    if (sj_[q] > threshold) continue;
+    for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) {
+      const int v = m_.cells(q, i);
+      if (!mark[v] && t_.kind[v] != Corner) { mark[v] = 1; nodes.push_back(v); }
+    }
+  }
+  // With the pattern on and the worst cell below 0.4 (the bar of the recommended sequence), the
+  // nodes of the cells within 0.02 of the worst one also try a pattern of directions where the
+  // gradient step fails (below). Above the bar it costs more than it gains.
+  std::vector<char> near_worst;
+  if (pattern_ && worst() < 0.4) {
+    near_worst.assign(m_.num_nodes(), 0);
+    const double band = std::min(threshold, worst() + 0.02);
+    for (int q = 0; q < m_.num_cells(); ++q)
+      if (sj_[q] <= band)
+        for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) near_worst[m_.cells(q, i)] = 1;
+  }
+  int moved = 0;
+  for (int v : nodes) {
+    // A node that found no better place stays put until its neighbourhood changes.
+    if (!climb_[v]) continue;
+    climb_[v] = 0;
+    const Vec x0 = m_.V.row(v).transpose();
+    const double h = 1e-4 * edge_[v];
+    if (!(h > 0)) continue;
+    const double f0 = local_min(v);
+    Vec g;
+    for (int k = 0; k < 3; ++k) {
+      Vec x = x0;
+      x(k) += h;
+      m_.V.row(v) = x.transpose();
+      double f = 2;
+      for (int q : t_.node_cells[v]) f = std::min(f, cell_sj(m_, q));
+      g(k) = (f - f0) / h;
+    }
+    m_.V.row(v) = x0.transpose();
+    bool done = false;
+    if (g.norm() > 0) {
+      const Vec d = g.normalized();
+      for (double a : {0.3, 0.15, 0.07, 0.03, 0.01, 0.003})
+        if (try_move(v, constrain(v, x0 + a * edge_[v] * d), false)) { ++moved; done = true; break; }
+    }
+    if (done || near_worst.empty() || !near_worst[v]) continue;
+    // The numerical gradient of a minimum sees only the corner that is lowest now: where two
+    // corners of the worst cell tie (a node between two faces on a round), every step along it
+    // lowers the other, and the climb stalls. A pattern of the 26 directions of the unit cube,
+    // at three step lengths, finds the moves that raise both.
+    for (double a : {0.1, 0.03, 0.01}) {
+      for (int dx = -1; dx <= 1 && !done; ++dx)
+        for (int dy = -1; dy <= 1 && !done; ++dy)
+          for (int dz = -1; dz <= 1 && !done; ++dz) {
+            if (!dx && !dy && !dz) continue;
+            if (try_move(v, constrain(v, x0 + a * edge_[v] * Vec(dx, dy, dz).normalized()), false)) { ++moved; done = true; }
+          }
+      if (done) break;
+    }
+  }
+  return moved;
+}
+
+}  // namespace hexdom::optimize

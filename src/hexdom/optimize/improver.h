@@ -1,0 +1,108 @@
+// The node-move optimiser behind improve(): moves one node at a time, each move projected by the
+// node's kind (NodeKinds, BoundaryConstraints) and kept only when its cells' scaled Jacobians allow
+// it (see try_move and try_move_mean).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/node_kinds.h"
+
+namespace hexdom::optimize {
+
+/// The optimiser's value of a cell: its scaled Jacobian, an inverted cell's lowered by 1e-9 (so
+/// that a cell at exactly 0 counts as inverted) and -1 for a degenerate cell (DBL_MAX, NaN).
+double cell_sj(const mesh::Mesh& m, int c);
+
+/// Per-cell scaled Jacobians of a mesh kept up to date while nodes move. Passes: smoothing
+/// (smooth_pass), the worst cells' climb (optimize_round), the mean (mean_pass). Every accepted move
+/// keeps or raises the worst value of the node's cells (the mean pass: raises their sum), never
+/// puts a worsened cell below the floor of its type (set_floors) or across the keep level
+/// (set_keep), and never shortens the node's shortest edge below 0.2 of its mean edge.
+class Improver {
+ public:
+  using Vec = Eigen::Vector3d;
+  using CellType = mesh::CellType;
+  /// Works on `m` in place; `t` and `c` must outlive the improver (it keeps references).
+  Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c);
+
+  // Worst hex when there are hexes (the figure the paper reports), else the worst cell.
+  double worst_hex() const;
+  int inverted() const;
+  double worst() const { return sj_.empty() ? 1.0 : *std::min_element(sj_.begin(), sj_.end()); }
+  // " at (x, y, z)": the centroid of the worst cell, for the log.
+  std::string worst_place() const;
+  double local_min(int v) const;
+
+  // Projects a candidate position according to the node's kind.
+  Vec constrain(int v, const Vec& x) const;
+
+  double shortest_edge(int v, const Vec& x) const;
+
+  // Nodes whose neighbourhood changed since they were last visited by a pass: only they can move.
+  void mark_around(int v);
+  void mark_all();
+  // Moves shorter than this are not worth an evaluation (and would keep converged nodes busy).
+  bool negligible(int v, const Vec& x) const { return (x - m_.V.row(v).transpose()).squaredNorm() < 1e-8 * edge_[v] * edge_[v]; }
+
+  // Moves v to x if that raises (or, with allow_equal, keeps) the worst SJ of its cells, and no
+  // cell that gets worse ends below the floor of its type (set_floors; by default the type's
+  // worst, so that raising a prism never costs the worst hex). A move
+  // may not shorten the node's shortest edge below a quarter of its typical edge: scaled Jacobians
+  // ignore size, and collapsing an edge would buy angles with a useless element.
+  bool try_move(int v, const Vec& x, bool allow_equal);
+
+  // Smoothing target by kind: interior nodes toward the volume-weighted centre of their cells,
+  // surface nodes toward the area-weighted centre of their boundary faces, curve nodes toward the
+  // midpoint of their curve neighbours. False for corners and nodes without a target.
+  bool smoothing_target(int v, Vec* out) const;
+
+  // One smoothing pass: every node toward its smoothing target, projected, and accepted only if
+  // the local worst SJ does not drop.
+  int smooth_pass();
+
+  // Mean stage: moves that raise the sum of scaled Jacobians of a node's cells, where no cell that
+  // gets worse ends below the floor of its type (hex, prism, tet). With each floor at least the
+  // worst cell of its type, no type's worst cell drops; cells well above it may give a little to
+  // raise their neighbours.
+  double local_sum(int v) const;
+  // Floors: each type's worst cell, raised to `extra`. With `only_above` > 0, a type whose worst is
+  // within only_above of the worst cell of the mesh gets no floor: it is what the worst stage
+  // raises, and holding it back there costs more than it saves.
+  void set_floors(double extra, double only_above = 0);
+  void clear_floors() { floor_[0] = floor_[1] = floor_[2] = -2; }
+  // ImproveOptions::floor: a cell at or above it may not get worse than it. Cells already below
+  // it (the inverted ones being untangled) are free, or untangling would stall.
+  void set_keep(double x) { keep_ = x; }
+  void set_pattern(bool on) { pattern_ = on; }
+  bool crosses_keep(int q, double sj) const { return sj_[q] >= keep_ && sj < keep_; }
+  int type_slot(int q) const { return m_.type(q) == CellType::Hex ? 0 : m_.type(q) == CellType::Wedge ? 1 : 2; }
+  bool try_move_mean(int v, const Vec& x);
+
+  // One pass of the mean stage over the nodes whose neighbourhood changed: each takes a step up
+  // the numerical gradient of the sum of its cells' scaled Jacobians. (The smoothing targets were
+  // tried here too and measured: they rarely raise the sum and cost evaluations; the worst stage
+  // smooths.) Returns the number of nodes moved.
+  int mean_pass();
+
+  double mean() const;
+
+  // One optimisation round: nodes of the worst cells climb the local worst scaled Jacobian along
+  // its numerical gradient (untangling inverted cells on the way).
+  int optimize_round(double threshold);
+
+ private:
+  mesh::Mesh& m_;
+  const NodeKinds& t_;
+  const BoundaryConstraints& c_;
+  std::vector<double> sj_, edge_, trial_;
+  std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
+  std::vector<char> climb_;  // nodes worth another optimisation step
+  double keep_ = -2;  // ImproveOptions::floor
+  bool pattern_ = false;  // optimisation rounds also search a pattern of directions (optimize_round)
+  double floor_[3] = {-2, -2, -2};  // lowest scaled Jacobian a worsened hex, prism, tet may reach
+};
+
+}  // namespace hexdom::optimize

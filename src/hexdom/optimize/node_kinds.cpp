@@ -1,0 +1,115 @@
+#include "hexdom/optimize/node_kinds.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace hexdom::optimize {
+
+using mesh::CellType;
+using Vec = Eigen::Vector3d;
+
+NodeKinds node_kinds(const mesh::Mesh& m, double feature_angle, const std::vector<char>* sharp) {
+  NodeKinds t;
+  const int nn = m.num_nodes();
+  t.node_cells.assign(nn, {});
+  t.node_faces.assign(nn, {});
+  for (int c = 0; c < m.num_cells(); ++c)
+    for (int i = 0; i < mesh::node_count(m.type(c)); ++i) t.node_cells[m.cells(c, i)].push_back(c);
+  t.edge_nbrs.assign(nn, {});
+  {
+    static const int he[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    static const int we[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+    static const int te[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+    for (int c = 0; c < m.num_cells(); ++c) {
+      const CellType ty = m.type(c);
+      const int(*e)[2] = ty == CellType::Hex ? he : ty == CellType::Wedge ? we : te;
+      const int ne = ty == CellType::Hex ? 12 : ty == CellType::Wedge ? 9 : 6;
+      for (int q = 0; q < ne; ++q) {
+        const int a = m.cells(c, e[q][0]), b = m.cells(c, e[q][1]);
+        t.edge_nbrs[a].push_back(b);
+        t.edge_nbrs[b].push_back(a);
+      }
+    }
+    for (auto& l : t.edge_nbrs) {
+      std::sort(l.begin(), l.end());
+      l.erase(std::unique(l.begin(), l.end()), l.end());
+    }
+  }
+  t.faces = mesh::boundary_faces(m);
+  for (int f = 0; f < static_cast<int>(t.faces.size()); ++f)
+    for (int i = 0; i < t.faces[f].n; ++i) t.node_faces[t.faces[f].v[i]].push_back(f);
+  // Boundary edges and their two faces.
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  for (int f = 0; f < static_cast<int>(t.faces.size()); ++f)
+    for (int i = 0; i < t.faces[f].n; ++i) {
+      int a = t.faces[f].v[i], b = t.faces[f].v[(i + 1) % t.faces[f].n];
+      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  t.curve_nbrs.assign(nn, {});
+  const double cos_limit = std::cos(feature_angle * M_PI / 180.0);
+  std::vector<std::pair<int, int>> joined;  // faces on both sides of an edge that is not sharp
+  for (const auto& [e, fs] : edge_faces) {
+    bool sharp_edge;
+    if (sharp) {
+      sharp_edge = (*sharp)[e.first] && (*sharp)[e.second];
+    } else {
+      if (fs.size() != 2) { sharp_edge = true; }
+      else {
+        Vec n0 = mesh::face_area_vector(m, t.faces[fs[0]]).normalized(), n1 = mesh::face_area_vector(m, t.faces[fs[1]]).normalized();
+        sharp_edge = n0.dot(n1) < cos_limit;
+      }
+    }
+    if (sharp_edge) {
+      t.curve_nbrs[e.first].push_back(e.second);
+      t.curve_nbrs[e.second].push_back(e.first);
+      if (fs.size() == 2) t.across_sharp.emplace_back(fs[0], fs[1]);
+    } else if (fs.size() == 2) {
+      joined.emplace_back(fs[0], fs[1]);
+    }
+  }
+  {
+    std::vector<int> up(t.faces.size());
+    for (size_t f = 0; f < up.size(); ++f) up[f] = static_cast<int>(f);
+    auto root = [&](int f) {
+      while (up[f] != f) f = up[f] = up[up[f]];
+      return f;
+    };
+    for (const auto& [a, b] : joined) up[root(a)] = root(b);
+    t.region.resize(t.faces.size());
+    for (size_t f = 0; f < up.size(); ++f) t.region[f] = root(static_cast<int>(f));
+  }
+  t.kind.assign(nn, Interior);
+  for (int v = 0; v < nn; ++v) {
+    if (t.node_faces[v].empty()) continue;
+    const size_t k = t.curve_nbrs[v].size();
+    t.kind[v] = k == 0 ? Surface : k == 2 ? Curve : Corner;
+  }
+  return t;
+}
+
+BoundaryConstraints boundary_constraints(const mesh::Mesh& m, const NodeKinds& t, const mesh::SurfaceMesh& given) {
+  BoundaryConstraints c;
+  if (given.F.rows() > 0) {
+    c.surface = mesh::TriangleProjector(given.V, given.F);
+  } else {
+    int nt = 0;
+    for (const auto& f : t.faces) nt += f.n - 2;
+    Eigen::MatrixXi F(nt, 3);
+    int r = 0;
+    for (const auto& f : t.faces)
+      for (int i = 1; i + 1 < f.n; ++i) F.row(r++) << f.v[0], f.v[i], f.v[i + 1];
+    c.surface = mesh::TriangleProjector(m.V, F);
+  }
+  std::vector<std::array<int, 3>> segs;
+  for (int v = 0; v < static_cast<int>(t.curve_nbrs.size()); ++v)
+    for (int u : t.curve_nbrs[v])
+      if (u > v) segs.push_back({v, u, u});
+  Eigen::MatrixXi S(static_cast<int>(segs.size()), 3);
+  for (size_t i = 0; i < segs.size(); ++i) S.row(i) << segs[i][0], segs[i][1], segs[i][2];
+  if (S.rows()) c.curves = mesh::TriangleProjector(m.V, S);
+  return c;
+}
+
+}  // namespace hexdom::optimize
