@@ -30,7 +30,7 @@ FREECAD_MODULES = {"FreeCAD", "FreeCADGui", "Part", "MeshPart", "Mesh", "Fem", "
 GUI_MODULES = {"FreeCADGui", "FemGui", "PySide", "PySide2", "PySide6", "PyQt5", "pivy"}
 # Layers above the document objects (module name prefixes).
 ABOVE_OBJECTS = ("api", "taskpanels", "commands", "viewproviders", "guiutils", "make",
-                 "mesh_part", "document")
+                 "document", "part_meshing", "fileio")
 
 
 def module_files():
@@ -228,7 +228,8 @@ def test_logic_is_freecad_free():
 
 
 def test_logic_loads_in_plain_python():
-    """Imported in a fresh interpreter with no FreeCAD on sys.path: no FreeCAD module is loaded."""
+    """The logic package and the api facade, imported in a fresh interpreter with no FreeCAD on
+    sys.path: no FreeCAD or Qt module is loaded."""
     modules = [m for m in module_files() if _in(m, ("logic",))]
     code = ("import sys\n"
             "sys.path[:] = [p for p in sys.path if 'freecad' not in p.lower()]\n"
@@ -236,7 +237,8 @@ def test_logic_loads_in_plain_python():
             "for m in {!r}:\n"
             "    __import__(m)\n"
             "import HexDomWorkbench\n"
-            "HexDomWorkbench.labels_from_normals\n"
+            "import HexDomWorkbench.api\n"
+            "HexDomWorkbench.labels_from_normals, HexDomWorkbench.mesh_part\n"
             "loaded = sorted(m for m in sys.modules if m.split('.')[0] in {!r})\n"
             "assert not loaded, loaded\n").format(str(REPO), modules,
                                                    sorted(FREECAD_MODULES | GUI_MODULES))
@@ -247,3 +249,29 @@ def test_logic_loads_in_plain_python():
     if run.returncode and "_hexdom was not found" in run.stderr:
         pytest.skip("no _hexdom build (HEXDOM_BUILD_DIR)")
     assert run.returncode == 0, run.stderr
+
+
+def test_logic_imports_only_logic_and_core():
+    modules, edges, _ = graph()
+    allowed = {PACKAGE, PACKAGE + ".core"}
+    bad = ["{} line {} imports {}".format(_short(m), line, _short(n))
+           for m in modules if _in(m, ("logic",))
+           for n, line in edges[m].items() if not (_in(n, ("logic",)) or n in allowed)]
+    assert not bad, "\n".join(bad)
+
+
+def test_no_submodule_hides_a_public_name():
+    """A submodule named like a name the package serves (``tessellate``, ``mesh_part``) would
+    replace that function on the package once imported."""
+    modules = module_files()
+    tree = ast.parse((ROOT / "__init__.py").read_text())
+    public = set()
+    for node in tree.body:  # the names the package itself holds, and those it serves from api
+        if isinstance(node, ast.ImportFrom):
+            public.update(a.asname or a.name for a in node.names)
+        elif isinstance(node, ast.Assign) and any(
+                isinstance(t, ast.Name) and t.id == "_API_NAMES" for t in node.targets):
+            public.update(ast.literal_eval(node.value))
+    assert "mesh_part" in public and "tessellate" in public
+    clash = sorted(m for m in modules if m.count(".") == 1 and m.split(".")[1] in public)
+    assert not clash, clash
