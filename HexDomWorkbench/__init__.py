@@ -34,7 +34,7 @@ from .core import (  # noqa: F401
     write_surface,
 )
 
-__version__ = "0.1.0"
+from .version import __version__  # noqa: F401
 
 # Names served lazily from .api (PEP 562), so that importing the package stays FreeCAD-free.
 _API_NAMES = (
@@ -49,8 +49,9 @@ _API_NAMES = (
 
 def __getattr__(name):
     if name in _API_NAMES or name == "api":
-        import importlib
-        api = importlib.import_module(__name__ + ".api")
+        # An import statement (not importlib), so that the import graph test sees this edge;
+        # "from . import api" would ask this very function for "api" first.
+        import HexDomWorkbench.api as api
         return api if name == "api" else getattr(api, name)
     raise AttributeError("module {!r} has no attribute {!r}".format(__name__, name))
 

@@ -1,11 +1,19 @@
 """Creates HexDom document objects; attaches view providers only when the GUI is up, so that
-scripts and tests run headless (the ObjectsFem role). Nothing here recomputes."""
+scripts and tests run headless (the ObjectsFem role). Nothing here recomputes. FreeCAD is
+imported on the first call, so that importing this module (through api) stays FreeCAD-free."""
 
-import FreeCAD
+import os
+
+from .objects import hex_mesh, polycube, segmentation, tessellation
+
+
+def _gui_up():
+    import FreeCAD
+    return bool(FreeCAD.GuiUp)
 
 
 def _hide(obj):
-    if FreeCAD.GuiUp and obj is not None and getattr(obj, "ViewObject", None) is not None:
+    if obj is not None and getattr(obj, "ViewObject", None) is not None and _gui_up():
         obj.ViewObject.Visibility = False
 
 
@@ -18,7 +26,6 @@ def make_hex_mesh(doc, mesh=None, name="HexDomMesh", segmentation=None, polycube
     ``base_mesh`` (a FEM mesh object) it is an (improved) copy of that mesh.
     """
     obj = doc.addObject("Fem::FemMeshObjectPython", name)
-    from .objects import hex_mesh
     hex_mesh.HexMesh(obj)
     if mesh is not None:
         hex_mesh.store_mesh(obj, mesh)
@@ -32,7 +39,7 @@ def make_hex_mesh(doc, mesh=None, name="HexDomMesh", segmentation=None, polycube
         obj.Level = int(level)
     if improve is not None:
         obj.Improve = bool(improve)
-    if FreeCAD.GuiUp:
+    if _gui_up():
         from .viewproviders import view_hex_mesh
         view_hex_mesh.VPHexMesh(obj.ViewObject)
         for link in (segmentation, polycube, base_mesh):
@@ -46,7 +53,6 @@ def make_surface(doc, source=None, surface=None, path=None, size=0.0, deflection
     Deflection, Angle as given), the triangles of the file ``path``, or the core.Surface
     ``surface`` (kept as is)."""
     obj = doc.addObject("App::FeaturePython", name)
-    from .objects import tessellation
     tessellation.Surface(obj)
     if source is not None:
         obj.Source = source
@@ -58,7 +64,7 @@ def make_surface(doc, source=None, surface=None, path=None, size=0.0, deflection
         obj.Angle = float(angle)
     if surface is not None:
         tessellation.store_surface(obj, surface)
-    if FreeCAD.GuiUp:
+    if _gui_up():
         from .viewproviders import view_tessellation
         view_tessellation.VPSurface(obj.ViewObject)
         _hide(source)
@@ -70,13 +76,12 @@ def make_segmentation(doc, surface, method=None, patch_file=None, name="HexDomSe
     "Surface patches" or "Patch file" (default: "Patch file" when ``patch_file`` is given, else
     "Automatic")."""
     obj = doc.addObject("App::FeaturePython", name)
-    from .objects import segmentation
     segmentation.Segmentation(obj)
     obj.Surface = surface
     if patch_file:
         obj.PatchFile = patch_file
     obj.Method = method or ("Patch file" if patch_file else "Automatic")
-    if FreeCAD.GuiUp:
+    if _gui_up():
         from .viewproviders import view_segmentation
         view_segmentation.VPSegmentation(obj.ViewObject)
         _hide(surface)
@@ -90,7 +95,6 @@ def make_polycube(doc, structure=None, path=None, name="HexDomPolycube", segment
     no structure it is automatic: Mode "Automatic", blocks of ``size`` * 2^``level`` built on
     recompute by core.autopolycube (size 0: bounding-box diagonal / 30; level default 1)."""
     obj = doc.addObject("App::FeaturePython", name)
-    from .objects import polycube
     polycube.Polycube(obj)
     if segmentation is not None:
         obj.Segmentation = segmentation
@@ -102,11 +106,10 @@ def make_polycube(doc, structure=None, path=None, name="HexDomPolycube", segment
     if structure is not None:
         polycube.store_structure(obj, structure)
         if path:
-            import os
             obj.LoadedFile = os.path.abspath(path)
     if path:
         obj.SourceFile = path
-    if FreeCAD.GuiUp:
+    if _gui_up():
         from .viewproviders import view_polycube
         view_polycube.VPPolycube(obj.ViewObject)
     return obj

@@ -25,9 +25,9 @@ os.environ["HEXDOM_BUILD_DIR"] = str(BUILD)
 DATA = Path(os.environ.get("HEXDOM_DATA") or REPO.parent / "shared" / "data").resolve() / "hexdom"
 
 from HexDomWorkbench import core  # noqa: E402
-from HexDomWorkbench.taskpanels import polycube_building  # noqa: E402
-from HexDomWorkbench.taskpanels.patch_editing import points_in_polygon  # noqa: E402
-from HexDomWorkbench.taskpanels.polycube_building import PolycubeBuilder  # noqa: E402
+from HexDomWorkbench.logic import polycube_building  # noqa: E402
+from HexDomWorkbench.logic.patch_editing import points_in_polygon  # noqa: E402
+from HexDomWorkbench.logic.polycube_building import PolycubeBuilder  # noqa: E402
 
 MODELS = [  # (segmented surface, structure)
     ("rockerarm/rockerarm_indexPatch_hexdom.k", "rockerarm/rockerarm_polycube_withtet.k"),

@@ -448,9 +448,13 @@ class _BuildPolycube(CommandManager):
             return FreeCADGui.Control.activeDialog()
         if segmentation is None:
             return False
+        from .. import make
         from ..taskpanels import task_polycube
-        return open_task_panel(lambda: task_polycube._TaskPanel(None, segmentation=segmentation),
-                               "Build polycube")
+        return open_task_panel(
+            lambda: task_polycube._TaskPanel(
+                None, segmentation=segmentation,
+                new_polycube=lambda doc, structure: make.make_polycube(doc, structure=structure)),
+            "Build polycube")
 
 
 COMMANDS = [_ImportMesh(), _QualityReport(), _ExportMesh(), _AddToAnalysis()]

@@ -11,9 +11,10 @@ import FreeCAD
 import FreeCADGui
 
 from .. import core, paths
+from ..document import RecomputeError
+from ..guiutils.dialogs import PARAMS, get_param, main_window, set_param, show_error  # noqa: F401
 from ..objects import hex_mesh
-
-PARAMS = "User parameter:BaseApp/Preferences/Mod/HexDom"
+from ..progress import Progress
 
 # Exceptions a command reports to the user instead of raising.
 USER_ERRORS = (core.Error, ValueError, OSError)
@@ -106,18 +107,6 @@ def active_analysis():
     return FemGui.getActiveAnalysis()
 
 
-def main_window():
-    return FreeCADGui.getMainWindow()
-
-
-def show_error(title, error):
-    """Reports ``error`` in the report view and in a message box."""
-    from PySide import QtGui
-    text = str(error) or type(error).__name__
-    FreeCAD.Console.PrintError("HexDom: {}: {}\n".format(title, text))
-    QtGui.QMessageBox.critical(main_window(), "HexDom: " + title, text)
-
-
 def run_in_transaction(doc, title, modules, lines):
     """Runs console ``lines`` (after importing ``modules``) as one undoable transaction.
 
@@ -147,13 +136,12 @@ def run_and_recompute(doc, title, modules, steps):
     message box (a warning in the report view after Cancel); returns None then. Long core calls
     inside the recompute share this Progress: one dialog with a Cancel button.
     """
-    from .. import api
     before = set(o.Name for o in doc.Objects)
     invalid_before = set(o.Name for o in doc.Objects if "Invalid" in o.State)
     doc.openTransaction(title)
     cancelled = False
     try:
-        with api.Progress(title, len(steps) + 1) as bar:
+        with Progress(title, len(steps) + 1) as bar:
             for module in modules:
                 FreeCADGui.addModule(module)
             for text, line in steps:
@@ -166,7 +154,7 @@ def run_and_recompute(doc, title, modules, steps):
                   if ("Invalid" in o.State or "Error" in o.State) and o.Name not in invalid_before]
         if failed:
             message = failed[0].getStatusString() or "recompute failed"
-            raise api.RecomputeError("{}: {}".format(failed[0].Label, message))
+            raise RecomputeError("{}: {}".format(failed[0].Label, message))
     except USER_ERRORS as e:
         doc.abortTransaction()
         doc.recompute()
@@ -178,11 +166,3 @@ def run_and_recompute(doc, title, modules, steps):
         return None
     doc.commitTransaction()
     return [o for o in doc.Objects if o.Name not in before]
-
-
-def get_param(name, default=""):
-    return FreeCAD.ParamGet(PARAMS).GetString(name, default)
-
-
-def set_param(name, value):
-    FreeCAD.ParamGet(PARAMS).SetString(name, value)

@@ -1,8 +1,9 @@
 """Boilerplate shared by HexDom document-object proxies."""
 
+from ..version import __version__
+
 
 def _version():
-    from .. import __version__
     return __version__
 
 

@@ -22,6 +22,9 @@ import numpy as np
 
 from .. import core
 from ..convert import femmesh
+from ..logic.stages import core_has
+from ..progress import Progress
+from . import polycube, segmentation, tessellation
 from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Mesh"
@@ -96,7 +99,6 @@ class HexMesh(BaseHexDomObject):
 
     def generate(self, obj):
         """New core.Mesh from the inputs (see the module doc), or None to keep the stored one."""
-        from .. import api
         seg = getattr(obj, "Segmentation", None)
         poly = getattr(obj, "Polycube", None)
         base = getattr(obj, "BaseMesh", None)
@@ -107,14 +109,13 @@ class HexMesh(BaseHexDomObject):
                 raise ValueError("{}: BaseMesh links the mesh itself".format(obj.Label))
             mesh = get_mesh(base)
             if obj.Improve:
-                with api.Progress("Improving " + obj.Label, 1) as bar:
+                with Progress("Improving " + obj.Label, 1) as bar:
                     mesh = bar.run("improve", core.improve, mesh)
                     bar.step("improved")
             return mesh
         if seg is None or poly is None:
             raise ValueError("{}: link both a Segmentation and a Polycube (or neither)".format(
                 obj.Label))
-        from . import polycube, segmentation
         surface = polycube.get_patch_surface(poly)
         if surface is None:
             surface = segmentation.get_surface(seg)
@@ -122,7 +123,7 @@ class HexMesh(BaseHexDomObject):
         if obj.Level < 0:
             raise ValueError("{}: Level must be 0 or more".format(obj.Label))
         snap = snap_source(obj)
-        with api.Progress("Meshing " + obj.Label,
+        with Progress("Meshing " + obj.Label,
                           1 + bool(obj.Improve) + bool(snap)) as bar:
             mesh = bar.run("generate", core.generate, surface, structure, level=obj.Level)
             bar.step("generated {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
@@ -150,8 +151,7 @@ class HexMesh(BaseHexDomObject):
 def snap_source(obj):
     """(BREP text, core.Surface with CAD face ids) to snap the mesh of HexDom Mesh ``obj`` to, or
     None: SnapToCAD off, the core without snap_to_brep, or no Part behind the Segmentation."""
-    from .. import api
-    if not getattr(obj, "SnapToCAD", False) or not api._core_has("snap_to_brep"):
+    if not getattr(obj, "SnapToCAD", False) or not core_has("snap_to_brep"):
         return None
     seg = getattr(obj, "Segmentation", None)
     surface_obj = getattr(seg, "Surface", None)
@@ -159,7 +159,6 @@ def snap_source(obj):
     shape = getattr(part, "Shape", None)
     if shape is None or shape.isNull() or not shape.Faces:
         return None
-    from . import tessellation
     return shape.exportBrepToString(), tessellation.get_surface(surface_obj)
 
 

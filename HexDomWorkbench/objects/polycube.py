@@ -4,7 +4,8 @@ The structure lives in properties: Points (block corners), Blocks (8 point indic
 VTK node order, -1 padded: 8 for a hex, 6 for a prism, 4 for a tet) and BlockTypes (VTK type per
 block: 12 hex, 13 prism, 10 tet). SourceFile names the .k structure file it was imported from;
 setting it to another file and recomputing reads that file (api.import_structure and
-api.export_structure read and write the original program's .k files through core).
+api.export_structure, from document.py, read and write the original program's .k files through
+core).
 
 Mode "Automatic" computes the structure on recompute with core.autopolycube from the labels of the
 linked Segmentation, with blocks of Size * 2^Level (Size 0: bounding-box diagonal / 30), the
@@ -21,6 +22,9 @@ import os
 import numpy as np
 
 from .. import core
+from ..logic.stages import read_structure
+from ..progress import Progress
+from . import segmentation
 from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Polycube"
@@ -122,8 +126,7 @@ class Polycube(BaseHexDomObject):
             return
         path = obj.SourceFile
         if path and os.path.abspath(path) != obj.LoadedFile:
-            from .. import api
-            store_structure(obj, api.read_structure(path))
+            store_structure(obj, read_structure(path))
             store_patch_surface(obj, None)  # a file's blocks go with the Segmentation's patches
             obj.LoadedFile = os.path.abspath(path)
         else:
@@ -145,8 +148,6 @@ PATCH_SURFACE_PROPERTIES = tuple(name for name, _, _ in _PATCH_SURFACE)
 def build_automatic(obj):
     """Mode Automatic: the structure and patch surface of core.autopolycube on the labels of
     obj.Segmentation; raises core.GeometryError naming the charts when it cannot."""
-    from .. import api
-    from . import segmentation
     seg = obj.Segmentation
     if seg is None or not segmentation.is_segmentation(seg):
         raise ValueError("{}: Mode Automatic needs a HexDom Segmentation (property "
@@ -154,7 +155,7 @@ def build_automatic(obj):
     if obj.Level < 0:
         raise ValueError("{}: Level must be 0 or more".format(obj.Label))
     labels = segmentation.get_label_surface(seg)
-    with api.Progress("Automatic polycube " + obj.Label, 1) as bar:
+    with Progress("Automatic polycube " + obj.Label, 1) as bar:
         result = bar.run("automatic polycube", core.autopolycube, labels,
                          size=float(obj.Size.Value), level=int(obj.Level),
                          keep_widths=bool(getattr(obj, "KeepWidths", True)),

@@ -22,8 +22,11 @@ and the edits live in integer-list properties, so they are saved with the docume
 import numpy as np
 
 from .. import core
-from .base_object import BaseHexDomObject, is_of_type, set_read_only
+from ..logic.labels import apply_label_edits, labels_from_normals, transfer_patches
+from ..logic.stages import check_patches, segment
+from ..progress import Progress
 from . import tessellation
+from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Segmentation"
 METHODS = ["Automatic", "Surface patches", "Patch file"]
@@ -98,22 +101,21 @@ class Segmentation(BaseHexDomObject):
             obj.setEditorMode(name, 2)
 
     def execute(self, obj):
-        from .. import api
         if obj.Surface is None or not tessellation.is_surface(obj.Surface):
             raise ValueError("{}: link a HexDom Surface (property Surface)".format(obj.Label))
         surface = tessellation.get_surface(obj.Surface)
         n = len(surface.F)
         issues = []
-        with api.Progress("Segmenting " + obj.Surface.Label, 2) as bar:
+        with Progress("Segmenting " + obj.Surface.Label, 2) as bar:
             triangles, new_labels = valid_edits(obj, n, issues)
             labels, patches, keep = base_segmentation(obj, surface, triangles, new_labels,
                                                       run=bar.run)
             bar.step("labels")
-            labels, patches = api.apply_label_edits(surface.F, labels, patches, triangles,
-                                                    new_labels, keep_patches=keep)
+            labels, patches = apply_label_edits(surface.F, labels, patches, triangles, new_labels,
+                                                keep_patches=keep)
             patches = apply_patch_edits(obj, patches, issues)
             bar.step("edits")
-        issues += api.check_patches(core.Surface(surface.V, surface.F, patches))
+        issues += check_patches(core.Surface(surface.V, surface.F, patches))
         store_segmentation(obj, labels, patches)
         if obj.EditCount != len(triangles):
             obj.EditCount = len(triangles)
@@ -125,7 +127,6 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
     """(labels, patches, keep_patches) of the method, before user edits (which the automatic
     method already takes as fixed labels). ``run(text, fn, *args, **kw)`` runs the core call
     (Progress.run: a worker thread under the GUI); default: a direct call."""
-    from .. import api
     method = obj.Method
     if method == "Automatic":
         edits = np.c_[np.asarray(triangles, np.int32), np.asarray(new_labels, np.int32)]
@@ -133,7 +134,7 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
         weight = float(getattr(obj, "EdgeWeight", DEFAULT_EDGE_WEIGHT))
         if not weight >= 0:
             raise ValueError("{}: EdgeWeight must be 0 or more".format(obj.Label))
-        result = run("segment", api.segment, surface, edits=edits if len(edits) else None,
+        result = run("segment", segment, surface, edits=edits if len(edits) else None,
                      edge_weight=weight, frame=frame_matrix(obj))
         return result.labels, result.patch, False
     if method == "Surface patches":
@@ -146,11 +147,11 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
                 and np.array_equal(source.F, surface.F)
                 and np.allclose(source.V, surface.V, rtol=0,
                                 atol=1e-9 * max(1.0, float(np.abs(surface.V).max()))))
-        patches = np.asarray(source.patch if same else api.transfer_patches(source, surface),
+        patches = np.asarray(source.patch if same else transfer_patches(source, surface),
                              np.int32)
     else:
         raise ValueError("{}: unknown Method '{}'".format(obj.Label, method))
-    labels = api.labels_from_normals(surface.V, surface.F, patches, frame=frame_matrix(obj))
+    labels = labels_from_normals(surface.V, surface.F, patches, frame=frame_matrix(obj))
     return labels, patches, True
 
 

@@ -3,7 +3,7 @@
 Holds the triangles in properties (Points, Triangles as a flat list of point indices, FaceId per
 triangle: 1-based, triangle t lies on Face<FaceId[t]> of the source shape), so the document keeps
 them and the segmentation reads them back as a core.Surface. The source is a Part object
-(Source, tessellated with Size / Deflection / Angle through api.tessellate) or, when Source is
+(Source, tessellated with Size / Deflection / Angle by shape_tessellation.tessellate) or, when Source is
 empty, a triangle file (SourceFile: .k shells with part id per triangle, .stl, .obj, .vtk; the
 part ids become FaceId). With neither, the object keeps the triangles it was given.
 """
@@ -11,6 +11,8 @@ part ids become FaceId). With neither, the object keeps the triangles it was giv
 import numpy as np
 
 from .. import core
+from ..progress import Progress
+from ..shape_tessellation import tessellate
 from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Surface"
@@ -78,16 +80,15 @@ class Surface(BaseHexDomObject):
 def compute_surface(obj):
     """core.Surface from the object's input (Source, else SourceFile), or None when it has
     neither (the stored triangles stay)."""
-    from .. import api
     if obj.Source is not None:
         shape = getattr(obj.Source, "Shape", None)
         if shape is None or shape.isNull() or not shape.Faces:
             raise ValueError("{}: source {} has no faces".format(obj.Label, obj.Source.Label))
-        with api.Progress("Tessellating " + obj.Source.Label, 1) as bar:
-            surface = api.tessellate(shape, size=obj.Size.Value, deflection=obj.Deflection.Value,
+        with Progress("Tessellating " + obj.Source.Label, 1) as bar:
+            surface = tessellate(shape, size=obj.Size.Value, deflection=obj.Deflection.Value,
                                      angle=obj.Angle.Value, run=bar.run)
             bar.step("tessellated")
-        obj.Method = api.tessellate.last_method or ""
+        obj.Method = tessellate.last_method or ""
         return surface
     if obj.SourceFile:
         surface = core.read_surface(obj.SourceFile)

@@ -12,7 +12,7 @@ while it is open FreeCAD's Edit > Undo / Redo and Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y
 rather than on the document (panel_undo.UndoRedirect). OK writes the blocks into the Polycube (or a
 new one), Cancel leaves the document as it was.
 
-The work is done by polycube_building.PolycubeBuilder; the public methods below are what the
+The work is done by logic.polycube_building.PolycubeBuilder; the public methods below are what the
 widgets call, and what tests call to act as clicks would.
 """
 
@@ -25,11 +25,13 @@ import FreeCADGui
 from PySide import QtGui
 
 from .. import core, paths
+from ..guiutils.dialogs import get_param, set_param, show_error
+from ..logic.cells import BLOCK_FACES
+from ..logic.labels import labels_from_normals
+from ..logic.polycube_building import TYPE_NAMES, PolycubeBuilder
 from ..objects import polycube, segmentation
 from ..viewproviders import coin_mesh
-from ..commands.manager import show_error
 from . import panel_undo, view_overlay
-from .polycube_building import BLOCK_FACES, TYPE_NAMES, PolycubeBuilder
 
 USER_ERRORS = (core.Error, ValueError, OSError)
 PICK_MODES = ("vertex", "point")
@@ -66,11 +68,16 @@ def find_segmentation(obj):
 
 
 class _TaskPanel:
-    """Build Polycube over HexDom Polycube ``obj`` (None: OK makes a new one), against the
-    patches of HexDom Segmentation ``segmentation`` (None: found from the document)."""
+    """Build Polycube over HexDom Polycube ``obj``, against the patches of HexDom Segmentation
+    ``segmentation`` (None: found from the document). With no ``obj``, OK makes a new Polycube
+    with ``new_polycube(doc, structure)`` (the command passes make.make_polycube: the panel
+    itself creates no document objects)."""
 
-    def __init__(self, obj=None, segmentation=None, doc=None):
+    def __init__(self, obj=None, segmentation=None, doc=None, new_polycube=None):
+        if obj is None and new_polycube is None:
+            raise ValueError("Build polycube: no Polycube to edit and no way to make one")
         self.obj = obj
+        self.new_polycube = new_polycube
         self.doc = obj.Document if obj is not None else (
             segmentation.Document if segmentation is not None else doc or FreeCAD.ActiveDocument)
         if self.doc is None:
@@ -116,9 +123,8 @@ class _TaskPanel:
             numbers = np.asarray(core.number_patches(surface), np.int32)
             labels = np.asarray(seg.Labels, np.int32)
             if own is not None:
-                from .. import api
-                labels = api.labels_from_normals(surface.V, surface.F, surface.patch,
-                                                 frame=segmentation.frame_matrix(seg))
+                labels = labels_from_normals(surface.V, surface.F, surface.patch,
+                                             frame=segmentation.frame_matrix(seg))
             _, first = np.unique(numbers, return_index=True)
             for n, t in zip(np.unique(numbers).tolist(), first.tolist()):
                 self.patch_labels[n] = int(labels[t]) if len(labels) > t else 0
@@ -333,14 +339,13 @@ class _TaskPanel:
     def apply(self):
         """Writes the blocks into the Polycube (or a new one) as one undoable transaction and
         recomputes. Returns the Polycube."""
-        from .. import make
         structure = self.builder.structure()
         problems = self.builder.problems()
         doc = self.doc
         doc.openTransaction("Build polycube")
         try:
             if self.obj is None:
-                self.obj = make.make_polycube(doc, structure=structure)
+                self.obj = self.new_polycube(doc, structure)
                 if self.segmentation is not None:
                     self.obj.Label = self.segmentation.Label + "_polycube"
             else:
@@ -418,24 +423,22 @@ class _TaskPanel:
             self.builder.select_vertices(list(self.builder.blocks[row][1]), "replace")
 
     def _import_dialog(self):
-        from ..commands import manager
         path, _ = QtGui.QFileDialog.getOpenFileName(
-            FreeCADGui.getMainWindow(), "Import polycube structure", manager.get_param("LastDir"),
+            FreeCADGui.getMainWindow(), "Import polycube structure", get_param("LastDir"),
             "Structure files (*.k *.vtk *.vtu);;All files (*)")
         if path:
-            manager.set_param("LastDir", os.path.dirname(path))
+            set_param("LastDir", os.path.dirname(path))
             self.import_structure(path)
 
     def _export_dialog(self):
-        from ..commands import manager
         path, _ = QtGui.QFileDialog.getSaveFileName(
             FreeCADGui.getMainWindow(), "Export polycube structure",
-            os.path.join(manager.get_param("LastDir"), "structure.k"),
+            os.path.join(get_param("LastDir"), "structure.k"),
             "LS-DYNA keyword (*.k);;VTK legacy (*.vtk);;VTK XML (*.vtu)")
         if path:
             if os.path.splitext(path)[1].lower() not in (".k", ".vtk", ".vtu"):
                 path += ".k"
-            manager.set_param("LastDir", os.path.dirname(path))
+            set_param("LastDir", os.path.dirname(path))
             self.export_structure(path)
 
     def _on_click(self, x, y, ctrl, shift):

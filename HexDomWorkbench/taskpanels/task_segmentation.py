@@ -13,7 +13,7 @@ document (panel_undo.UndoRedirect). OK writes the edits into the Segmentation
 (EditedTriangles / EditedLabels, EditedPatchTriangles / EditedPatchIds) and recomputes; Cancel
 leaves it untouched.
 
-All the work is done by patch_editing.PatchEditor; the public methods below are what the widgets
+All the work is done by logic.patch_editing.PatchEditor; the public methods below are what the widgets
 call, and what tests call to act as clicks would.
 """
 
@@ -24,11 +24,12 @@ import FreeCADGui
 from PySide import QtGui
 
 from .. import core, paths
+from ..guiutils.dialogs import show_error
+from ..logic.patch_editing import LABEL_NAMES, PatchEditor, points_in_polygon
+from ..logic.triangles import boundary_edges
 from ..objects import segmentation
 from ..viewproviders import coin_mesh
-from ..commands.manager import show_error
 from . import panel_undo, view_overlay
-from .patch_editing import LABEL_NAMES, PatchEditor, points_in_polygon
 
 USER_ERRORS = (core.Error, ValueError)
 PICK_MODES = ("facet", "patch", "face", "path")
@@ -461,7 +462,7 @@ class _TaskPanel:
         if self.overlay is not None:
             material, colors = coin_mesh.palette_by_patch_label(e.patches, e.labels)
             self._scene.set(e.V, e.F, material, colors,
-                            coin_mesh.boundary_edges(e.F, e.patches), np.zeros((0, 2)))
+                            boundary_edges(e.F, e.patches), np.zeros((0, 2)))
 
     def _refresh_selection(self):
         e, f = self.editor, self.form

@@ -65,35 +65,6 @@ def palette_by_id(ids):
     return inverse.astype(np.int64), [distinct_color(int(v)) for v in values.tolist()]
 
 
-def boundary_edges(F, ids):
-    """Edges (#E x 2) between triangles of different ``ids``, and edges of one triangle only."""
-    F = np.asarray(F, np.int64).reshape(-1, 3)
-    if len(F) == 0:
-        return np.zeros((0, 2), np.int64)
-    ids = np.asarray(ids)
-    edges = np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
-    tri = np.repeat(np.arange(len(F)), 3)
-    order = np.lexsort((edges[:, 1], edges[:, 0]))
-    edges, tri = edges[order], tri[order]
-    start = np.r_[True, np.any(edges[1:] != edges[:-1], axis=1)]
-    group = np.cumsum(start) - 1
-    ngroups = group[-1] + 1
-    lo = np.full(ngroups, np.iinfo(np.int64).max)
-    hi = np.full(ngroups, np.iinfo(np.int64).min)
-    np.minimum.at(lo, group, ids[tri])
-    np.maximum.at(hi, group, ids[tri])
-    count = np.bincount(group)
-    keep = (lo != hi) | (count == 1)
-    return edges[start][keep]
-
-
-def all_edges(F):
-    F = np.asarray(F, np.int64).reshape(-1, 3)
-    if len(F) == 0:
-        return np.zeros((0, 2), np.int64)
-    return np.unique(np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0)
-
-
 def _set_points(field, points):
     points = np.asarray(points, float).reshape(-1, 3)
     field.setNum(0)

@@ -5,6 +5,7 @@ Edit Patches task panel."""
 
 import numpy as np
 
+from ..logic.triangles import all_edges, boundary_edges
 from . import coin_mesh
 from .view_base import VPBaseHexDomObject, edit_on_double_click, open_task_panel
 
@@ -42,8 +43,8 @@ class VPSegmentation(coin_mesh.VPCoinBase, VPBaseHexDomObject):
             material, colors = coin_mesh.palette_by_id(patches)
         else:
             material, colors = np.zeros(len(F), np.int64), [(0.75, 0.75, 0.78)]
-        scene.set(V, F, material, colors, coin_mesh.boundary_edges(F, patches),
-                  coin_mesh.all_edges(F))
+        scene.set(V, F, material, colors, boundary_edges(F, patches),
+                  all_edges(F))
         return True
 
     def claimChildren(self):

@@ -3,6 +3,7 @@ face boundaries drawn as lines."""
 
 import numpy as np
 
+from ..logic.triangles import all_edges, boundary_edges
 from . import coin_mesh
 from .view_base import VPBaseHexDomObject
 
@@ -32,8 +33,8 @@ class VPSurface(coin_mesh.VPCoinBase, VPBaseHexDomObject):
             material, colors = np.zeros(len(F), np.int64), [(0.75, 0.75, 0.78)]
         else:
             material, colors = coin_mesh.palette_by_id(ids)
-        scene.set(V, F, material, colors, coin_mesh.boundary_edges(F, ids),
-                  coin_mesh.all_edges(F))
+        scene.set(V, F, material, colors, boundary_edges(F, ids),
+                  all_edges(F))
         return True
 
     def claimChildren(self):

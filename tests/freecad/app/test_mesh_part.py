@@ -240,7 +240,7 @@ def test_progress_cancel_without_gui():
     assert progress.current() is None
 
 
-@pytest.mark.skipif(not api._core_has("snap_to_brep"),
+@pytest.mark.skipif(not api.core_has("snap_to_brep"),
                     reason="core.snap_to_brep not in this build (issue 9 B-rep snapping pending)")
 def test_boundary_nodes_snapped_onto_the_cad_faces(doc):
     """With core.snap_to_brep, the final boundary nodes of a curved part lie on its CAD faces:
@@ -292,7 +292,7 @@ def test_snap_to_brep_wiring(doc, monkeypatch):
     hands it its final mesh, the Part's BREP text and the Surface's tessellation with the CAD face
     ids, uses the mesh it returns and reports its max_distance. A stand-in records the call."""
     box = _box(doc)
-    if not api._core_has("snap_to_brep"):
+    if not api.core_has("snap_to_brep"):
         objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
         assert objs["mesh"].BrepDistance == -1.0
     calls = []
@@ -305,7 +305,7 @@ def test_snap_to_brep_wiring(doc, monkeypatch):
 
     monkeypatch.setattr(core, "snap_to_brep", fake_snap, raising=False)
     monkeypatch.setattr(core._hexdom, "snap_to_brep", fake_snap, raising=False)
-    assert api._core_has("snap_to_brep")
+    assert api.core_has("snap_to_brep")
     objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
     mesh = objs["mesh"]
     assert len(calls) == 1

@@ -156,7 +156,8 @@ def test_standard_mesher_fallback_remeshes_to_size():
     # MeshPart's standard mesher gives a box 12 needle triangles; the core remeshes them onto
     # themselves: near-equilateral triangles of about the size, each on its own face.
     shape = Part.makeBox(20, 10, 5)
-    V, F, ids = api._tessellate_standard(shape, 2.0, 0.2, 20.0)
+    from HexDomWorkbench import shape_tessellation
+    V, F, ids = shape_tessellation._tessellate_standard(shape, 2.0, 0.2, 20.0)
     uses, volume, _ = fc_testdata.closed_surface_checks(V, F)
     assert uses == {2} and volume == pytest.approx(1000.0, rel=1e-9)
     lengths = fc_testdata.edge_lengths(V, F)

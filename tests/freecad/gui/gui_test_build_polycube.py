@@ -49,7 +49,8 @@ def run():
     import fc_testdata
     from HexDomWorkbench import api, core, make
     from HexDomWorkbench.objects import polycube, segmentation
-    from HexDomWorkbench.taskpanels import polycube_building, task_polycube
+    from HexDomWorkbench.logic import polycube_building
+    from HexDomWorkbench.taskpanels import task_polycube
 
     errors = []
     QtGui.QMessageBox.critical = staticmethod(lambda parent, title, text, *a: errors.append(

@@ -17,30 +17,13 @@ orientations 1..6 (+X -X +Y -Y +Z -Z), one per triangle; every edit keeps one la
 
 import numpy as np
 
-from .. import api, core
+from .. import core
+from .labels import (LABEL_NAMES, apply_label_edits, label_number,  # noqa: F401
+                     labels_from_normals, nearest_label)
+from .triangles import triangle_normals
 from .undo_stack import UndoStack
 
-LABEL_NAMES = {1: "+X", 2: "-X", 3: "+Y", 4: "-Y", 5: "+Z", 6: "-Z"}
-AXES = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
 SELECT_MODES = ("replace", "add", "remove", "toggle")
-
-
-def label_number(label):
-    """1..6 from a label number or name ("+X" ... "-Z")."""
-    if isinstance(label, str):
-        by_name = {name: number for number, name in LABEL_NAMES.items()}
-        if label.strip().upper() not in by_name:
-            raise ValueError("label '{}' is not one of +X -X +Y -Y +Z -Z".format(label))
-        return by_name[label.strip().upper()]
-    label = int(label)
-    if not 1 <= label <= 6:
-        raise ValueError("label {} is not one of 1..6 (+X -X +Y -Y +Z -Z)".format(label))
-    return label
-
-
-def nearest_label(normal):
-    """Label of the axis nearest ``normal``."""
-    return int(np.argmax(AXES @ np.asarray(normal, float).reshape(3)) + 1)
 
 
 def points_in_polygon(points, polygon):
@@ -82,12 +65,9 @@ class PatchEditor:
             raise ValueError("{} patch ids for {} triangles".format(len(self.patches), n))
         if n and self.patches.min() <= 0:
             raise ValueError("patch ids must be positive")
-        normals = np.cross(self.V[self.F[:, 1]] - self.V[self.F[:, 0]],
-                           self.V[self.F[:, 2]] - self.V[self.F[:, 0]])
-        self.areas = 0.5 * np.linalg.norm(normals, axis=1)
-        self.normals = normals / np.where(self.areas > 0, 2 * self.areas, 1.0)[:, None]
+        self.normals, self.areas = triangle_normals(self.V, self.F)
         if labels is None:
-            labels = self._labels_from_normals(self.patches)
+            labels = labels_from_normals(self.V, self.F, self.patches, frame=self.frame)
         self.labels = np.array(labels, np.int32).reshape(-1)
         if len(self.labels) != n:
             raise ValueError("{} labels for {} triangles".format(len(self.labels), n))
@@ -300,7 +280,8 @@ class PatchEditor:
         ``label`` (default: the axis nearest their mean normal). Returns the new id."""
         tris = self._triangles(triangles)
         if label is None:
-            label = nearest_label(self.frame @ (self.normals[tris] * self.areas[tris, None]).sum(axis=0))
+            mean = (self.normals[tris] * self.areas[tris, None]).sum(axis=0)
+            label = int(nearest_label(self.frame @ mean)[0])
         label = label_number(label)
         patches = np.asarray(core.reassign_triangles(self.surface(), tris, 0), np.int32)
         new_id = int(patches[tris[0]])
@@ -315,9 +296,9 @@ class PatchEditor:
         touch; regions touching none become new patches. Returns the patch ids they went to."""
         label = label_number(label)
         tris = self._triangles(triangles)
-        labels, patches = api.apply_label_edits(self.F, self.labels, self.patches, tris,
-                                                np.full(len(tris), label, np.int32),
-                                                keep_patches=True)
+        labels, patches = apply_label_edits(self.F, self.labels, self.patches, tris,
+                                            np.full(len(tris), label, np.int32),
+                                            keep_patches=True)
         self._changed(patches, labels)
         return sorted(set(patches[tris].tolist()))
 
@@ -433,10 +414,3 @@ class PatchEditor:
         _, numbers, _ = self.check()
         tris = np.flatnonzero(numbers == int(number))
         return int(self.patches[tris[0]]) if len(tris) else None
-
-    def _labels_from_normals(self, patches):
-        ids, inverse = np.unique(patches, return_inverse=True)
-        mean = np.zeros((len(ids), 3))
-        np.add.at(mean, inverse, self.normals * self.areas[:, None])
-        return (np.argmax(mean @ self.frame.T @ AXES.T, axis=1) + 1).astype(np.int32)[inverse]
-

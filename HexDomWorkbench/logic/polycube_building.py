@@ -21,18 +21,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import core
+from .cells import BLOCK_FACES, HEX, NODE_COUNT, TET, WEDGE, block_faces, face_key  # noqa: F401
+from .stages import read_structure
 from .undo_stack import UndoStack
 
-HEX, WEDGE, TET = core.HEX, core.WEDGE, core.TET
 TYPE_OF_COUNT = {8: HEX, 6: WEDGE, 4: TET}
-NODE_COUNT = {HEX: 8, WEDGE: 6, TET: 4}
 TYPE_NAMES = {HEX: "hex", WEDGE: "prism", TET: "tet"}
-# Faces of each block type in VTK node order, right-hand normals pointing out of the block.
-BLOCK_FACES = {
-    HEX: [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)],
-    WEDGE: [(0, 1, 2), (3, 5, 4), (0, 3, 4, 1), (1, 4, 5, 2), (2, 5, 3, 0)],
-    TET: [(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)],
-}
 _PERMUTATIONS = {}
 
 
@@ -59,15 +53,6 @@ def _permutations(n):
         perms = np.array(list(itertools.permutations(range(n))), np.int32)
         _PERMUTATIONS[n] = perms
     return _PERMUTATIONS[n]
-
-
-def face_key(vertices):
-    return tuple(sorted(int(v) for v in vertices))
-
-
-def block_faces(block_type, vertices):
-    """Faces (vertex lists, outward) of a block."""
-    return [[int(vertices[i]) for i in f] for f in BLOCK_FACES[block_type]]
 
 
 def scaled_jacobians(points, cells, block_type):
@@ -505,8 +490,7 @@ class PolycubeBuilder:
 
     def import_structure(self, path):
         """Reads a structure file (.k as the original program's, or .vtk/.vtu) into the builder."""
-        from .. import api
-        return self.load_structure(api.read_structure(path))
+        return self.load_structure(read_structure(path))
 
     def export_structure(self, path):
         """Writes the blocks as a structure file (.k, .vtk, .vtu; chosen by extension)."""
