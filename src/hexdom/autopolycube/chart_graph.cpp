@@ -6,7 +6,7 @@
 #include "hexdom/common/error.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/segmentation/axis_labels.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::autopolycube {
 
@@ -25,7 +25,7 @@ ChartGraph chart_graph(const mesh::SurfaceMesh& s) {
     if (s.patch(f) < 1 || s.patch(f) > 6)
       throw GeometryError("triangle " + std::to_string(f + 1) + " has label " + std::to_string(s.patch(f)) +
                           ": axis labels are 1..6 (+X, -X, +Y, -Y, +Z, -Z), as `hexdom segment` writes them");
-  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   ChartGraph g;
 
   // Charts by flood fill.

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "hexdom/segmentation/axis_labels.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::autopolycube {
 
@@ -279,7 +279,7 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
 Eigen::VectorXi relabel_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int chart, const std::vector<int>& curve,
                              double width) {
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
-  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   const int axis = (g.label[chart] - 1) / 2;
   std::set<int> on_curve(curve.begin(), curve.end());
   auto distance = [&](int f) {
@@ -374,7 +374,7 @@ Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGrap
 Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int problems, double width,
                                    double crease_angle, std::string* what, const std::vector<char>* only) {
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
-  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   const double cos_crease = std::cos(crease_angle * M_PI / 180.0);
   const int nf = static_cast<int>(s.F.rows());
   auto crease = [&](int f, int k) {
@@ -463,7 +463,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
   std::sort(mixed.begin(), mixed.end());
   if (mixed.size() > kMaxBandCurves) mixed.resize(kMaxBandCurves);
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
-  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   auto distance = [&](int f, const std::vector<int>& vs) {
     double d = std::numeric_limits<double>::infinity();
     for (int v : vs) d = std::min(d, (geo.centroid.row(f) - s.V.row(v)).norm());

@@ -4,13 +4,13 @@
 #include <map>
 #include <vector>
 
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::autopolycube {
 
 mesh::SurfaceMesh split_chords(const mesh::SurfaceMesh& s, const ChartGraph& g, int* count) {
   const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
-  const Eigen::MatrixXi TT = segmentation::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   std::vector<char> boundary(nv, 0);
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)

@@ -7,7 +7,7 @@
 #include "hexdom/autopolycube/cut_triangles.h"
 #include "hexdom/common/format.h"
 #include "hexdom/segmentation/axis_labels.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::autopolycube {
 
@@ -135,7 +135,7 @@ std::vector<ObliqueFace> split_oblique_faces(mesh::SurfaceMesh& labels, const Ob
   s.region.assign(nf0, -1);
 
   // Flat regions: triangles joined across edges that barely bend, near the first one's normal.
-  const Eigen::MatrixXi TT0 = segmentation::triangle_adjacency(labels.F);
+  const Eigen::MatrixXi TT0 = mesh::triangle_adjacency(labels.F);
   std::vector<std::vector<int>> regions;
   for (int f = 0; f < nf0; ++f) {
     if (s.region[f] >= 0) continue;

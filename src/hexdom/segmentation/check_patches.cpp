@@ -8,7 +8,7 @@
 
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/segmentation/patch_graph.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::segmentation {
 
@@ -97,7 +97,7 @@ PatchCheck check_patches(const mesh::SurfaceMesh& s, const CheckOptions& opt) {
   const Context cx{s, g};
   const auto& L = g.layout;
   const int np = g.num_patches(), nf = static_cast<int>(s.F.rows()), nv = static_cast<int>(s.V.rows());
-  const Eigen::MatrixXi TT = triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   PatchCheck out;
   out.corners = L.corners;
   out.curves = static_cast<int>(g.curves.size());

@@ -5,7 +5,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::segmentation {
 
@@ -58,7 +58,7 @@ Eigen::VectorXi components(const Eigen::MatrixXi& F, const Eigen::MatrixXi& TT, 
 
 Eigen::VectorXi number_patches(const mesh::SurfaceMesh& s) {
   require_shape(s);
-  Eigen::VectorXi comp = components(s.F, triangle_adjacency(s.F), s.patch, {});
+  Eigen::VectorXi comp = components(s.F, mesh::triangle_adjacency(s.F), s.patch, {});
   return comp.array() + 1;
 }
 
@@ -80,7 +80,7 @@ Eigen::VectorXi merge_patches(const mesh::SurfaceMesh& s, int a, int b) {
   if (a == b) throw InputError("cannot merge patch " + std::to_string(a) + " with itself");
   require_id(s.patch, a);
   require_id(s.patch, b);
-  const Eigen::MatrixXi TT = triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   bool touch = false;
   for (int f = 0; f < s.F.rows() && !touch; ++f)
     if (s.patch(f) == a)
@@ -104,7 +104,7 @@ Eigen::VectorXi split_patch(const mesh::SurfaceMesh& s, int id, const std::vecto
     if (v < 0 || v >= nv)
       throw InputError("vertex " + std::to_string(v) + " (0-based) does not exist: the surface has " +
                        std::to_string(nv) + " vertices");
-  const Eigen::MatrixXi TT = triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   // The patch's interior edges (both triangles in the patch) as a graph; vertices on the patch.
   std::vector<std::vector<std::pair<int, double>>> adj(nv);
   std::vector<char> on_patch(nv, 0);

@@ -7,7 +7,7 @@
 
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/segmentation/cube_frame.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::segmentation {
 
@@ -56,7 +56,7 @@ Segmentation segment_cvt(const mesh::SurfaceMesh& s, const CvtOptions& opt) {
   if (!(opt.edge_weight >= 0)) throw GeometryError("segmentation: lambda must be >= 0");
   const int nf = static_cast<int>(s.F.rows());
   const TriangleGeometry geo = triangle_geometry(s);
-  const Eigen::MatrixXi TT = triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   auto log = [&](int level, const std::string& m) { if (opt.log) opt.log(level, m); };
 
   Segmentation out;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "hexdom/segmentation/axis_labels.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::segmentation {
 
@@ -15,7 +15,7 @@ SegmentationStats segmentation_stats(const mesh::SurfaceMesh& s, const Eigen::Ve
   SegmentationStats st;
   st.max_angle = max_angle;
   const TriangleGeometry geo = triangle_geometry(s);
-  const Eigen::MatrixXi TT = triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   const double cos_max = std::cos(max_angle * M_PI / 180.0);
   std::array<double, 6> within{};
   double total = 0, total_within = 0;

@@ -5,7 +5,7 @@
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/segmentation/segmentation_stats.h"
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 #include "seg_test_util.h"
 
 using namespace hexdom;

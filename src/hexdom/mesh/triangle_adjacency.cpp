@@ -1,9 +1,9 @@
-#include "hexdom/segmentation/triangle_adjacency.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 #include <algorithm>
 #include <unordered_map>
 
-namespace hexdom::segmentation {
+namespace hexdom::mesh {
 
 Eigen::MatrixXi triangle_adjacency(const Eigen::MatrixXi& F) {
   const int nf = static_cast<int>(F.rows());
@@ -26,4 +26,4 @@ Eigen::MatrixXi triangle_adjacency(const Eigen::MatrixXi& F) {
   return TT;
 }
 
-}  // namespace hexdom::segmentation
+}  // namespace hexdom::mesh
