@@ -3,9 +3,9 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <set>
 
+#include "hexdom/optimize/compass_search.h"
 #include "hexdom/quality/metrics.h"
 
 namespace hexdom::autopolycube {
@@ -95,69 +95,18 @@ GridStructure grid_structure(const PolycubeGrid& grid, const std::map<std::array
   out.structure = builder.finish(X);
   mesh::Mesh& T = out.structure;
 
-  // Untangling: move interior vertices of poor blocks to raise the worst scaled Jacobian around them.
-  std::vector<std::vector<int>> blocks_of(n);
-  for (int b = 0; b < T.num_cells(); ++b)
-    for (int i = 0; i < 8; ++i) blocks_of[T.cells(b, i)].push_back(b);
-  Eigen::VectorXd q(T.num_cells());
-  for (int b = 0; b < T.num_cells(); ++b) q(b) = block_quality(T, b);
-  out.min_quality_harmonic = T.num_cells() ? q.minCoeff() : 1.0;
-  // The scaled Jacobian does not see an edge shrink (a block flattened to a slab keeps its corner
-  // angles), so raising the worst block around a vertex could push it onto its neighbour (rockerarm:
-  // two vertices of the arm 0.050 apart harmonically, 4.3e-5 after untangling, edge ratio 2061 in the
-  // mesh). A move may not make an edge of the vertex shorter than a share of the vertex's mean edge
-  // length in the harmonic placement (nor shorten one that is already shorter).
-  std::vector<double> shortest_allowed(n, 0.0);
-  for (int v = 0; v < n; ++v) {
-    if (fixed[v] || nbr[v].empty()) continue;
-    double len = 0;
-    for (int u : nbr[v]) len += (T.V.row(u) - T.V.row(v)).norm();
-    shortest_allowed[v] = opt.min_edge_share * len / static_cast<double>(nbr[v].size());
-  }
-  auto shortest_edge = [&](int v) {
-    double e = std::numeric_limits<double>::infinity();
-    for (int u : nbr[v]) e = std::min(e, (T.V.row(u) - T.V.row(v)).norm());
-    return e;
-  };
-  for (int round = 0; round < opt.untangle_rounds; ++round) {
-    int moved = 0;
-    for (int v = 0; v < n; ++v) {
-      if (fixed[v]) continue;
-      double worst = 1e300;
-      for (int b : blocks_of[v]) worst = std::min(worst, q(b));
-      if (worst >= opt.target_quality) continue;
-      double len = 0;
-      for (int u : nbr[v]) len += (T.V.row(u) - T.V.row(v)).norm();
-      len /= std::max<size_t>(nbr[v].size(), 1);
-      const Eigen::RowVector3d start = T.V.row(v);
-      for (double step = 0.25 * len; step > 1e-3 * len; step *= 0.5) {
-        bool improved = true;
-        while (improved) {
-          improved = false;
-          for (int dir = 0; dir < 6; ++dir) {
-            const Eigen::RowVector3d keep = T.V.row(v);
-            const double shortest_before = shortest_edge(v);
-            T.V(v, dir / 2) += dir % 2 ? -step : step;
-            const double shortest_after = shortest_edge(v);
-            double w = 1e300;
-            for (int b : blocks_of[v]) w = std::min(w, block_quality(T, b));
-            if (w > worst + 1e-9 &&
-                (shortest_after >= shortest_allowed[v] || shortest_after >= shortest_before)) {
-              worst = w;
-              improved = true;
-            } else {
-              T.V.row(v) = keep;
-            }
-          }
-        }
-      }
-      if ((T.V.row(v) - start).norm() > 0) {
-        ++moved;
-        for (int b : blocks_of[v]) q(b) = block_quality(T, b);
-      }
-    }
-    if (moved == 0) break;
-  }
+  // Untangling: interior vertices of poor blocks move to raise the worst block around them, with a
+  // floor on their edge lengths (the scaled Jacobian does not see a block flatten to a slab).
+  Eigen::VectorXd q0(T.num_cells());
+  for (int b = 0; b < T.num_cells(); ++b) q0(b) = block_quality(T, b);
+  out.min_quality_harmonic = T.num_cells() ? q0.minCoeff() : 1.0;
+  optimize::CompassOptions co;
+  co.rounds = opt.untangle_rounds;
+  co.target = opt.target_quality;
+  co.min_edge_share = opt.min_edge_share;
+  std::vector<std::vector<int>> neighbours(n);
+  for (int v = 0; v < n; ++v) neighbours[v].assign(nbr[v].begin(), nbr[v].end());
+  const Eigen::VectorXd q = optimize::compass_untangle(T, fixed, neighbours, co);
   out.min_quality = T.num_cells() ? q.minCoeff() : 1.0;
   for (int b = 0; b < T.num_cells(); ++b) out.inverted += q(b) <= 0;
   if (opt.log)
