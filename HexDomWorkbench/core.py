@@ -331,8 +331,9 @@ class AutoPolycube:
     boundary block face: give both to generate), ``labels`` (the repaired labelling on the surface the
     map used), ``polycube`` (that surface at its polycube positions) and ``info`` (cell, charts,
     relabelled, chords, planes, pushed, squares, blocks, boundary_vertices, interior_vertices,
-    min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks, apexes,
-    apexes_collapsed, widened)."""
+    slivers, prism_blocks, tet_blocks, oblique_faces, apexes, apexes_collapsed, widened,
+    min_block_quality, inverted_blocks: the core's AutoPolycube figures, as its for_each_figure
+    names them)."""
 
     structure: Mesh
     patches: Surface

@@ -22,24 +22,7 @@ py::dict polycube_dict(const autopolycube::AutoPolycube& r) {
   d["patches"] = surface_tuple(r.patches);
   d["labels"] = surface_tuple(r.labels);
   d["polycube"] = surface_tuple(r.polycube);
-  d["cell"] = r.cell;
-  d["charts"] = r.charts;
-  d["relabelled"] = r.relabelled;
-  d["chords"] = r.chords;
-  d["planes"] = r.planes;
-  d["pushed"] = r.pushed;
-  d["squares"] = r.squares;
-  d["blocks"] = r.blocks;
-  d["boundary_vertices"] = r.boundary_vertices;
-  d["interior_vertices"] = r.interior_vertices;
-  d["min_block_quality"] = r.min_block_quality;
-  d["inverted_blocks"] = r.inverted_blocks;
-  d["slivers"] = r.slivers;
-  d["prism_blocks"] = r.prism_blocks;
-  d["tet_blocks"] = r.tet_blocks;
-  d["apexes"] = r.apexes;
-  d["apexes_collapsed"] = r.apexes_collapsed;
-  d["widened"] = r.widened;
+  r.for_each_figure([&](const char* name, auto value) { d[name] = value; });
   return d;
 }
 
@@ -54,8 +37,8 @@ const char* kAutopolycubeDoc =
     "surface). Returns a dict: structure (V, cells, types, region), patches (V, F, patch), labels (the\n"
     "repaired labelling on the surface the map used), polycube (V, F, label at polycube positions), and the\n"
     "figures cell, charts, relabelled, chords, planes, pushed, squares, blocks, boundary_vertices,\n"
-    "interior_vertices, min_block_quality, inverted_blocks, slivers, prism_blocks, tet_blocks, apexes (apex caps\n"
-    "added), apexes_collapsed (of them, under tet and prism blocks), widened (walls keep_widths moved). keep_widths:\n"
+    "interior_vertices, slivers, prism_blocks, tet_blocks, oblique_faces, apexes (apex caps added), apexes_collapsed\n"
+    "(of them, under tet and prism blocks), widened (walls keep_widths moved), min_block_quality, inverted_blocks. keep_widths:\n"
     "walls of a hole facing each other across the void keep their distance in cells (False: least-squares plane\n"
     "offsets); collapse_apexes: the blocks under an apex cap collapse to tets and prisms (False: they stay hexes).\n"
     "frame: a 3 x 3 rotation (cube_frame's): the labels refer to its axes, x_frame = frame @ x; every result\n"

@@ -130,3 +130,18 @@ def test_triangular_part_worst_hex_sj_at_least_0_3(name, meshed):
     if hexes.size:
         print(f"{name}: {hexes.size} hexes, worst SJ {hexes.min():.3f}")
         assert hexes.min() >= 0.3
+
+
+def test_the_polycube_reports_every_figure_of_the_core(freecad, tmp_path, core):
+    # The figures come from AutoPolycube::for_each_figure, the one list; the tetrahedron's slanted
+    # face is split from its corners, so oblique_faces counts it.
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    FreeCAD, Part = freecad
+    _shapes(FreeCAD, Part)["tetrahedron"].exportStep(str(tmp_path / "tetrahedron.step"))
+    info = core.mesh_part(str(tmp_path / "tetrahedron.step")).polycube.info
+    assert set(info) == {"cell", "charts", "relabelled", "chords", "planes", "pushed", "squares", "blocks",
+                         "boundary_vertices", "interior_vertices", "slivers", "prism_blocks", "tet_blocks",
+                         "oblique_faces", "apexes", "apexes_collapsed", "widened", "min_block_quality",
+                         "inverted_blocks"}
+    assert info["oblique_faces"] >= 1 and info["blocks"] > 0 and info["cell"] > 0

@@ -101,6 +101,19 @@ struct AutoPolycube {
   int widened = 0;
   double min_block_quality = 0;  ///< worst block scaled Jacobian after untangling
   int inverted_blocks = 0;
+
+  /// Calls f(name, value) for each figure above (cell to inverted_blocks), names as the fields':
+  /// the one list the bindings and reports read, so that a new figure is added here only.
+  template <class F>
+  void for_each_figure(F&& f) const {
+    f("cell", cell);
+    f("charts", charts), f("relabelled", relabelled), f("chords", chords), f("planes", planes), f("pushed", pushed);
+    f("squares", squares), f("blocks", blocks), f("boundary_vertices", boundary_vertices);
+    f("interior_vertices", interior_vertices);
+    f("slivers", slivers), f("prism_blocks", prism_blocks), f("tet_blocks", tet_blocks);
+    f("oblique_faces", oblique_faces), f("apexes", apexes), f("apexes_collapsed", apexes_collapsed);
+    f("widened", widened), f("min_block_quality", min_block_quality), f("inverted_blocks", inverted_blocks);
+  }
 };
 
 /// Builds the structure and the patch surface from `labels` (closed surface, label 1..6 per
