@@ -21,7 +21,7 @@ from .. import core
 from .labels import (LABEL_NAMES, apply_label_edits, label_number,  # noqa: F401
                      labels_from_normals, nearest_label)
 from .triangles import triangle_normals
-from .undo_stack import UndoStack
+from .undo_stack import UndoableEditor, UndoStack
 
 SELECT_MODES = ("replace", "add", "remove", "toggle")
 
@@ -45,7 +45,7 @@ def points_in_polygon(points, polygon):
 
 
 
-class PatchEditor:
+class PatchEditor(UndoableEditor):
     """Patch map of a surface under edit.
 
     V (#V x 3), F (#F x 3): the triangles; patches (#F): patch id per triangle (positive);
@@ -350,19 +350,8 @@ class PatchEditor:
         """Back to the patch map the editor started with (undoable)."""
         self._changed(self.original_patches, self.original_labels)
 
-    @property
-    def can_undo(self):
-        return self._history.can_undo
-
-    @property
-    def can_redo(self):
-        return self._history.can_redo
-
-    def undo(self):
-        return self._restore(self._history.undo((self.patches, self.labels)))
-
-    def redo(self):
-        return self._restore(self._history.redo((self.patches, self.labels)))
+    def _state(self):
+        return (self.patches, self.labels)
 
     def _restore(self, state):
         if state is None:

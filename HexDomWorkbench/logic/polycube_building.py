@@ -23,7 +23,7 @@ import numpy as np
 from .. import core
 from .cells import BLOCK_FACES, HEX, NODE_COUNT, TET, WEDGE, block_faces, face_key  # noqa: F401
 from .stages import read_structure
-from .undo_stack import UndoStack
+from .undo_stack import UndoableEditor, UndoStack
 
 TYPE_OF_COUNT = {8: HEX, 6: WEDGE, 4: TET}
 TYPE_NAMES = {HEX: "hex", WEDGE: "prism", TET: "tet"}
@@ -222,7 +222,7 @@ def inside_block(block_type, corners, points, margin=1e-3, iterations=25):
     return inside & converged
 
 
-class PolycubeBuilder:
+class PolycubeBuilder(UndoableEditor):
     """Polycube structure under construction.
 
     surface: core.Surface with patch ids (the segmentation), or None to edit blocks without a
@@ -496,19 +496,8 @@ class PolycubeBuilder:
         """Writes the blocks as a structure file (.k, .vtk, .vtu; chosen by extension)."""
         core.write_mesh(path, self.structure())
 
-    @property
-    def can_undo(self):
-        return self._history.can_undo
-
-    @property
-    def can_redo(self):
-        return self._history.can_redo
-
-    def undo(self):
-        return self._restore(self._history.undo((self.points, self.blocks)))
-
-    def redo(self):
-        return self._restore(self._history.redo((self.points, self.blocks)))
+    def _state(self):
+        return (self.points, self.blocks)
 
     def _restore(self, state):
         if state is None:

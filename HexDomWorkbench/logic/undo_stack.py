@@ -38,3 +38,23 @@ class UndoStack:
             return None
         self._undo.append(current)
         return self._redo.pop()
+
+
+class UndoableEditor:
+    """Undo and redo for an editor whose state is a tuple of values: the editor keeps an UndoStack
+    in ``self._history``, pushes ``self._state()`` before each edit, and restores a state with
+    ``self._restore(state)`` (which returns False for None)."""
+
+    @property
+    def can_undo(self):
+        return self._history.can_undo
+
+    @property
+    def can_redo(self):
+        return self._history.can_redo
+
+    def undo(self):
+        return self._restore(self._history.undo(self._state()))
+
+    def redo(self):
+        return self._restore(self._history.redo(self._state()))

@@ -31,7 +31,7 @@ from ..logic.labels import labels_from_normals
 from ..logic.polycube_building import TYPE_NAMES, PolycubeBuilder
 from ..objects import polycube, segmentation
 from ..viewproviders import coin_mesh
-from . import panel_undo, view_overlay
+from . import panel_close, panel_undo, view_overlay
 
 USER_ERRORS = (core.Error, ValueError, OSError)
 PICK_MODES = ("vertex", "point")
@@ -701,23 +701,4 @@ class _TaskPanel:
                                 b.points[vertices] if vertices else np.zeros((0, 3)))
 
     def _close(self):
-        if self._closed:
-            return
-        self._closed = True
-        if self in _active:
-            _active.remove(self)
-        self.undo_redirect.remove()
-        if self.overlay is not None:
-            self.overlay.remove()
-            self.overlay = None
-        for vobj in self._hidden:
-            try:
-                vobj.Visibility = True
-            except (RuntimeError, ReferenceError):
-                pass
-        self._hidden = []
-        gui_doc = FreeCADGui.getDocument(self.doc.Name)
-        if gui_doc is not None and gui_doc.getInEdit() is not None:
-            gui_doc.resetEdit()
-        else:
-            FreeCADGui.Control.closeDialog()
+        panel_close.close_panel(self, _active, self.doc.Name)

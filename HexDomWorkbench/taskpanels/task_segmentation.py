@@ -29,7 +29,7 @@ from ..logic.patch_editing import LABEL_NAMES, PatchEditor, points_in_polygon
 from ..logic.triangles import boundary_edges
 from ..objects import segmentation
 from ..viewproviders import coin_mesh
-from . import panel_undo, view_overlay
+from . import panel_close, panel_undo, view_overlay
 
 USER_ERRORS = (core.Error, ValueError)
 PICK_MODES = ("facet", "patch", "face", "path")
@@ -555,23 +555,4 @@ class _TaskPanel:
         self.overlay.zoom_to(lo, hi)
 
     def _close(self):
-        if self._closed:
-            return
-        self._closed = True
-        if self in _active:
-            _active.remove(self)
-        self.undo_redirect.remove()
-        if self.overlay is not None:
-            self.overlay.remove()
-            self.overlay = None
-        for vobj in self._hidden:
-            try:
-                vobj.Visibility = True
-            except (RuntimeError, ReferenceError):
-                pass
-        self._hidden = []
-        gui_doc = FreeCADGui.getDocument(self.obj.Document.Name)
-        if gui_doc is not None and gui_doc.getInEdit() is not None:
-            gui_doc.resetEdit()
-        else:
-            FreeCADGui.Control.closeDialog()
+        panel_close.close_panel(self, _active, self.obj.Document.Name)
