@@ -1,5 +1,6 @@
 #include "hexdom/io/surface_formats.h"
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -13,6 +14,21 @@ namespace hexdom::io {
 
 namespace {
 
+// The surface of vertices V, triangles F and a patch id per triangle.
+mesh::SurfaceMesh to_surface(const std::vector<std::array<double, 3>>& V, const std::vector<std::array<int, 3>>& F,
+                             const std::vector<int>& patch) {
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) << V[i][0], V[i][1], V[i][2];
+  s.F.resize(static_cast<int>(F.size()), 3);
+  s.patch.resize(static_cast<int>(F.size()));
+  for (size_t i = 0; i < F.size(); ++i) {
+    s.F.row(i) << F[i][0], F[i][1], F[i][2];
+    s.patch(i) = patch[i];
+  }
+  return s;
+}
+
 // Collects triangles with merged vertices.
 struct SurfaceBuilder {
   std::map<std::array<double, 3>, int> index;
@@ -25,18 +41,7 @@ struct SurfaceBuilder {
     if (inserted) V.push_back(p);
     return it->second;
   }
-  mesh::SurfaceMesh finish() const {
-    mesh::SurfaceMesh s;
-    s.V.resize(static_cast<int>(V.size()), 3);
-    for (size_t i = 0; i < V.size(); ++i) s.V.row(i) << V[i][0], V[i][1], V[i][2];
-    s.F.resize(static_cast<int>(F.size()), 3);
-    s.patch.resize(static_cast<int>(F.size()));
-    for (size_t i = 0; i < F.size(); ++i) {
-      s.F.row(i) << F[i][0], F[i][1], F[i][2];
-      s.patch(i) = patch[i];
-    }
-    return s;
-  }
+  mesh::SurfaceMesh finish() const { return to_surface(V, F, patch); }
 };
 
 }  // namespace
@@ -172,16 +177,7 @@ mesh::SurfaceMesh read_obj(const std::string& path) {
     }
   }
   if (F.empty()) throw InputError(path, 0, "no faces");
-  mesh::SurfaceMesh s;
-  s.V.resize(static_cast<int>(V.size()), 3);
-  for (size_t i = 0; i < V.size(); ++i) s.V.row(i) << V[i][0], V[i][1], V[i][2];
-  s.F.resize(static_cast<int>(F.size()), 3);
-  s.patch.resize(static_cast<int>(F.size()));
-  for (size_t i = 0; i < F.size(); ++i) {
-    s.F.row(i) << F[i][0], F[i][1], F[i][2];
-    s.patch(i) = patch[i];
-  }
-  return s;
+  return to_surface(V, F, patch);
 }
 
 void write_obj(const std::string& path, const mesh::SurfaceMesh& s) {
