@@ -180,6 +180,28 @@ def cube_frame(surface, min_gain=0.02):
     return _hexdom.cube_frame(surface.V, surface.F, float(min_gain))
 
 
+def nearest_label(normals):
+    """Label 1..6 of the axis nearest each row of ``normals`` (#N x 3, or one vector: an array of
+    one label); ties and zero rows go to the lower label."""
+    return _hexdom.nearest_label(np.asarray(normals, np.float64).reshape(-1, 3)).astype(np.int32)
+
+
+def labels_from_normals(V, F, patch=None, frame=None):
+    """Label 1..6 per triangle: the axis nearest its normal, or with ``patch`` the axis nearest the
+    area-weighted normal of the triangle's patch (one label per patch). frame: a 3 x 3 rotation whose
+    axes the labels name (x_frame = frame @ x); None: the model's."""
+    return _hexdom.labels_from_normals(
+        np.asarray(V, np.float64), np.asarray(F, np.int32).reshape(-1, 3),
+        None if patch is None else np.asarray(patch, np.int32),
+        None if frame is None else np.asarray(frame, np.float64).reshape(3, 3)).astype(np.int32)
+
+
+def frame_diagonal(surface, rotation):
+    """Diagonal of the bounding box of a Surface turned into a frame (x_frame = rotation @ x): the
+    default element size is this / 30."""
+    return float(_hexdom.frame_diagonal(surface.V, surface.F, np.asarray(rotation, np.float64).reshape(3, 3)))
+
+
 def read_manual_labels(path):
     """The original's manual override file as (triangle 0-based, label 1..6) rows."""
     return _hexdom.read_manual_labels(os.fspath(path))

@@ -5,8 +5,6 @@ objects (choose_mesh_part: one core call, in a worker thread under the GUI), rec
 the stage at fault (check_mesh_part). The meshing is the core's; FreeCAD is imported only inside
 the functions that need it."""
 
-import numpy as np
-
 from . import core, make
 from .document import RecomputeError
 from .logic.stages import core_has, has_cad
@@ -40,8 +38,7 @@ def part_size(shape):
             return size
         frame = core.cube_frame(core.Surface(V, F, face))
         if frame["turned"]:
-            W = np.asarray(V) @ np.asarray(frame["rotation"]).T
-            size = float(np.linalg.norm(W.max(axis=0) - W.min(axis=0))) / 30.0
+            size = core.frame_diagonal(core.Surface(V, F, face), frame["rotation"]) / 30.0
     return size
 
 

@@ -5,8 +5,9 @@ patch ids carried over from another triangulation."""
 
 import numpy as np
 
+from .. import core
 from ..core import LABEL_NAMES
-from .triangles import connected_regions, nearest_rows, triangle_adjacency, triangle_normals
+from .triangles import connected_regions, nearest_rows, triangle_adjacency
 
 # Direction of label l is AXES[l - 1].
 AXES = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
@@ -27,25 +28,16 @@ def label_number(label):
 
 def nearest_label(normals):
     """Label (1..6) of the axis nearest each row of ``normals`` (#N x 3, or one vector: an
-    array of one label)."""
-    return (np.argmax(np.asarray(normals, float).reshape(-1, 3) @ AXES.T, axis=1) + 1).astype(
-        np.int32)
+    array of one label): the core's segmentation::nearest_label."""
+    return core.nearest_label(normals)
 
 
 def labels_from_normals(V, F, patch=None, frame=None):
     """Polycube label per triangle: the axis nearest its normal, or with ``patch`` the axis
     nearest the area-weighted mean normal of the triangle's patch (one label per patch). frame:
-    a 3 x 3 rotation whose axes the labels name (None: the model's)."""
-    normals, areas = triangle_normals(V, F)
-    if frame is not None:
-        normals = normals @ np.asarray(frame, float).reshape(3, 3).T
-    if patch is None:
-        return nearest_label(normals)
-    patch = np.asarray(patch)
-    ids, inverse = np.unique(patch, return_inverse=True)
-    mean = np.zeros((len(ids), 3))
-    np.add.at(mean, inverse, normals * areas[:, None])
-    return nearest_label(mean)[inverse]
+    a 3 x 3 rotation whose axes the labels name (None: the model's). The core's
+    segmentation::labels_from_normals."""
+    return core.labels_from_normals(V, F, patch, frame)
 
 
 def patches_from_labels(F, labels):

@@ -18,4 +18,5 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
 void bind_segmentation(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);
 void bind_auto(pybind11::module_& m);
+void bind_labels(pybind11::module_& m);
 }  // namespace hexdom::python

@@ -165,4 +165,5 @@ PYBIND11_MODULE(_hexdom, m) {
   python::bind_segmentation(m);
   python::bind_cad(m);
   python::bind_auto(m);
+  python::bind_labels(m);
 }

@@ -474,3 +474,28 @@ def test_the_block_face_table_is_the_cores_cell_types_and_closes_each_block():
     V, hexa = unit_cube()
     faces, types, edges = cells.structure_boundary([hexa, [v + 4 for v in hexa]], [core.HEX] * 2)
     assert len(faces) == 10 and len(edges) == 20
+
+
+def test_labels_from_normals_is_the_cores_and_matches_the_axis_nearest_each_normal():
+    # One implementation (segmentation::labels_from_normals through _hexdom): checked here against
+    # numpy's argmax over the six axes, per triangle and per patch, in a turned frame too.
+    from HexDomWorkbench.logic import labels
+    rng = np.random.default_rng(7)
+    V = rng.normal(size=(60, 3))
+    F = rng.integers(0, 60, size=(80, 3))
+    F = F[(F[:, 0] != F[:, 1]) & (F[:, 1] != F[:, 2]) & (F[:, 0] != F[:, 2])]
+    patch = rng.integers(1, 5, size=len(F)).astype(np.int32)
+    axes = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+    c = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    angle = 0.4
+    R = np.array([[np.cos(angle), -np.sin(angle), 0], [np.sin(angle), np.cos(angle), 0], [0, 0, 1]])
+    for frame in (None, R):
+        n = c if frame is None else c @ R.T
+        expected = np.argmax(n @ axes.T, axis=1) + 1
+        assert np.array_equal(labels.labels_from_normals(V, F, frame=frame), expected)
+        mean = np.array([n[patch == p].sum(axis=0) for p in range(1, 5)])
+        assert np.array_equal(labels.labels_from_normals(V, F, patch, frame=frame),
+                              (np.argmax(mean @ axes.T, axis=1) + 1)[patch - 1])
+    assert labels.nearest_label([[0, 0, -2], [0, 3, 0], [0, 0, 0]]).tolist() == [6, 3, 1]
+    with pytest.raises(Exception, match="rotation"):
+        labels.labels_from_normals(V, F, frame=np.eye(3) * 2)

@@ -45,4 +45,23 @@ Eigen::VectorXi labels_of_parts(const mesh::SurfaceMesh& s, bool* relabelled) {
   return out;
 }
 
+Eigen::VectorXi labels_from_normals(const mesh::SurfaceMesh& s, const Eigen::Matrix3d& frame, bool per_part) {
+  const TriangleGeometry g = triangle_geometry(s);
+  const int nf = static_cast<int>(s.F.rows());
+  Eigen::VectorXi out(nf);
+  if (!per_part) {
+    for (int t = 0; t < nf; ++t) out(t) = nearest_label(frame * g.normal.row(t).transpose());
+    return out;
+  }
+  std::map<int, Eigen::Vector3d> normal;  // part id -> area-weighted normal
+  for (int t = 0; t < nf; ++t) {
+    auto [it, fresh] = normal.emplace(s.patch(t), Eigen::Vector3d::Zero());
+    it->second += g.area(t) * g.normal.row(t).transpose();
+  }
+  std::map<int, int> label;
+  for (const auto& [id, n] : normal) label[id] = nearest_label(frame * n);
+  for (int t = 0; t < nf; ++t) out(t) = label[s.patch(t)];
+  return out;
+}
+
 }  // namespace hexdom::segmentation

@@ -1,6 +1,8 @@
 // Polycube labels from a segmented surface whose part ids may be labels or patch numbers.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::segmentation {
@@ -14,5 +16,11 @@ namespace hexdom::segmentation {
 /// area-weighted normal shorter than half its area, e.g. a whole closed surface as one part): the
 /// surface is then neither labelled nor segmented.
 Eigen::VectorXi labels_of_parts(const mesh::SurfaceMesh& surface, bool* relabelled = nullptr);
+
+/// Label 1..6 per triangle of `surface` from its normals turned into `frame` (x_frame = frame * x):
+/// the axis nearest each triangle's normal, or, with `per_part`, the axis nearest the area-weighted
+/// normal of the triangle's part (the triangles of its patch id), one label per part. Ties and zero
+/// normals go to the lower label (nearest_label).
+Eigen::VectorXi labels_from_normals(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& frame, bool per_part);
 
 }  // namespace hexdom::segmentation
