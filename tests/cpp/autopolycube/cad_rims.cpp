@@ -1,7 +1,8 @@
 // The polycube map of a round plate with a bolt hole close to its rim (the HexMe part i01o_m1, issue 9):
-// the plate is tessellated with OCCT, hence in the CAD tests.
+// the plate is tessellated by the CAD stage (test_autopolycube links it, and OpenCASCADE when the
+// build has it).
 #ifdef HEXDOM_WITH_CAD
-#include "cad_test_util.h"
+#include "cad/cad_test_util.h"
 #include "hexdom/autopolycube/chart_graph.h"
 #include "hexdom/autopolycube/plane_groups.h"
 #include "hexdom/autopolycube/polycube_map.h"
