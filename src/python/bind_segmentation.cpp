@@ -54,9 +54,8 @@ const char* kSegmentDoc =
     "uniform_faces. frame: a 3 x 3 rotation (cube_frame's): the labels name its axes (x_frame = frame @ x).\n"
     "Raises GeometryError for an open, non-manifold or degenerate surface.";
 
-}  // namespace
-
-void bind_segmentation(py::module_& m) {
+// segment, cube_frame, read_manual_labels, segmentation_stats: labelling a surface and its figures.
+void bind_labelling(py::module_& m) {
   m.def("segment",
         [](const RefV& V, const RefF& F, const RefI& patch, double edge_weight, int classical_sweeps, int edge_sweeps,
            int min_moves, double max_drift, int ring, std::optional<bool> respect_faces, double planar_angle,
@@ -142,7 +141,10 @@ void bind_segmentation(py::module_& m) {
         "Figures of a labelling (1..6 per triangle): patches, small_patches (< 10 triangles), boundary_length,\n"
         "teeth (triangles with 2 or 3 neighbours of one other label: zig-zags), axis_fraction (area share within\n"
         "max_angle degrees of the label's axis), label_axis_fraction and label_area per label 1..6.");
+}
 
+// check_patches: the polycube conditions of a segmented surface.
+void bind_check(py::module_& m) {
   m.def("check_patches",
         [](const RefV& V, const RefF& F, const RefI& patch, double opposite_angle, double corner_defect,
            double corner_angle, double turn_window, const std::vector<int>& triangular_ids) {
@@ -202,7 +204,10 @@ void bind_segmentation(py::module_& m) {
         "not disks. Returns a dict: valid, patches (dicts: patch, id, orientation 1..6, orientation_name, normal,\n"
         "area, triangles, type, curves, loops, euler, corners, neighbours), corners, curves, violations (dicts:\n"
         "kind, patches, vertex, location, message). Raises GeometryError for an unfit surface.");
+}
 
+// polycube_boundary: corners, edges and faces of a segmented surface, with one shell per patch.
+void bind_boundary(py::module_& m) {
   m.def("polycube_boundary",
         [](const RefV& V, const RefF& F, const RefI& patch) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
@@ -242,7 +247,11 @@ void bind_segmentation(py::module_& m) {
         "vertices), faces (dicts: patch, id, corners counter-clockwise), shells (V, cells, types, region: one\n"
         "quad or triangle per patch over the corners). Raises GeometryError when a patch is not a disk with\n"
         "3 or 4 corners.");
+}
 
+// number_patches, reassign_triangles, merge_patches, split_patch: patch editing, each giving a new
+// patch map.
+void bind_patch_editing(py::module_& m) {
   m.def("number_patches",
         [](const RefV& V, const RefF& F, const RefI& patch) { return segmentation::number_patches(surface_of(V, F, patch)); },
         py::arg("V"), py::arg("F"), py::arg("patch"),
@@ -267,6 +276,15 @@ void bind_segmentation(py::module_& m) {
         "New patch map: patch id `id` cut along a path of vertices (0-based; consecutive ones joined by the\n"
         "shortest chain of the patch's interior edges); the part without the patch's first triangle gets a new\n"
         "id. Raises GeometryError when the path separates nothing.");
+}
+
+}  // namespace
+
+void bind_segmentation(py::module_& m) {
+  bind_labelling(m);
+  bind_check(m);
+  bind_boundary(m);
+  bind_patch_editing(m);
 }
 
 }  // namespace hexdom::python

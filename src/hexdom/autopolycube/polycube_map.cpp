@@ -216,21 +216,21 @@ void quantize_axis(int a, const std::vector<Order>& ord, const PlaneGroups& pg, 
     }
 }
 
-}  // namespace
+// The inputs every step of polycube_map reads: the surface, its charts, their plane groups and the
+// options.
+struct MapInputs {
+  const mesh::SurfaceMesh& s;
+  const ChartGraph& g;
+  const PlaneGroups& pg;
+  const PolycubeMapOptions& opt;
+};
 
-PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const PlaneGroups& pg,
-                         const PolycubeMapOptions& opt) {
-  if (!(opt.cell > 0)) throw GeometryError("the grid spacing must be positive");
-  const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows()), ng = pg.num_groups();
-  const double h = opt.cell;
-  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
-  PolycubeMap m;
-  m.cell = h;
-  m.continuous = s.V;
-  m.offset = Eigen::VectorXd::Zero(ng);
-
-  // ---- 1. continuous deformation, one axis at a time
-  const std::vector<Edge> edges = weighted_edges(s);
+// Step 1, the continuous deformation: along each axis, the coordinates that keep the edges' input
+// differences best (weighted least squares, a small pull toward the input) with one unknown per
+// plane group for the vertices on its charts; sets m.continuous and the groups' m.offset.
+void deform_continuously(const MapInputs& in, const std::vector<Edge>& edges, PolycubeMap& m) {
+  const auto& [s, g, pg, opt] = in;
+  const int nv = static_cast<int>(s.V.rows()), ng = pg.num_groups();
   double wmean = 0;
   for (const auto& e : edges) wmean += e.w;
   wmean /= std::max<size_t>(edges.size(), 1);
@@ -274,9 +274,14 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
     for (int gi = 0; gi < ng; ++gi)
       if (pg.axis[gi] == a) m.offset(gi) = z(nfree + local[gi]);
   }
-  m.origin = m.continuous.colwise().minCoeff().transpose();
+}
 
-  // ---- 2. planes on the grid: every curve keeps its direction and a length of at least one cell
+// Step 2's first orders, per axis: every curve keeps its direction along its axis and a length of
+// at least one cell (more for a curve the offsets shrank, see keep_lengths). Throws GeometryError
+// for a closed curve, a curve between opposite labels and a curve without length along its axis.
+std::vector<std::vector<Order>> curve_orders(const MapInputs& in, PolycubeMap& m) {
+  const auto& [s, g, pg, opt] = in;
+  const double h = opt.cell;
   std::vector<std::vector<Order>> order(3);
   for (const auto& c : g.curves) {
     if (c.closed) throw GeometryError(chart_name(g, c.left) + " and " + chart_name(g, c.right) + " meet along a loop without corners");
@@ -316,24 +321,28 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
     }
     order[ax].push_back(d >= 0 ? Order{gp, gq, gap} : Order{gq, gp, gap});
   }
-  if (m.lengthened > 0) log("polycube map: " + std::to_string(m.lengthened) + " curves shrunk by the least-squares offsets keep the cells of their input length");
-  for (const auto& sep : opt.separate) {
-    if (sep.first < 0 || sep.second < 0 || sep.first >= ng || sep.second >= ng || pg.axis[sep.first] != pg.axis[sep.second])
-      throw GeometryError("polycube map: plane groups " + std::to_string(sep.first) + " and " + std::to_string(sep.second) +
-                          " cannot be separated");
-    order[pg.axis[sep.first]].push_back({sep.first, sep.second});
-  }
-  std::vector<double> weight(ng, 0);
-  for (int c = 0; c < g.num_charts(); ++c) weight[pg.of_chart[c]] += g.area[c];
-  // The straight segment each curve becomes, seen from one of its charts: it lies at the plane of the
-  // other chart (`at`) and spans the planes of its end corners along its own axis.
-  struct Segment {
-    int chart, other;                // the chart it bounds and the chart on the other side of the curve
-    int at, axis, from, to;          // plane groups: `at` (position), `from` / `to` (ends along `axis`)
-    double mean;                     // mean input coordinate of the curve along at's axis
-    int curve;                       // index into g.curves
-  };
-  std::vector<Segment> segments;
+  return order;
+}
+
+// The straight segment each curve becomes, seen from one of its charts: it lies at the plane of the
+// other chart (`at`) and spans the planes of its end corners along its own axis.
+struct Segment {
+  int chart, other;                // the chart it bounds and the chart on the other side of the curve
+  int at, axis, from, to;          // plane groups: `at` (position), `from` / `to` (ends along `axis`)
+  double mean;                     // mean input coordinate of the curve along at's axis
+  int curve;                       // index into g.curves
+};
+
+// Every curve's two segments, and the segments of each chart (indices into `all`).
+struct Segments {
+  std::vector<Segment> all;
+  std::vector<std::vector<int>> of_chart;
+};
+
+Segments curve_segments(const MapInputs& in) {
+  const auto& [s, g, pg, opt] = in;
+  Segments out;
+  std::vector<Segment>& segments = out.all;
   for (const auto& c : g.curves) {
     const int al = (g.label[c.left] - 1) / 2, ar = (g.label[c.right] - 1) / 2, ax = 3 - al - ar;
     const int p = c.vertices.front(), q = c.vertices.back();
@@ -346,106 +355,109 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
                           static_cast<int>(&c - g.curves.data())});
     }
   }
-  // Input order of two parallel segments u, w (same axis): w's position minus u's (along their plane
-  // axis), averaged over the input range of `axis` that both curves span, where the polylines are
-  // interpolated; the difference of the whole curves' means when their ranges do not overlap. The
-  // means alone misorder a curved curve and a short one beside it: a round rim's quarter (mean x
-  // 0.90 R) and the outer wall of a bolt hole 5 from the rim on the quarter's middle (mean x 0.91 R).
-  auto input_order = [&](const Segment& u, const Segment& w) {
-    const auto& cu = g.curves[u.curve].vertices;
-    const auto& cw = g.curves[w.curve].vertices;
-    const int ax = u.axis, pa = pg.axis[u.at];
-    auto range = [&](const std::vector<int>& vs) {
-      double lo = 1e300, hi = -1e300;
-      for (int v : vs) { lo = std::min(lo, s.V(v, ax)); hi = std::max(hi, s.V(v, ax)); }
-      return std::make_pair(lo, hi);
-    };
-    const auto [ulo, uhi] = range(cu);
-    const auto [wlo, whi] = range(cw);
-    const double lo = std::max(ulo, wlo), hi = std::min(uhi, whi);
-    // Mean position of the polyline's crossings of the line at coordinate t along `ax` (NaN: none).
-    auto at = [&](const std::vector<int>& vs, double t) {
-      double sum = 0;
-      int n = 0;
-      for (size_t i = 0; i + 1 < vs.size(); ++i) {
-        const double a = s.V(vs[i], ax), b = s.V(vs[i + 1], ax);
-        if (std::min(a, b) > t || std::max(a, b) < t || a == b) continue;
-        const double f = (t - a) / (b - a);
-        sum += (1 - f) * s.V(vs[i], pa) + f * s.V(vs[i + 1], pa);
-        ++n;
-      }
-      return n ? sum / n : std::nan("");
-    };
-    double diff = 0;
+  out.of_chart.resize(g.num_charts());
+  for (size_t i = 0; i < segments.size(); ++i) out.of_chart[segments[i].chart].push_back(static_cast<int>(i));
+  return out;
+}
+
+// Input order of two parallel segments u, w (same axis): w's position minus u's (along their plane
+// axis), averaged over the input range of `axis` that both curves span, where the polylines are
+// interpolated; the difference of the whole curves' means when their ranges do not overlap. The
+// means alone misorder a curved curve and a short one beside it (a round rim's quarter and the
+// outer wall of a bolt hole near the quarter's middle).
+double input_order(const MapInputs& in, const Segment& u, const Segment& w) {
+  const mesh::SurfaceMesh& s = in.s;
+  const auto& cu = in.g.curves[u.curve].vertices;
+  const auto& cw = in.g.curves[w.curve].vertices;
+  const int ax = u.axis, pa = in.pg.axis[u.at];
+  auto range = [&](const std::vector<int>& vs) {
+    double lo = 1e300, hi = -1e300;
+    for (int v : vs) { lo = std::min(lo, s.V(v, ax)); hi = std::max(hi, s.V(v, ax)); }
+    return std::make_pair(lo, hi);
+  };
+  const auto [ulo, uhi] = range(cu);
+  const auto [wlo, whi] = range(cw);
+  const double lo = std::max(ulo, wlo), hi = std::min(uhi, whi);
+  // Mean position of the polyline's crossings of the line at coordinate t along `ax` (NaN: none).
+  auto at = [&](const std::vector<int>& vs, double t) {
+    double sum = 0;
     int n = 0;
-    if (hi > lo) {
-      constexpr int kSamples = 16;
-      for (int k = 0; k < kSamples; ++k) {
-        const double t = lo + (hi - lo) * (k + 0.5) / kSamples;
-        const double a = at(cu, t), b = at(cw, t);
-        if (std::isfinite(a) && std::isfinite(b)) { diff += b - a; ++n; }
-      }
+    for (size_t i = 0; i + 1 < vs.size(); ++i) {
+      const double a = s.V(vs[i], ax), b = s.V(vs[i + 1], ax);
+      if (std::min(a, b) > t || std::max(a, b) < t || a == b) continue;
+      const double f = (t - a) / (b - a);
+      sum += (1 - f) * s.V(vs[i], pa) + f * s.V(vs[i + 1], pa);
+      ++n;
     }
-    return n ? diff / n : w.mean - u.mean;
+    return n ? sum / n : std::nan("");
   };
-  std::vector<std::vector<int>> chart_segments(g.num_charts());
-  for (size_t i = 0; i < segments.size(); ++i) chart_segments[segments[i].chart].push_back(static_cast<int>(i));
-  // Per chart: area centroid and mean unit normal (input), for the widths of opposite charts below.
-  std::vector<Eigen::Vector3d> centroid(g.num_charts(), Eigen::Vector3d::Zero()), normal(g.num_charts(), Eigen::Vector3d::Zero());
-  for (int f = 0; f < nf; ++f) {
-    const Eigen::Vector3d p = s.V.row(s.F(f, 0)), q = s.V.row(s.F(f, 1)), r = s.V.row(s.F(f, 2));
-    const Eigen::Vector3d n = (q - p).cross(r - p);  // twice the area, outward
-    centroid[g.chart(f)] += 0.5 * n.norm() * (p + q + r) / 3.0;
-    normal[g.chart(f)] += 0.5 * n;
+  double diff = 0;
+  int n = 0;
+  if (hi > lo) {
+    constexpr int kSamples = 16;
+    for (int k = 0; k < kSamples; ++k) {
+      const double t = lo + (hi - lo) * (k + 0.5) / kSamples;
+      const double a = at(cu, t), b = at(cw, t);
+      if (std::isfinite(a) && std::isfinite(b)) { diff += b - a; ++n; }
+    }
   }
-  for (int c = 0; c < g.num_charts(); ++c) {
-    if (g.area[c] > 0) centroid[c] /= g.area[c];
-    if (normal[c].norm() > 0) normal[c].normalize();
-  }
-  // Cells between the planes of two charts of opposite labels that bound one chart from opposite
-  // sides and face each other across a void (a hole's two walls): their input distance along their
-  // common normal, centroid to centroid, in cells, at least 1. Along the normal and not along the axis,
-  // so that a tilted hole keeps its width (its walls' centroids are offset along its axis as well).
-  // A slab's faces (normals pointing away from each other) and a wedge's (normals not opposite)
-  // keep 1: their least-squares offsets stand.
-  auto width_gap = [&](int a, int b) {
-    if (!opt.keep_widths || g.label[a] == g.label[b] || normal[a].dot(normal[b]) > -kFacing) return 1;
-    if ((centroid[b] - centroid[a]).dot(normal[a]) <= 0 || (centroid[a] - centroid[b]).dot(normal[b]) <= 0) return 1;
-    const Eigen::Vector3d n = (normal[a] - normal[b]).normalized();
-    const double d = std::abs((centroid[b] - centroid[a]).dot(n));
-    return std::max(1, static_cast<int>(std::floor(d / h + 0.5)));
-  };
-  m.plane = Eigen::VectorXi::Zero(ng);
+  return n ? diff / n : w.mean - u.mean;
+}
+
+using Centroids = std::vector<Eigen::Vector3d>;  // per chart
+
+// Cells between the planes of two charts of opposite labels that bound one chart from opposite
+// sides and face each other across a void (a hole's two walls): their input distance along their
+// common normal, centroid to centroid, in cells, at least 1. Along the normal and not along the axis,
+// so that a tilted hole keeps its width (its walls' centroids are offset along its axis as well).
+// A slab's faces (normals pointing away from each other) and a wedge's (normals not opposite)
+// keep 1: their least-squares offsets stand.
+// `centroid` and `normal`: per chart, its area centroid and mean unit normal.
+int width_gap(const MapInputs& in, const Centroids& centroid, const Centroids& normal, int a, int b) {
+  const double h = in.opt.cell;
+  if (!in.opt.keep_widths || in.g.label[a] == in.g.label[b] || normal[a].dot(normal[b]) > -kFacing) return 1;
+  if ((centroid[b] - centroid[a]).dot(normal[a]) <= 0 || (centroid[a] - centroid[b]).dot(normal[b]) <= 0) return 1;
+  const Eigen::Vector3d n = (normal[a] - normal[b]).normalized();
+  const double d = std::abs((centroid[b] - centroid[a]).dot(n));
+  return std::max(1, static_cast<int>(std::floor(d / h + 0.5)));
+}
+
+// Step 2's integer planes: quantize every axis under the orders, then add orders where two chart
+// sides fall too close, and again until nothing is added. Two parallel segments of one chart whose
+// spans overlap or touch must keep their input order, at least one cell apart: otherwise the chart
+// pinches (a ring around a hole, a U-shaped face). When the spans overlap and the segments lie on
+// charts of opposite labels, as many cells apart as the input width between those charts
+// (width_gap): the least-squares offsets of curved charts (the quarters of a round hole) shrink a
+// hole or a slab to fewer cells than its width, and its boundary to too few nodes.
+void settle_planes(const MapInputs& in, const Segments& segs, const Centroids& centroid, const Centroids& normal,
+                   const std::vector<double>& weight, std::vector<std::vector<Order>>& order, PolycubeMap& m) {
+  const auto& [s, g, pg, opt] = in;
+  m.plane = Eigen::VectorXi::Zero(pg.num_groups());
   std::map<std::pair<int, int>, std::pair<int, size_t>> added;  // (lo, hi) -> (axis, index in order[axis])
   for (int round = 0;; ++round) {
     m.pushed = 0;
-    for (int a = 0; a < 3; ++a) quantize_axis(a, order[a], pg, m, weight, h, g);
-    // Two parallel segments of one chart whose spans overlap or touch must keep their input order, at least
-    // one cell apart: otherwise the chart pinches (a ring around a hole, a U-shaped face). When the spans
-    // overlap and the segments lie on charts of opposite labels, as many cells apart as the input width
-    // between those charts (width_gap): the least-squares offsets of curved charts (the quarters of a
-    // round hole) shrink a hole or a slab to fewer cells than its width, and its boundary to too few nodes.
+    for (int a = 0; a < 3; ++a) quantize_axis(a, order[a], pg, m, weight, opt.cell, g);
     int fresh = 0;
     for (int c = 0; c < g.num_charts(); ++c) {
-      const auto& cs = chart_segments[c];
+      const auto& cs = segs.of_chart[c];
       for (size_t i = 0; i < cs.size(); ++i)
         for (size_t j = i + 1; j < cs.size(); ++j) {
-          const Segment& u = segments[cs[i]];
-          const Segment& w = segments[cs[j]];
+          const Segment& u = segs.all[cs[i]];
+          const Segment& w = segs.all[cs[j]];
           if (u.axis != w.axis || u.at == w.at) continue;
           const int ulo = std::min(m.plane(u.from), m.plane(u.to)), uhi = std::max(m.plane(u.from), m.plane(u.to));
           const int wlo = std::min(m.plane(w.from), m.plane(w.to)), whi = std::max(m.plane(w.from), m.plane(w.to));
           // Spans that only touch count too: two holes' (or a hole's and the outer boundary's) sides
           // that end at one grid line must not fall on one plane, or the chart pinches between them.
           if (std::min(uhi, whi) < std::max(ulo, wlo) + (opt.separate_touching ? 0 : 1)) continue;  // spans apart
-          const double d = input_order(u, w);
+          const double d = input_order(in, u, w);
           if (d == 0) continue;
           const int lo = d > 0 ? u.at : w.at, hi = d > 0 ? w.at : u.at;
           // Across a void the wall below faces up (label +axis); otherwise the input order is not the
           // walls' and the width does not apply.
           const int clo = d > 0 ? u.other : w.other, chi = d > 0 ? w.other : u.other;
           const bool overlap = std::min(uhi, whi) > std::max(ulo, wlo);
-          const int gap = overlap && g.label[clo] % 2 == 1 ? width_gap(clo, chi) : 1;
+          const int gap = overlap && g.label[clo] % 2 == 1 ? width_gap(in, centroid, normal, clo, chi) : 1;
           m.widened += gap > 1;
           if (m.plane(hi) - m.plane(lo) >= gap) continue;
           const auto it = added.find({lo, hi});
@@ -463,8 +475,13 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
     if (fresh == 0) break;
     if (round >= 50) throw GeometryError("polycube map: the planes do not settle (separating the sides of pinched charts)");
   }
+}
 
-  // ---- 3. positions: planes, straight curves, harmonic chart interiors
+// Step 3's first positions: each vertex on a chart gets its plane's coordinate, and each curve's
+// inner vertices lie evenly (by input arc length) between its end corners along its axis.
+void place_on_planes(const MapInputs& in, PolycubeMap& m) {
+  const auto& [s, g, pg, opt] = in;
+  const int nv = static_cast<int>(s.V.rows());
   m.D = Eigen::MatrixXd::Constant(nv, 3, std::nan(""));
   for (int v = 0; v < nv; ++v)
     for (int a = 0; a < 3; ++a)
@@ -481,6 +498,175 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
       m.D(vs[i], ax) = u;
     }
   }
+}
+
+// One chart in its plane: its axis a, outward sign sg, in-plane axes, triangles, and the vertices
+// inside it (slot[v] is v's index in `inner` while the chart is mapped, -1 otherwise).
+struct ChartPlane {
+  int chart, a, sg;
+  int ax[2];
+  const std::vector<int>& tris;
+  std::vector<int> inner;
+  int flips(const Eigen::MatrixXd& D, const Eigen::MatrixXi& F) const {
+    int n = 0;
+    for (int f : tris) n += plane_area(D, F, f, a, sg) <= 0;
+    return n;
+  }
+};
+
+// The chart's inner vertices by a harmonic map with its boundary fixed: cotangent weights first, then
+// mean-value weights unless nothing folds; the solution with the fewest folded triangles goes into
+// `best`. Returns its folded triangles; MeshingError when both solves fail.
+int harmonic_interior(const MapInputs& in, const std::vector<Edge>& edges, const ChartPlane& cp, const std::vector<int>& slot,
+                      PolycubeMap& m, Eigen::MatrixXd& best) {
+  const int n = static_cast<int>(cp.inner.size());
+  int best_flips = -1;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<Edge> rows;
+    if (pass == 0) {
+      for (const auto& e : edges)
+        if ((slot[e.i] >= 0 || slot[e.j] >= 0)) { rows.push_back(e); rows.push_back({e.j, e.i, e.w}); }
+    } else {
+      mean_value_rows(in.s, cp.tris, rows);
+    }
+    Triplets t;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+    for (const auto& e : rows) {
+      const int i = slot[e.i];
+      if (i < 0) continue;
+      // Only edges inside this chart: both ends are vertices of its triangles.
+      t.emplace_back(i, i, e.w);
+      if (slot[e.j] >= 0) t.emplace_back(i, slot[e.j], -e.w);
+      else for (int q = 0; q < 2; ++q) rhs(i, q) += e.w * m.D(e.j, cp.ax[q]);
+    }
+    Sparse A(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    Eigen::MatrixXd x;
+    if (pass == 0) {
+      Eigen::SimplicialLDLT<Sparse> solver(A);
+      if (solver.info() != Eigen::Success) continue;
+      x = solver.solve(rhs);
+    } else {
+      Eigen::SparseLU<Sparse> solver;
+      solver.analyzePattern(A);
+      solver.factorize(A);
+      if (solver.info() != Eigen::Success) continue;
+      x = solver.solve(rhs);
+    }
+    if (!x.allFinite()) continue;
+    for (int i = 0; i < n; ++i)
+      for (int q = 0; q < 2; ++q) m.D(cp.inner[i], cp.ax[q]) = x(i, q);
+    const int flips = cp.flips(m.D, in.s.F);
+    if (best_flips < 0 || flips < best_flips) { best_flips = flips; best = x; }
+    if (flips == 0) break;
+  }
+  if (best_flips < 0) throw MeshingError("polycube map: the harmonic map of " + chart_name(in.g, cp.chart) + " failed");
+  return best_flips;
+}
+
+// Step 3 for chart c: its inner vertices (those on no chart boundary) mapped into its plane
+// (harmonic_interior, snapped onto grid lines they lie on; untangled where it folds); the
+// triangles left folded go into m.flipped[c].
+void map_chart(const MapInputs& in, const std::vector<Edge>& edges, const std::vector<int>& tris,
+               const std::vector<char>& on_boundary, int c, std::vector<int>& slot, PolycubeMap& m) {
+  const auto& [s, g, pg, opt] = in;
+  const int nv = static_cast<int>(s.V.rows());
+  const int a = (g.label[c] - 1) / 2, sg = g.label[c] % 2 == 1 ? 1 : -1;
+  ChartPlane cp{c, a, sg, {(a + 1) % 3, (a + 2) % 3}, tris, {}};
+  std::vector<int>& inner = cp.inner;
+  for (int f : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int v = s.F(f, k);
+      if (!on_boundary[v] && slot[v] < 0) { slot[v] = static_cast<int>(inner.size()); inner.push_back(v); }
+    }
+  if (!inner.empty()) {
+    const int n = static_cast<int>(inner.size());
+    Eigen::MatrixXd best;
+    const int best_flips = harmonic_interior(in, edges, cp, slot, m, best);
+    for (int i = 0; i < n; ++i)
+      for (int q = 0; q < 2; ++q) {
+        double u = best(i, q);
+        const double r = std::round(u);
+        if (std::abs(u - r) < kSnap) u = r;  // on a grid line, not a hair beside it
+        m.D(inner[i], cp.ax[q]) = u;
+      }
+    if (best_flips > 0) {  // the barrier untangling, then local moves as a last resort, kept only when they help
+      if (opt.untangle) {
+        std::vector<char> free_vertex(nv, 0);
+        for (int v : inner) free_vertex[v] = 1;
+        const UntangleResult u = untangle_plane_map(s.V, s.F, tris, free_vertex, a, sg, m.D);
+        if (opt.log)
+          opt.log(0, chart_name(g, c) + ": untangled " + std::to_string(u.folded_before) + " folded triangles to " +
+                         std::to_string(u.folded_after) + " (" + std::to_string(u.folded_fixed) + " with no free vertex) in " +
+                         std::to_string(u.rounds) + " rounds");
+      }
+      const int left = cp.flips(m.D, s.F);
+      if (left > 0) {
+        const Eigen::MatrixXd before = m.D;
+        untangle_chart(m.D, s.F, tris, slot, a, sg, 60);
+        if (cp.flips(m.D, s.F) >= left) m.D = before;
+      }
+      for (int v : inner)
+        for (int q = 0; q < 2; ++q) {
+          double& u = m.D(v, cp.ax[q]);
+          const double r = std::round(u);
+          if (std::abs(u - r) < kSnap) u = r;
+        }
+    }
+  }
+  m.flipped[c] = cp.flips(m.D, s.F);
+  if (m.flipped[c] > 0 && opt.log)
+    opt.log(1, chart_name(g, c) + ": " + std::to_string(m.flipped[c]) + " triangles stay folded in its plane");
+  for (int v : inner) slot[v] = -1;
+}
+
+}  // namespace
+
+PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const PlaneGroups& pg,
+                         const PolycubeMapOptions& opt) {
+  if (!(opt.cell > 0)) throw GeometryError("the grid spacing must be positive");
+  const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows()), ng = pg.num_groups();
+  const double h = opt.cell;
+  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  PolycubeMap m;
+  m.cell = h;
+  m.continuous = s.V;
+  m.offset = Eigen::VectorXd::Zero(ng);
+  const MapInputs in{s, g, pg, opt};
+
+  // ---- 1. continuous deformation, one axis at a time
+  const std::vector<Edge> edges = weighted_edges(s);
+  deform_continuously(in, edges, m);
+  m.origin = m.continuous.colwise().minCoeff().transpose();
+
+  // ---- 2. planes on the grid: every curve keeps its direction and a length of at least one cell
+  std::vector<std::vector<Order>> order = curve_orders(in, m);
+  if (m.lengthened > 0) log("polycube map: " + std::to_string(m.lengthened) + " curves shrunk by the least-squares offsets keep the cells of their input length");
+  for (const auto& sep : opt.separate) {
+    if (sep.first < 0 || sep.second < 0 || sep.first >= ng || sep.second >= ng || pg.axis[sep.first] != pg.axis[sep.second])
+      throw GeometryError("polycube map: plane groups " + std::to_string(sep.first) + " and " + std::to_string(sep.second) +
+                          " cannot be separated");
+    order[pg.axis[sep.first]].push_back({sep.first, sep.second});
+  }
+  std::vector<double> weight(ng, 0);
+  for (int c = 0; c < g.num_charts(); ++c) weight[pg.of_chart[c]] += g.area[c];
+  const Segments segments = curve_segments(in);
+  // Per chart: area centroid and mean unit normal (input), for the widths of opposite charts below.
+  std::vector<Eigen::Vector3d> centroid(g.num_charts(), Eigen::Vector3d::Zero()), normal(g.num_charts(), Eigen::Vector3d::Zero());
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d p = s.V.row(s.F(f, 0)), q = s.V.row(s.F(f, 1)), r = s.V.row(s.F(f, 2));
+    const Eigen::Vector3d n = (q - p).cross(r - p);  // twice the area, outward
+    centroid[g.chart(f)] += 0.5 * n.norm() * (p + q + r) / 3.0;
+    normal[g.chart(f)] += 0.5 * n;
+  }
+  for (int c = 0; c < g.num_charts(); ++c) {
+    if (g.area[c] > 0) centroid[c] /= g.area[c];
+    if (normal[c].norm() > 0) normal[c].normalize();
+  }
+  settle_planes(in, segments, centroid, normal, weight, order, m);
+
+  // ---- 3. positions: planes, straight curves, harmonic chart interiors
+  place_on_planes(in, m);
   std::vector<std::vector<int>> chart_tris(g.num_charts());
   for (int f = 0; f < nf; ++f) chart_tris[g.chart(f)].push_back(f);
   // A vertex is on a chart boundary exactly when two or more axes' planes give it a coordinate.
@@ -488,100 +674,7 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
   for (int v = 0; v < nv; ++v) on_boundary[v] = (pg.of_vertex.row(v).array() >= 0).count() >= 2;
   m.flipped.assign(g.num_charts(), 0);
   std::vector<int> slot(nv, -1);
-  for (int c = 0; c < g.num_charts(); ++c) {
-    const int a = (g.label[c] - 1) / 2, sg = g.label[c] % 2 == 1 ? 1 : -1;
-    const int ax[2] = {(a + 1) % 3, (a + 2) % 3};
-    std::vector<int> inner;
-    for (int f : chart_tris[c])
-      for (int k = 0; k < 3; ++k) {
-        const int v = s.F(f, k);
-        if (!on_boundary[v] && slot[v] < 0) { slot[v] = static_cast<int>(inner.size()); inner.push_back(v); }
-      }
-    auto count_flips = [&]() {
-      int n = 0;
-      for (int f : chart_tris[c]) n += plane_area(m.D, s.F, f, a, sg) <= 0;
-      return n;
-    };
-    if (!inner.empty()) {
-      const int n = static_cast<int>(inner.size());
-      Eigen::MatrixXd best;
-      int best_flips = -1;
-      for (int pass = 0; pass < 2; ++pass) {
-        std::vector<Edge> rows;
-        if (pass == 0) {
-          for (const auto& e : edges)
-            if ((slot[e.i] >= 0 || slot[e.j] >= 0)) { rows.push_back(e); rows.push_back({e.j, e.i, e.w}); }
-        } else {
-          mean_value_rows(s, chart_tris[c], rows);
-        }
-        Triplets t;
-        Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-        for (const auto& e : rows) {
-          const int i = slot[e.i];
-          if (i < 0) continue;
-          // Only edges inside this chart: both ends are vertices of its triangles.
-          t.emplace_back(i, i, e.w);
-          if (slot[e.j] >= 0) t.emplace_back(i, slot[e.j], -e.w);
-          else for (int q = 0; q < 2; ++q) rhs(i, q) += e.w * m.D(e.j, ax[q]);
-        }
-        Sparse A(n, n);
-        A.setFromTriplets(t.begin(), t.end());
-        Eigen::MatrixXd x;
-        if (pass == 0) {
-          Eigen::SimplicialLDLT<Sparse> solver(A);
-          if (solver.info() != Eigen::Success) continue;
-          x = solver.solve(rhs);
-        } else {
-          Eigen::SparseLU<Sparse> solver;
-          solver.analyzePattern(A);
-          solver.factorize(A);
-          if (solver.info() != Eigen::Success) continue;
-          x = solver.solve(rhs);
-        }
-        if (!x.allFinite()) continue;
-        for (int i = 0; i < n; ++i)
-          for (int q = 0; q < 2; ++q) m.D(inner[i], ax[q]) = x(i, q);
-        const int flips = count_flips();
-        if (best_flips < 0 || flips < best_flips) { best_flips = flips; best = x; }
-        if (flips == 0) break;
-      }
-      if (best_flips < 0) throw MeshingError("polycube map: the harmonic map of " + chart_name(g, c) + " failed");
-      for (int i = 0; i < n; ++i)
-        for (int q = 0; q < 2; ++q) {
-          double u = best(i, q);
-          const double r = std::round(u);
-          if (std::abs(u - r) < kSnap) u = r;  // on a grid line, not a hair beside it
-          m.D(inner[i], ax[q]) = u;
-        }
-      if (best_flips > 0) {
-        if (opt.untangle) {
-          std::vector<char> free_vertex(nv, 0);
-          for (int v : inner) free_vertex[v] = 1;
-          const UntangleResult u = untangle_plane_map(s.V, s.F, chart_tris[c], free_vertex, a, sg, m.D);
-          if (opt.log)
-            opt.log(0, chart_name(g, c) + ": untangled " + std::to_string(u.folded_before) + " folded triangles to " +
-                           std::to_string(u.folded_after) + " (" + std::to_string(u.folded_fixed) + " with no free vertex) in " +
-                           std::to_string(u.rounds) + " rounds");
-        }
-        const int left = count_flips();
-        if (left > 0) {  // local moves as a last resort, kept only when they help
-          const Eigen::MatrixXd before = m.D;
-          untangle_chart(m.D, s.F, chart_tris[c], slot, a, sg, 60);
-          if (count_flips() >= left) m.D = before;
-        }
-        for (int v : inner)
-          for (int q = 0; q < 2; ++q) {
-            double& u = m.D(v, ax[q]);
-            const double r = std::round(u);
-            if (std::abs(u - r) < kSnap) u = r;
-          }
-      }
-    }
-    m.flipped[c] = count_flips();
-    if (m.flipped[c] > 0 && opt.log)
-      opt.log(1, chart_name(g, c) + ": " + std::to_string(m.flipped[c]) + " triangles stay folded in its plane");
-    for (int v : inner) slot[v] = -1;
-  }
+  for (int c = 0; c < g.num_charts(); ++c) map_chart(in, edges, chart_tris[c], on_boundary, c, slot, m);
   for (int v = 0; v < nv; ++v)
     if (!m.D.row(v).allFinite())
       throw MeshingError("polycube map: vertex " + std::to_string(v + 1) + " got no position (planes " +

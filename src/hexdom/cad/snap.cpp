@@ -68,9 +68,15 @@ void distance_stats(const Projection& p, double& max, double& mean) {
 }  // namespace
 
 namespace {
-SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::SurfaceMesh& tess, const SnapOptions& opt) {
-  const Shape::Impl& s = shape.impl();
-  auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+
+void say(const SnapOptions& opt, const std::string& m) {
+  if (opt.log) opt.log(0, m);
+}
+
+/// Throws InputError when the tessellation does not fit the solid (no triangles, a face id per
+/// triangle missing or naming no face, a vertex index out of range), GeometryError for a cell that
+/// is not a volume cell.
+void check_input(const Shape::Impl& s, const mesh::Mesh& input, const mesh::SurfaceMesh& tess) {
   const int nfaces = s.faces.Extent();
   if (tess.F.rows() == 0) throw InputError(s.source, 0, "snap_to_brep needs the tessellation of the part (it has no triangles)");
   if (tess.patch.size() != tess.F.rows())
@@ -89,6 +95,298 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     if (!mesh::is_volume(input.type(c)))
       throw GeometryError("cell " + std::to_string(c + 1) + " is a " + mesh::type_name(input.type(c)) +
                           ": snapping to the B-rep takes hex, prism and tet cells only");
+}
+
+/// The boundary nodes of a mesh, with the CAD faces around each and its shortest boundary edge.
+struct BoundaryNodes {
+  std::vector<int> nodes;           ///< ascending
+  std::vector<std::set<int>> cand;  ///< per mesh node: the faces of the tessellation triangles nearest to
+                                    ///< it and to the centres of its boundary faces
+  std::vector<double> shortest;     ///< per mesh node: its shortest boundary edge
+};
+
+BoundaryNodes boundary_nodes(const mesh::Mesh& m, const mesh::SurfaceMesh& tess) {
+  const int nn = m.num_nodes();
+  BoundaryNodes b;
+  const std::vector<mesh::BoundaryFace> bfaces = mesh::boundary_faces(m);
+  const mesh::TriangleProjector tp(tess.V, tess.F);
+  b.cand.resize(nn);
+  b.shortest.assign(nn, std::numeric_limits<double>::infinity());
+  std::vector<char> on_boundary(nn, 0);
+  for (const auto& f : bfaces) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int i = 0; i < f.n; ++i) c += m.V.row(f.v[i]).transpose();
+    int tri = -1;
+    tp.project(c / f.n, &tri);
+    for (int i = 0; i < f.n; ++i) {
+      const int v = f.v[i], w = f.v[(i + 1) % f.n];
+      on_boundary[v] = 1;
+      if (tri >= 0) b.cand[v].insert(tess.patch(tri));
+      const double l = (m.V.row(v) - m.V.row(w)).norm();
+      b.shortest[v] = std::min(b.shortest[v], l);
+      b.shortest[w] = std::min(b.shortest[w], l);
+    }
+  }
+  for (int v = 0; v < nn; ++v) {
+    if (!on_boundary[v]) continue;
+    b.nodes.push_back(v);
+    int tri = -1;
+    tp.project(m.V.row(v).transpose(), &tri);
+    if (tri >= 0) b.cand[v].insert(tess.patch(tri));
+  }
+  return b;
+}
+
+using FacePairEdges = std::map<std::pair<int, int>, std::vector<int>>;  // (face a < face b) -> shared edges
+
+/// The CAD edges shared by each two faces (1-based ids). Seams (one face on both sides) and
+/// degenerated edges (poles) are not features and are left out.
+FacePairEdges edges_between_faces(const Shape::Impl& s, const std::vector<std::vector<int>>& edge_faces) {
+  std::vector<char> edge_usable(s.edges.Extent() + 1, 0);
+  FacePairEdges pair_edges;
+  for (int e = 1; e <= s.edges.Extent(); ++e) {
+    const TopoDS_Edge& edge = TopoDS::Edge(s.edges(e));
+    edge_usable[e] = !BRep_Tool::Degenerated(edge) && edge_faces[e].size() >= 2;
+    if (!edge_usable[e]) continue;
+    for (size_t i = 0; i < edge_faces[e].size(); ++i)
+      for (size_t j = i + 1; j < edge_faces[e].size(); ++j) pair_edges[{edge_faces[e][i], edge_faces[e][j]}].push_back(e);
+  }
+  return pair_edges;
+}
+
+int intersect_count(const std::vector<int>& a, const std::set<int>& b) {
+  int n = 0;
+  for (int x : a) n += b.count(x) > 0;
+  return n;
+}
+
+/// Where the projection puts the boundary nodes: the target of each node, whether it is placed
+/// yet, and what it is put on (the result's kind and entity).
+struct Targets {
+  Eigen::MatrixXd point;
+  std::vector<char> placed;
+  SnapResult& r;
+};
+
+/// Vertices: a node whose CAD faces include three of a vertex's faces, within the tolerance of it;
+/// the nearest such node per vertex.
+void place_on_vertices(const Shape::Impl& s, const mesh::Mesh& m, const BoundaryNodes& b,
+                       const std::vector<std::vector<int>>& vertex_faces, const SnapOptions& opt, Targets& t) {
+  std::map<int, std::pair<double, int>> best;  // vertex -> (distance, node)
+  for (int v : b.nodes) {
+    if (b.cand[v].size() < 3) continue;
+    const Eigen::Vector3d p = m.V.row(v).transpose();
+    for (int x = 1; x <= s.vertices.Extent(); ++x) {
+      if (intersect_count(vertex_faces[x], b.cand[v]) < 3) continue;
+      const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(s.vertices(x)));
+      const double d = (p - Eigen::Vector3d(q.X(), q.Y(), q.Z())).norm();
+      if (d > opt.edge_tolerance * b.shortest[v]) continue;
+      auto it = best.find(x);
+      if (it == best.end() || d < it->second.first) best[x] = {d, v};
+    }
+  }
+  std::map<int, std::pair<double, int>> by_node;  // a node near two vertices takes the nearer
+  for (const auto& [x, dv] : best) {
+    auto it = by_node.find(dv.second);
+    if (it == by_node.end() || dv.first < it->second.first) by_node[dv.second] = {dv.first, x};
+  }
+  for (const auto& [v, dx] : by_node) {
+    const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(s.vertices(dx.second)));
+    t.point.row(v) << q.X(), q.Y(), q.Z();
+    t.placed[v] = 1;
+    t.r.kind[v] = SnapKind::Vertex;
+    t.r.entity[v] = dx.second;
+  }
+}
+
+/// Edges: the nodes not on a vertex batched per candidate edge (an edge between two of the node's
+/// faces); each keeps the nearest edge within the tolerance.
+void place_on_edges(const Shape& shape, const mesh::Mesh& m, const BoundaryNodes& b, const FacePairEdges& pair_edges,
+                    const SnapOptions& opt, Targets& t) {
+  std::map<int, std::vector<int>> per_edge;
+  for (int v : b.nodes) {
+    if (t.placed[v] || b.cand[v].size() < 2) continue;
+    std::set<int> edges;
+    for (auto a = b.cand[v].begin(); a != b.cand[v].end(); ++a)
+      for (auto c = std::next(a); c != b.cand[v].end(); ++c) {
+        auto it = pair_edges.find({*a, *c});
+        if (it != pair_edges.end()) edges.insert(it->second.begin(), it->second.end());
+      }
+    for (int e : edges) per_edge[e].push_back(v);
+  }
+  std::vector<double> best(m.num_nodes(), std::numeric_limits<double>::infinity());
+  for (const auto& [e, nodes] : per_edge) {
+    Eigen::MatrixXd P(nodes.size(), 3);
+    for (size_t i = 0; i < nodes.size(); ++i) P.row(i) = m.V.row(nodes[i]);
+    const Projection pr = project_to_edge(shape, e, P);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      const int v = nodes[i];
+      if (pr.distance(i) < best[v] && pr.distance(i) <= opt.edge_tolerance * b.shortest[v]) {
+        best[v] = pr.distance(i);
+        t.point.row(v) = pr.points.row(i);
+        t.r.kind[v] = SnapKind::Edge;
+        t.r.entity[v] = e;
+      }
+    }
+  }
+  for (int v : b.nodes)
+    if (t.r.kind[v] == SnapKind::Edge) t.placed[v] = 1;
+}
+
+/// Faces: the nodes on no vertex or edge go onto the nearest of their CAD faces, trimmed.
+void place_on_faces(const Shape& shape, const mesh::Mesh& m, const BoundaryNodes& b, Targets& t) {
+  std::map<int, std::vector<int>> per_face;
+  for (int v : b.nodes)
+    if (!t.placed[v])
+      for (int f : b.cand[v]) per_face[f].push_back(v);
+  std::vector<double> best(m.num_nodes(), std::numeric_limits<double>::infinity());
+  for (const auto& [f, nodes] : per_face) {
+    Eigen::MatrixXd P(nodes.size(), 3);
+    for (size_t i = 0; i < nodes.size(); ++i) P.row(i) = m.V.row(nodes[i]);
+    const Projection pr = project_to_face(shape, f, P);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      const int v = nodes[i];
+      if (pr.distance(i) < best[v]) {
+        best[v] = pr.distance(i);
+        t.point.row(v) = pr.points.row(i);
+        t.r.kind[v] = SnapKind::Face;
+        t.r.entity[v] = f;
+      }
+    }
+  }
+}
+
+// The mesh restored after moving the boundary to the B-rep in `steps` steps (see SnapOptions),
+// with the worst SJ and inverted cells right after the last move.
+struct Restored {
+  mesh::Mesh mesh;
+  double worst_snapped = 0;
+  int inverted_snapped = 0;
+};
+
+/// The restoration of the interior after the boundary nodes move to their targets: improve with
+/// the boundary held, or sliding on its CAD faces and edges (SnapOptions::slide). The faces and
+/// edge curves the sliding nodes project onto are built once, on first use, for all runs.
+class Restoration {
+ public:
+  Restoration(const Shape::Impl& s, const mesh::Mesh& m, const std::vector<int>& boundary, const Eigen::MatrixXd& target,
+              const SnapResult& r, const SnapOptions& opt)
+      : s_(s), m_(m), boundary_(boundary), target_(target), r_(r), opt_(opt), faces_(s.faces.Extent() + 1),
+        curves_(s.edges.Extent() + 1), have_curve_(s.edges.Extent() + 1, 0) {}
+
+  /// Whether the options ask for a restoration at all (otherwise the nodes only move).
+  bool enabled() const { return opt_.smooth > 0 || opt_.optimize > 0; }
+
+  /// The boundary moved in `steps` equal steps, the interior restored with the boundary held after
+  /// each but the last, then restored once more, every cell that gets worse kept at or above `floor`.
+  Restored run(int steps, double floor) {
+    const bool restore = enabled();
+    Restored out;
+    mesh::Mesh w = m_;
+    const Eigen::MatrixXd start = m_.V;
+    for (int k = 1; restore && k < steps; ++k) {
+      const double a = static_cast<double>(k) / steps;
+      for (int v : boundary_) w.V.row(v) = start.row(v) + a * (target_.row(v) - start.row(v));
+      optimize::ImproveOptions io;
+      io.smooth = opt_.smooth;
+      io.optimize = opt_.optimize;
+      io.floor = floor;
+      io.fixed_nodes = boundary_;
+      w = optimize::improve(w, io).mesh;
+    }
+    for (int v : boundary_) w.V.row(v) = target_.row(v);
+    out.worst_snapped = worst_sj(w, &out.inverted_snapped);
+    if (restore) {
+      optimize::ImproveOptions io;
+      io.smooth = opt_.smooth;
+      io.optimize = opt_.optimize;
+      io.floor = floor;
+      io.mean_after = true;  // the smoothing costs the mean improve reached
+      for (int v : boundary_)
+        if (!opt_.slide || r_.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
+      if (opt_.slide)
+        io.project = [this, &w](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d { return slide(w, v, x); };
+      w = optimize::improve(w, io).mesh;
+    }
+    out.mesh = std::move(w);
+    return out;
+  }
+
+ private:
+  /// x on the CAD face or edge node v was put on; where v is in `w` when that projection fails.
+  Eigen::Vector3d slide(const mesh::Mesh& w, int v, const Eigen::Vector3d& x) {
+    const gp_Pnt p(x(0), x(1), x(2));
+    gp_Pnt q;
+    double d = std::numeric_limits<double>::infinity();
+    const int id = r_.entity[v];
+    if (r_.kind[v] == SnapKind::Face) {
+      if (!faces_[id]) faces_[id] = std::make_unique<FaceProjector>(TopoDS::Face(s_.faces(id)));
+      gp_Pnt2d uv;
+      faces_[id]->nearest(p, q, d, uv);
+    } else if (r_.kind[v] == SnapKind::Edge) {
+      if (!have_curve_[id]) curves_[id] = edge_curve(TopoDS::Edge(s_.edges(id))), have_curve_[id] = 1;
+      double t;
+      if (!nearest_on_edge(curves_[id], p, q, t, d)) d = std::numeric_limits<double>::infinity();
+    }
+    if (!std::isfinite(d)) return w.V.row(v).transpose();  // stays where it is
+    return Eigen::Vector3d(q.X(), q.Y(), q.Z());
+  }
+
+  const Shape::Impl& s_;
+  const mesh::Mesh& m_;
+  const std::vector<int>& boundary_;
+  const Eigen::MatrixXd& target_;
+  const SnapResult& r_;
+  const SnapOptions& opt_;
+  std::vector<std::unique_ptr<FaceProjector>> faces_;
+  std::vector<EdgeCurve> curves_;
+  std::vector<char> have_curve_;
+};
+
+/// The restoration kept: the direct one; the progressive snap where the direct one costs quality
+/// (fewer inverted cells first, then the better worst cell); then, where cells stay inverted, the
+/// restoration without the floor `keep` if it does better.
+Restored best_restoration(Restoration& restoration, double keep, double worst_before, const SnapOptions& opt) {
+  const bool restore = restoration.enabled();
+  char line[320];
+  Restored best = restoration.run(1, keep);
+  if (restore && opt.steps > 1) {
+    // The progressive snap where the direct one costs quality: fewer inverted cells first, then
+    // the better worst cell.
+    int inv_best = 0;
+    const double w_best = worst_sj(best.mesh, &inv_best);
+    if (inv_best > 0 || w_best < worst_before - 1e-3) {
+      Restored other = restoration.run(opt.steps, keep);
+      int inv_other = 0;
+      const double w_other = worst_sj(other.mesh, &inv_other);
+      std::snprintf(line, sizeof line, "snap: direct worst SJ %.4f (%d inverted), in %d steps %.4f (%d inverted)", w_best,
+                    inv_best, opt.steps, w_other, inv_other);
+      say(opt, line);
+      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
+    }
+  }
+  if (restore && keep > -2) {
+    // The floor can stall untangling (its path may need good cells to give way): then without it.
+    int inv_best = 0;
+    const double w_best = worst_sj(best.mesh, &inv_best);
+    if (inv_best > 0) {
+      Restored other = restoration.run(1, -2);
+      int inv_other = 0;
+      const double w_other = worst_sj(other.mesh, &inv_other);
+      std::snprintf(line, sizeof line, "snap: with the floor worst SJ %.4f (%d inverted), without %.4f (%d inverted)",
+                    w_best, inv_best, w_other, inv_other);
+      say(opt, line);
+      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
+    }
+  }
+  return best;
+}
+
+/// Boundary nodes onto the CAD vertices, edges and faces their tessellation triangles name, then the
+/// interior restored (see snap_to_brep).
+SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::SurfaceMesh& tess, const SnapOptions& opt) {
+  const Shape::Impl& s = shape.impl();
+  check_input(s, input, tess);
 
   SnapResult r;
   SnapReport& rep = r.report;
@@ -101,33 +399,8 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
   r.entity.assign(nn, 0);
 
   // CAD faces around each boundary node, and its shortest boundary edge.
-  const std::vector<mesh::BoundaryFace> bfaces = mesh::boundary_faces(m);
-  const mesh::TriangleProjector tp(tess.V, tess.F);
-  std::vector<std::set<int>> cand(nn);
-  std::vector<double> shortest(nn, std::numeric_limits<double>::infinity());
-  std::vector<char> on_boundary(nn, 0);
-  for (const auto& f : bfaces) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int i = 0; i < f.n; ++i) c += m.V.row(f.v[i]).transpose();
-    int tri = -1;
-    tp.project(c / f.n, &tri);
-    for (int i = 0; i < f.n; ++i) {
-      const int v = f.v[i], w = f.v[(i + 1) % f.n];
-      on_boundary[v] = 1;
-      if (tri >= 0) cand[v].insert(tess.patch(tri));
-      const double l = (m.V.row(v) - m.V.row(w)).norm();
-      shortest[v] = std::min(shortest[v], l);
-      shortest[w] = std::min(shortest[w], l);
-    }
-  }
-  std::vector<int> boundary;
-  for (int v = 0; v < nn; ++v) {
-    if (!on_boundary[v]) continue;
-    boundary.push_back(v);
-    int tri = -1;
-    tp.project(m.V.row(v).transpose(), &tri);
-    if (tri >= 0) cand[v].insert(tess.patch(tri));
-  }
+  const BoundaryNodes b = boundary_nodes(m, tess);
+  const std::vector<int>& boundary = b.nodes;
   rep.boundary_nodes = static_cast<int>(boundary.size());
   if (boundary.empty()) {
     r.mesh = std::move(m);
@@ -138,114 +411,16 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
   for (size_t i = 0; i < boundary.size(); ++i) B.row(i) = m.V.row(boundary[i]);
   distance_stats(project_to_shape(shape, B), rep.max_before, rep.mean_before);
 
+  // The projection: vertices first, then edges, then faces.
   const std::vector<std::vector<int>> edge_faces = faces_of(s, TopAbs_EDGE, s.edges);
   const std::vector<std::vector<int>> vertex_faces = faces_of(s, TopAbs_VERTEX, s.vertices);
-  std::vector<char> edge_usable(s.edges.Extent() + 1, 0);
-  std::map<std::pair<int, int>, std::vector<int>> pair_edges;  // (face a < face b) -> shared edges
-  for (int e = 1; e <= s.edges.Extent(); ++e) {
-    const TopoDS_Edge& edge = TopoDS::Edge(s.edges(e));
-    // Seams (one face on both sides) and degenerated edges (poles) are not features.
-    edge_usable[e] = !BRep_Tool::Degenerated(edge) && edge_faces[e].size() >= 2;
-    if (!edge_usable[e]) continue;
-    for (size_t i = 0; i < edge_faces[e].size(); ++i)
-      for (size_t j = i + 1; j < edge_faces[e].size(); ++j) pair_edges[{edge_faces[e][i], edge_faces[e][j]}].push_back(e);
-  }
-  auto intersect_count = [](const std::vector<int>& a, const std::set<int>& b) {
-    int n = 0;
-    for (int x : a) n += b.count(x) > 0;
-    return n;
-  };
-
-  Eigen::MatrixXd target = m.V;
-  std::vector<char> placed(nn, 0);
-
-  // Vertices: a node whose CAD faces include three of a vertex's faces, within the tolerance of it;
-  // the nearest such node per vertex.
-  {
-    std::map<int, std::pair<double, int>> best;  // vertex -> (distance, node)
-    for (int v : boundary) {
-      if (cand[v].size() < 3) continue;
-      const Eigen::Vector3d p = m.V.row(v).transpose();
-      for (int x = 1; x <= s.vertices.Extent(); ++x) {
-        if (intersect_count(vertex_faces[x], cand[v]) < 3) continue;
-        const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(s.vertices(x)));
-        const double d = (p - Eigen::Vector3d(q.X(), q.Y(), q.Z())).norm();
-        if (d > opt.edge_tolerance * shortest[v]) continue;
-        auto it = best.find(x);
-        if (it == best.end() || d < it->second.first) best[x] = {d, v};
-      }
-    }
-    std::map<int, std::pair<double, int>> by_node;  // a node near two vertices takes the nearer
-    for (const auto& [x, dv] : best) {
-      auto it = by_node.find(dv.second);
-      if (it == by_node.end() || dv.first < it->second.first) by_node[dv.second] = {dv.first, x};
-    }
-    for (const auto& [v, dx] : by_node) {
-      const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(s.vertices(dx.second)));
-      target.row(v) << q.X(), q.Y(), q.Z();
-      placed[v] = 1;
-      r.kind[v] = SnapKind::Vertex;
-      r.entity[v] = dx.second;
-    }
-  }
-
-  // Edges: batch the nodes per candidate edge, keep the nearest edge of each node.
-  {
-    std::map<int, std::vector<int>> per_edge;
-    for (int v : boundary) {
-      if (placed[v] || cand[v].size() < 2) continue;
-      std::set<int> edges;
-      for (auto a = cand[v].begin(); a != cand[v].end(); ++a)
-        for (auto b = std::next(a); b != cand[v].end(); ++b) {
-          auto it = pair_edges.find({*a, *b});
-          if (it != pair_edges.end()) edges.insert(it->second.begin(), it->second.end());
-        }
-      for (int e : edges) per_edge[e].push_back(v);
-    }
-    std::vector<double> best(nn, std::numeric_limits<double>::infinity());
-    for (const auto& [e, nodes] : per_edge) {
-      Eigen::MatrixXd P(nodes.size(), 3);
-      for (size_t i = 0; i < nodes.size(); ++i) P.row(i) = m.V.row(nodes[i]);
-      const Projection pr = project_to_edge(shape, e, P);
-      for (size_t i = 0; i < nodes.size(); ++i) {
-        const int v = nodes[i];
-        if (pr.distance(i) < best[v] && pr.distance(i) <= opt.edge_tolerance * shortest[v]) {
-          best[v] = pr.distance(i);
-          target.row(v) = pr.points.row(i);
-          r.kind[v] = SnapKind::Edge;
-          r.entity[v] = e;
-        }
-      }
-    }
-    for (int v : boundary)
-      if (r.kind[v] == SnapKind::Edge) placed[v] = 1;
-  }
-
-  // Faces: the nearest of the node's CAD faces, trimmed.
-  {
-    std::map<int, std::vector<int>> per_face;
-    for (int v : boundary)
-      if (!placed[v])
-        for (int f : cand[v]) per_face[f].push_back(v);
-    std::vector<double> best(nn, std::numeric_limits<double>::infinity());
-    for (const auto& [f, nodes] : per_face) {
-      Eigen::MatrixXd P(nodes.size(), 3);
-      for (size_t i = 0; i < nodes.size(); ++i) P.row(i) = m.V.row(nodes[i]);
-      const Projection pr = project_to_face(shape, f, P);
-      for (size_t i = 0; i < nodes.size(); ++i) {
-        const int v = nodes[i];
-        if (pr.distance(i) < best[v]) {
-          best[v] = pr.distance(i);
-          target.row(v) = pr.points.row(i);
-          r.kind[v] = SnapKind::Face;
-          r.entity[v] = f;
-        }
-      }
-    }
-  }
-
+  const FacePairEdges pair_edges = edges_between_faces(s, edge_faces);
+  Targets target{m.V, std::vector<char>(nn, 0), r};
+  place_on_vertices(s, m, b, vertex_faces, opt, target);
+  place_on_edges(shape, m, b, pair_edges, opt, target);
+  place_on_faces(shape, m, b, target);
   for (int v : boundary) {
-    rep.max_move = std::max(rep.max_move, (target.row(v) - m.V.row(v)).norm());
+    rep.max_move = std::max(rep.max_move, (target.point.row(v) - m.V.row(v)).norm());
     rep.face_nodes += r.kind[v] == SnapKind::Face;
     rep.edge_nodes += r.kind[v] == SnapKind::Edge;
     rep.vertex_nodes += r.kind[v] == SnapKind::Vertex;
@@ -254,106 +429,19 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
 
   // Restoration. Every cell that gets worse stays at or above min(keep, worst before the snap).
   const double keep = opt.keep < 0 ? -2.0 : std::min(opt.keep, rep.worst_sj_before);
-  std::vector<std::unique_ptr<FaceProjector>> faces(nfaces + 1);
-  std::vector<EdgeCurve> curves(s.edges.Extent() + 1);
-  std::vector<char> have_curve(s.edges.Extent() + 1, 0);
-  // The mesh restored after moving the boundary to the B-rep in `steps` steps (see SnapOptions),
-  // with the worst SJ and inverted cells right after the last move.
-  struct Restored {
-    mesh::Mesh mesh;
-    double worst_snapped = 0;
-    int inverted_snapped = 0;
-  };
-  const bool restore = opt.smooth > 0 || opt.optimize > 0;
-  auto run = [&](int steps, double floor) {
-    Restored out;
-    mesh::Mesh w = m;
-    const Eigen::MatrixXd start = m.V;
-    for (int k = 1; restore && k < steps; ++k) {
-      const double a = static_cast<double>(k) / steps;
-      for (int v : boundary) w.V.row(v) = start.row(v) + a * (target.row(v) - start.row(v));
-      optimize::ImproveOptions io;
-      io.smooth = opt.smooth;
-      io.optimize = opt.optimize;
-      io.floor = floor;
-      io.fixed_nodes = boundary;
-      w = optimize::improve(w, io).mesh;
-    }
-    for (int v : boundary) w.V.row(v) = target.row(v);
-    out.worst_snapped = worst_sj(w, &out.inverted_snapped);
-    if (restore) {
-      optimize::ImproveOptions io;
-      io.smooth = opt.smooth;
-      io.optimize = opt.optimize;
-      io.floor = floor;
-      io.mean_after = true;  // the smoothing costs the mean improve reached
-      for (int v : boundary)
-        if (!opt.slide || r.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
-      if (opt.slide)
-        io.project = [&](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d {
-          const gp_Pnt p(x(0), x(1), x(2));
-          gp_Pnt q;
-          double d = std::numeric_limits<double>::infinity();
-          const int id = r.entity[v];
-          if (r.kind[v] == SnapKind::Face) {
-            if (!faces[id]) faces[id] = std::make_unique<FaceProjector>(TopoDS::Face(s.faces(id)));
-            gp_Pnt2d uv;
-            faces[id]->nearest(p, q, d, uv);
-          } else if (r.kind[v] == SnapKind::Edge) {
-            if (!have_curve[id]) curves[id] = edge_curve(TopoDS::Edge(s.edges(id))), have_curve[id] = 1;
-            double t;
-            if (!nearest_on_edge(curves[id], p, q, t, d)) d = std::numeric_limits<double>::infinity();
-          }
-          if (!std::isfinite(d)) return w.V.row(v).transpose();  // stays where it is
-          return Eigen::Vector3d(q.X(), q.Y(), q.Z());
-        };
-      w = optimize::improve(w, io).mesh;
-    }
-    out.mesh = std::move(w);
-    return out;
-  };
-
+  Restoration restoration(s, m, boundary, target.point, r, opt);
   const auto t1 = Clock::now();
-  char line[320];
-  Restored best = run(1, keep);
-  if (restore && opt.steps > 1) {
-    // The progressive snap where the direct one costs quality: fewer inverted cells first, then
-    // the better worst cell.
-    int inv_best = 0;
-    const double w_best = worst_sj(best.mesh, &inv_best);
-    if (inv_best > 0 || w_best < rep.worst_sj_before - 1e-3) {
-      Restored other = run(opt.steps, keep);
-      int inv_other = 0;
-      const double w_other = worst_sj(other.mesh, &inv_other);
-      std::snprintf(line, sizeof line, "snap: direct worst SJ %.4f (%d inverted), in %d steps %.4f (%d inverted)", w_best,
-                    inv_best, opt.steps, w_other, inv_other);
-      say(line);
-      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
-    }
-  }
-  if (restore && keep > -2) {
-    // The floor can stall untangling (its path may need good cells to give way): then without it.
-    int inv_best = 0;
-    const double w_best = worst_sj(best.mesh, &inv_best);
-    if (inv_best > 0) {
-      Restored other = run(1, -2);
-      int inv_other = 0;
-      const double w_other = worst_sj(other.mesh, &inv_other);
-      std::snprintf(line, sizeof line, "snap: with the floor worst SJ %.4f (%d inverted), without %.4f (%d inverted)",
-                    w_best, inv_best, w_other, inv_other);
-      say(line);
-      if (inv_other < inv_best || (inv_other == inv_best && w_other > w_best)) best = std::move(other);
-    }
-  }
+  Restored best = best_restoration(restoration, keep, rep.worst_sj_before, opt);
   m = std::move(best.mesh);
   rep.worst_sj_snapped = best.worst_snapped;
   rep.inverted_snapped = best.inverted_snapped;
+  char line[320];
   std::snprintf(line, sizeof line,
                 "snap: %d boundary nodes onto %d faces, %d edges, %d vertices (largest move %.3g); worst SJ %.4f -> %.4f, "
                 "%d inverted",
                 rep.boundary_nodes, rep.face_nodes, rep.edge_nodes, rep.vertex_nodes, rep.max_move, rep.worst_sj_before,
                 rep.worst_sj_snapped, rep.inverted_snapped);
-  say(line);
+  say(opt, line);
   rep.seconds_restore = since(t1);
   rep.worst_sj = worst_sj(m, &rep.inverted);
 
@@ -365,7 +453,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
                 "snap: B-rep distance max %.3g -> %.3g (%.2e of the diagonal), mean %.3g -> %.3g; worst SJ %.4f, %d inverted",
                 rep.max_before, rep.max_after, rep.diagonal > 0 ? rep.max_after / rep.diagonal : 0.0, rep.mean_before,
                 rep.mean_after, rep.worst_sj, rep.inverted);
-  say(line);
+  say(opt, line);
   return r;
 }
 }  // namespace

@@ -342,6 +342,257 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
 
 namespace {
 
+/// The sizes a tessellation works with: the options' with their defaults filled in.
+struct Sizes {
+  double size = 0, deflection = 0, min_size = 0;
+  double angle = 0;  ///< radians
+};
+
+/// The options' sizes, the defaults taken from the solid's bounding box. Throws GeometryError for a
+/// solid without extent, InputError for a size that would give more than 20 million triangles.
+Sizes resolve_sizes(const Shape& shape, const TessellateOptions& options) {
+  const Shape::Impl& impl = shape.impl();
+  const std::string& source = impl.source;
+  Bnd_Box box;
+  BRepBndLib::Add(impl.shape, box);
+  if (box.IsVoid()) throw GeometryError(source + ": the solid has no extent");
+  const double diag = std::sqrt(box.SquareExtent());
+  Sizes z;
+  z.size = options.size > 0 ? options.size : diag / 30.0;
+  z.deflection = options.deflection > 0 ? options.deflection : z.size / 50.0;
+  z.min_size = std::min(options.min_size > 0 ? options.min_size : z.size / 20.0, z.size);
+  z.angle = options.angle * kPi / 180.0;
+  const ShapeInfo info = shape_info(shape);
+  const double estimate = info.area / (0.433 * z.size * z.size);
+  if (estimate > 2e7)
+    throw InputError(source, 0, "size " + std::to_string(z.size) + " would give about " +
+                                    std::to_string(static_cast<long>(estimate)) +
+                                    " triangles (limit 20 million): choose a larger size");
+  return z;
+}
+
+/// The copy of the solid that BRepMesh triangulates, with its faces, edges and vertices numbered.
+struct WorkShape {
+  TopoDS_Shape shape;
+  TopTools_IndexedMapOfShape faces, edges, vertices;
+  std::vector<int> original_face;  ///< per face of the copy (0-based): the original's id (FreeCAD's FaceN)
+};
+
+/// A copy without triangulations, so the caller's shape is left untouched.
+WorkShape copy_without_triangulations(const Shape::Impl& impl) {
+  const std::string& source = impl.source;
+  WorkShape w;
+  BRepBuilderAPI_Copy copier(impl.shape, true, false);
+  w.shape = copier.Shape();
+  BRepTools::Clean(w.shape);
+  BRepLib::BuildCurves3d(w.shape);
+  TopExp::MapShapes(w.shape, TopAbs_FACE, w.faces);
+  TopExp::MapShapes(w.shape, TopAbs_EDGE, w.edges);
+  TopExp::MapShapes(w.shape, TopAbs_VERTEX, w.vertices);
+  // The copy's faces in the original's numbering, without relying on the copy keeping the order.
+  w.original_face.assign(w.faces.Extent(), -1);
+  for (int i = 1; i <= impl.faces.Extent(); ++i) {
+    const int k = w.faces.FindIndex(copier.ModifiedShape(impl.faces(i)));
+    if (k < 1 || w.original_face[k - 1] >= 0)
+      throw MeshingError(source + ": copying the solid lost track of Face" + std::to_string(i));
+    w.original_face[k - 1] = i;
+  }
+  return w;
+}
+
+/// Triangulates the copy with BRepMesh: the initial triangles, which the remesher refines.
+void run_brepmesh(const WorkShape& w, const Sizes& z, const std::string& source) {
+  IMeshTools_Parameters mp;
+  mp.Deflection = z.deflection;
+  mp.Angle = z.angle > 0 ? std::min(z.angle, 0.5) : 0.5;
+  mp.Relative = Standard_False;
+  mp.InParallel = Standard_False;
+  mp.MinSize = 0.25 * z.min_size;
+  BRepMesh_IncrementalMesh mesher(w.shape, mp);
+  if (!mesher.IsDone()) throw MeshingError(source + ": BRepMesh failed");
+}
+
+/// The face triangulations merged into one surface for the remesher.
+struct Merged {
+  std::vector<RVertex> V;
+  std::vector<std::vector<int>> edge_nodes;     ///< per edge: its vertices in V, first to last
+  std::vector<std::vector<double>> edge_params;  ///< per edge: their parameters on the first polygon read
+  std::vector<std::array<int, 3>> F;
+  std::vector<int> face_of;  ///< per triangle: its face of the copy (0-based)
+  int dropped = 0;           ///< degenerate triangles left out
+};
+
+/// One face's triangulation and the map of its nodes into the merged vertices.
+struct FaceNodes {
+  const TopoDS_Face& face;
+  int fi;                  ///< the face (0-based)
+  std::string name;        ///< "FaceN", for messages
+  const Handle(Poly_Triangulation)& T;
+  const TopLoc_Location& loc;
+  std::vector<int> g;      ///< per node of T (1-based): its vertex in Merged::V, -1 while unset
+  Eigen::Vector3d node(int i) const { return vec(T->Node(i).Transformed(loc.Transformation())); }
+};
+
+/// Maps the nodes of edge E's polygon on face `f` into the merged vertices: a degenerated edge's
+/// onto its vertex; an edge met for the first time gets its nodes (its end vertices, then new
+/// curve vertices, or face vertices on a seam); an edge met before reuses them, reversed when the
+/// polygon runs the other way.
+void map_edge_nodes(const WorkShape& w, const TopoDS_Edge& E, FaceNodes& f, Merged& out, const std::string& source) {
+  const int ei = w.edges.FindIndex(E) - 1;
+  const Handle(Poly_PolygonOnTriangulation)& poly = BRep_Tool::PolygonOnTriangulation(E, f.T, f.loc);
+  if (poly.IsNull())
+    throw MeshingError(source + ": BRepMesh left Edge" + std::to_string(ei + 1) + " of " + f.name + " without nodes");
+  const TColStd_Array1OfInteger& nodes = poly->Nodes();
+  const int n = nodes.Length(), lo = nodes.Lower();
+  if (BRep_Tool::Degenerated(E)) {
+    const int vi = w.vertices.FindIndex(TopExp::FirstVertex(E)) - 1;
+    for (int k = 0; k < n; ++k) f.g[nodes(lo + k)] = vi;
+    return;
+  }
+  const bool seam = BRep_Tool::IsClosed(E, f.face);
+  const Handle(TColStd_HArray1OfReal)& params = poly->Parameters();
+  auto param = [&](int k) { return params.IsNull() ? static_cast<double>(k) : params->Value(params->Lower() + k); };
+  std::vector<int>& en = out.edge_nodes[ei];
+  bool reversed = false;
+  if (en.empty()) {
+    if (n < 2) throw MeshingError(source + ": BRepMesh gave Edge" + std::to_string(ei + 1) + " fewer than 2 nodes");
+    en.assign(n, -1);
+    std::vector<double>& ep = out.edge_params[ei];
+    for (int k = 0; k < n; ++k) ep.push_back(param(k));
+    TopoDS_Vertex v1, v2;
+    TopExp::Vertices(E, v1, v2);
+    const int i1 = w.vertices.FindIndex(v1) - 1, i2 = w.vertices.FindIndex(v2) - 1;
+    const Eigen::Vector3d p0 = f.node(nodes(lo));
+    const bool first_is_v1 = (p0 - out.V[i1].p).norm() <= (p0 - out.V[i2].p).norm();
+    en[0] = first_is_v1 ? i1 : i2;
+    en[n - 1] = first_is_v1 ? i2 : i1;
+    for (int k = 1; k < n - 1; ++k) {
+      RVertex v;
+      v.p = f.node(nodes(lo + k));
+      if (seam) {
+        v.kind = Kind::Face;
+        v.owner = f.fi;
+        if (f.T->HasUVNodes()) {
+          const gp_Pnt2d uv = f.T->UVNode(nodes(lo + k));
+          v.uv = {uv.X(), uv.Y()};
+          v.has_uv = true;
+        }
+      } else {
+        v.kind = Kind::Curve;
+        v.owner = ei;
+        v.t = param(k);
+      }
+      en[k] = static_cast<int>(out.V.size());
+      out.V.push_back(v);
+    }
+  } else {
+    const std::vector<double>& ep = out.edge_params[ei];
+    if (static_cast<int>(en.size()) != n)
+      throw MeshingError(source + ": BRepMesh discretised Edge" + std::to_string(ei + 1) +
+                         " differently in its two faces");
+    if (!params.IsNull() && n > 1 && std::abs(param(0) - ep[0]) > std::abs(param(0) - ep[n - 1])) reversed = true;
+  }
+  for (int k = 0; k < n; ++k) {
+    int& slot = f.g[nodes(lo + k)];
+    if (slot < 0) slot = en[reversed ? n - 1 - k : k];
+  }
+}
+
+/// Adds one face's triangulation: its edges' nodes through map_edge_nodes, its inner nodes as new
+/// face vertices, its triangles (turned for a reversed face, degenerate ones dropped).
+void merge_face(const WorkShape& w, const TopoDS_Face& face, int fi, Merged& out, const std::string& source) {
+  const std::string face_name = "Face" + std::to_string(fi + 1);
+  TopLoc_Location loc;
+  const Handle(Poly_Triangulation)& T = BRep_Tool::Triangulation(face, loc);
+  if (T.IsNull() || T->NbTriangles() == 0)
+    throw MeshingError(source + ": BRepMesh could not triangulate " + face_name);
+  FaceNodes f{face, fi, face_name, T, loc, std::vector<int>(T->NbNodes() + 1, -1)};
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) map_edge_nodes(w, TopoDS::Edge(ex.Current()), f, out, source);
+  std::vector<int>& g = f.g;
+  for (int i = 1; i <= T->NbNodes(); ++i) {
+    if (g[i] >= 0) continue;
+    RVertex v;
+    v.p = f.node(i);
+    v.kind = Kind::Face;
+    v.owner = fi;
+    if (T->HasUVNodes()) {
+      const gp_Pnt2d uv = T->UVNode(i);
+      v.uv = {uv.X(), uv.Y()};
+      v.has_uv = true;
+    }
+    g[i] = static_cast<int>(out.V.size());
+    out.V.push_back(v);
+  }
+  const bool flip = face.Orientation() == TopAbs_REVERSED;
+  for (int i = 1; i <= T->NbTriangles(); ++i) {
+    int n1, n2, n3;
+    T->Triangle(i).Get(n1, n2, n3);
+    if (flip) std::swap(n2, n3);
+    const std::array<int, 3> tri{g[n1], g[n2], g[n3]};
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      ++out.dropped;
+      continue;
+    }
+    out.F.push_back(tri);
+    out.face_of.push_back(fi);
+  }
+}
+
+// Merge the face triangulations through the topology: CAD vertices first, then the nodes of
+// each edge once (a seam's two polygons and an edge's polygon in each of its faces map to the
+// same vertices), then each face's inner nodes. Throws MeshingError when the result is not closed.
+Merged merge_triangulations(const WorkShape& w, const TessellateOptions& options, const std::string& source) {
+  Merged out;
+  out.V.resize(w.vertices.Extent());
+  for (int i = 0; i < w.vertices.Extent(); ++i) {
+    out.V[i].p = vec(BRep_Tool::Pnt(TopoDS::Vertex(w.vertices(i + 1))));
+    out.V[i].kind = Kind::Corner;
+    out.V[i].owner = i;
+  }
+  out.edge_nodes.resize(w.edges.Extent());
+  out.edge_params.resize(w.edges.Extent());
+  std::vector<char> seen(w.faces.Extent(), 0);
+  for (TopExp_Explorer fx(w.shape, TopAbs_FACE); fx.More(); fx.Next()) {
+    const TopoDS_Face face = TopoDS::Face(fx.Current());
+    const int fi = w.faces.FindIndex(face) - 1;
+    if (seen[fi]) continue;
+    seen[fi] = 1;
+    merge_face(w, face, fi, out, source);
+  }
+  Eigen::MatrixXi F0(out.F.size(), 3);
+  for (size_t t = 0; t < out.F.size(); ++t) F0.row(t) << out.F[t][0], out.F[t][1], out.F[t][2];
+  const std::string problem = closed_manifold_problem(F0);
+  if (!problem.empty())
+    throw MeshingError(source + ": the B-rep's initial triangulation is not closed: " + problem);
+  if (options.log)
+    options.log(0, "BRepMesh start: " + std::to_string(out.F.size()) + " triangles, " + std::to_string(out.V.size()) +
+                       " vertices (" + std::to_string(out.dropped) + " degenerate dropped)");
+  return out;
+}
+
+/// The merged triangles remeshed on the B-rep (OcctGeometry), each triangle's patch its face in the
+/// original's numbering.
+mesh::SurfaceMesh remesh_on_brep(const WorkShape& w, Merged&& merged, const Sizes& z, const TessellateOptions& options) {
+  OcctGeometry geometry(w.faces, w.edges, w.vertices, z.size, z.deflection, z.angle, z.min_size);
+  mesh::remesh::RemeshParams rp;
+  rp.max_size = z.size;
+  rp.iterations = options.iterations;
+  rp.log = options.log;
+  mesh::remesh::SurfaceRemesher remesher(std::move(merged.V), merged.F, merged.face_of, geometry, rp);
+  const std::vector<std::vector<int>>& edge_nodes = merged.edge_nodes;
+  for (int e = 0; e < w.edges.Extent(); ++e)
+    if (edge_nodes[e].size() == 2 && edge_nodes[e][0] != edge_nodes[e][1])
+      remesher.set_corner_edge(edge_nodes[e][0], edge_nodes[e][1], e);
+  remesher.run();
+
+  mesh::SurfaceMesh out;
+  Eigen::VectorXi face;
+  remesher.extract(out.V, out.F, face);
+  out.patch.resize(face.size());
+  for (Eigen::Index t = 0; t < face.size(); ++t) out.patch(t) = w.original_face[face(t)];
+  return out;
+}
+
 mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& options, TessellateStats* stats) {
   const auto t_start = std::chrono::steady_clock::now();
   const Shape::Impl& impl = shape.impl();
@@ -350,195 +601,10 @@ mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& o
       !std::isfinite(options.size) || !std::isfinite(options.deflection))
     throw InputError(source, 0, "tessellation options must be finite and non-negative");
   try {
-    Bnd_Box box;
-    BRepBndLib::Add(impl.shape, box);
-    if (box.IsVoid()) throw GeometryError(source + ": the solid has no extent");
-    const double diag = std::sqrt(box.SquareExtent());
-    const double size = options.size > 0 ? options.size : diag / 30.0;
-    const double deflection = options.deflection > 0 ? options.deflection : size / 50.0;
-    const double min_size = std::min(options.min_size > 0 ? options.min_size : size / 20.0, size);
-    const double angle = options.angle * kPi / 180.0;
-    {
-      const ShapeInfo info = shape_info(shape);
-      const double estimate = info.area / (0.433 * size * size);
-      if (estimate > 2e7)
-        throw InputError(source, 0, "size " + std::to_string(size) + " would give about " +
-                                        std::to_string(static_cast<long>(estimate)) +
-                                        " triangles (limit 20 million): choose a larger size");
-    }
-
-    // Work on a copy without triangulations, so the caller's shape is left untouched.
-    BRepBuilderAPI_Copy copier(impl.shape, true, false);
-    TopoDS_Shape work = copier.Shape();
-    BRepTools::Clean(work);
-    BRepLib::BuildCurves3d(work);
-    TopTools_IndexedMapOfShape faces, edges, vertices;
-    TopExp::MapShapes(work, TopAbs_FACE, faces);
-    TopExp::MapShapes(work, TopAbs_EDGE, edges);
-    TopExp::MapShapes(work, TopAbs_VERTEX, vertices);
-    // The copy's faces in the original's numbering (FreeCAD's FaceN), without relying on the copy
-    // keeping the order.
-    std::vector<int> original_face(faces.Extent(), -1);
-    for (int i = 1; i <= impl.faces.Extent(); ++i) {
-      const int w = faces.FindIndex(copier.ModifiedShape(impl.faces(i)));
-      if (w < 1 || original_face[w - 1] >= 0)
-        throw MeshingError(source + ": copying the solid lost track of Face" + std::to_string(i));
-      original_face[w - 1] = i;
-    }
-
-    IMeshTools_Parameters mp;
-    mp.Deflection = deflection;
-    mp.Angle = angle > 0 ? std::min(angle, 0.5) : 0.5;
-    mp.Relative = Standard_False;
-    mp.InParallel = Standard_False;
-    mp.MinSize = 0.25 * min_size;
-    BRepMesh_IncrementalMesh mesher(work, mp);
-    if (!mesher.IsDone()) throw MeshingError(source + ": BRepMesh failed");
-
-    // Merge the face triangulations through the topology: CAD vertices first, then the nodes of
-    // each edge once (a seam's two polygons and an edge's polygon in each of its faces map to the
-    // same vertices), then each face's inner nodes.
-    std::vector<RVertex> V(vertices.Extent());
-    for (int i = 0; i < vertices.Extent(); ++i) {
-      V[i].p = vec(BRep_Tool::Pnt(TopoDS::Vertex(vertices(i + 1))));
-      V[i].kind = Kind::Corner;
-      V[i].owner = i;
-    }
-    std::vector<std::vector<int>> edge_nodes(edges.Extent());
-    std::vector<std::vector<double>> edge_params(edges.Extent());
-    std::vector<std::array<int, 3>> F;
-    std::vector<int> face_of;
-    std::vector<char> seen(faces.Extent(), 0);
-    int dropped = 0;
-    for (TopExp_Explorer fx(work, TopAbs_FACE); fx.More(); fx.Next()) {
-      const TopoDS_Face face = TopoDS::Face(fx.Current());
-      const int fi = faces.FindIndex(face) - 1;
-      if (seen[fi]) continue;
-      seen[fi] = 1;
-      const std::string face_name = "Face" + std::to_string(fi + 1);
-      TopLoc_Location loc;
-      const Handle(Poly_Triangulation)& T = BRep_Tool::Triangulation(face, loc);
-      if (T.IsNull() || T->NbTriangles() == 0)
-        throw MeshingError(source + ": BRepMesh could not triangulate " + face_name);
-      const gp_Trsf trsf = loc.Transformation();
-      auto node = [&](int i) { return vec(T->Node(i).Transformed(trsf)); };
-      std::vector<int> g(T->NbNodes() + 1, -1);
-      for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
-        const TopoDS_Edge E = TopoDS::Edge(ex.Current());
-        const int ei = edges.FindIndex(E) - 1;
-        const Handle(Poly_PolygonOnTriangulation)& poly = BRep_Tool::PolygonOnTriangulation(E, T, loc);
-        if (poly.IsNull())
-          throw MeshingError(source + ": BRepMesh left Edge" + std::to_string(ei + 1) + " of " + face_name + " without nodes");
-        const TColStd_Array1OfInteger& nodes = poly->Nodes();
-        const int n = nodes.Length(), lo = nodes.Lower();
-        if (BRep_Tool::Degenerated(E)) {
-          const int vi = vertices.FindIndex(TopExp::FirstVertex(E)) - 1;
-          for (int k = 0; k < n; ++k) g[nodes(lo + k)] = vi;
-          continue;
-        }
-        const bool seam = BRep_Tool::IsClosed(E, face);
-        const Handle(TColStd_HArray1OfReal)& params = poly->Parameters();
-        auto param = [&](int k) { return params.IsNull() ? static_cast<double>(k) : params->Value(params->Lower() + k); };
-        std::vector<int>& en = edge_nodes[ei];
-        bool reversed = false;
-        if (en.empty()) {
-          if (n < 2) throw MeshingError(source + ": BRepMesh gave Edge" + std::to_string(ei + 1) + " fewer than 2 nodes");
-          en.assign(n, -1);
-          std::vector<double>& ep = edge_params[ei];
-          for (int k = 0; k < n; ++k) ep.push_back(param(k));
-          TopoDS_Vertex v1, v2;
-          TopExp::Vertices(E, v1, v2);
-          const int i1 = vertices.FindIndex(v1) - 1, i2 = vertices.FindIndex(v2) - 1;
-          const Eigen::Vector3d p0 = node(nodes(lo));
-          const bool first_is_v1 = (p0 - V[i1].p).norm() <= (p0 - V[i2].p).norm();
-          en[0] = first_is_v1 ? i1 : i2;
-          en[n - 1] = first_is_v1 ? i2 : i1;
-          for (int k = 1; k < n - 1; ++k) {
-            RVertex v;
-            v.p = node(nodes(lo + k));
-            if (seam) {
-              v.kind = Kind::Face;
-              v.owner = fi;
-              if (T->HasUVNodes()) {
-                const gp_Pnt2d uv = T->UVNode(nodes(lo + k));
-                v.uv = {uv.X(), uv.Y()};
-                v.has_uv = true;
-              }
-            } else {
-              v.kind = Kind::Curve;
-              v.owner = ei;
-              v.t = param(k);
-            }
-            en[k] = static_cast<int>(V.size());
-            V.push_back(v);
-          }
-        } else {
-          const std::vector<double>& ep = edge_params[ei];
-          if (static_cast<int>(en.size()) != n)
-            throw MeshingError(source + ": BRepMesh discretised Edge" + std::to_string(ei + 1) +
-                               " differently in its two faces");
-          if (!params.IsNull() && n > 1 && std::abs(param(0) - ep[0]) > std::abs(param(0) - ep[n - 1])) reversed = true;
-        }
-        for (int k = 0; k < n; ++k) {
-          int& slot = g[nodes(lo + k)];
-          if (slot < 0) slot = en[reversed ? n - 1 - k : k];
-        }
-      }
-      for (int i = 1; i <= T->NbNodes(); ++i) {
-        if (g[i] >= 0) continue;
-        RVertex v;
-        v.p = node(i);
-        v.kind = Kind::Face;
-        v.owner = fi;
-        if (T->HasUVNodes()) {
-          const gp_Pnt2d uv = T->UVNode(i);
-          v.uv = {uv.X(), uv.Y()};
-          v.has_uv = true;
-        }
-        g[i] = static_cast<int>(V.size());
-        V.push_back(v);
-      }
-      const bool flip = face.Orientation() == TopAbs_REVERSED;
-      for (int i = 1; i <= T->NbTriangles(); ++i) {
-        int n1, n2, n3;
-        T->Triangle(i).Get(n1, n2, n3);
-        if (flip) std::swap(n2, n3);
-        const std::array<int, 3> tri{g[n1], g[n2], g[n3]};
-        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-          ++dropped;
-          continue;
-        }
-        F.push_back(tri);
-        face_of.push_back(fi);
-      }
-    }
-    {
-      Eigen::MatrixXi F0(F.size(), 3);
-      for (size_t t = 0; t < F.size(); ++t) F0.row(t) << F[t][0], F[t][1], F[t][2];
-      const std::string problem = closed_manifold_problem(F0);
-      if (!problem.empty())
-        throw MeshingError(source + ": the B-rep's initial triangulation is not closed: " + problem);
-    }
-    if (options.log)
-      options.log(0, "BRepMesh start: " + std::to_string(F.size()) + " triangles, " + std::to_string(V.size()) +
-                         " vertices (" + std::to_string(dropped) + " degenerate dropped)");
-
-    OcctGeometry geometry(faces, edges, vertices, size, deflection, angle, min_size);
-    mesh::remesh::RemeshParams rp;
-    rp.max_size = size;
-    rp.iterations = options.iterations;
-    rp.log = options.log;
-    mesh::remesh::SurfaceRemesher remesher(std::move(V), F, face_of, geometry, rp);
-    for (int e = 0; e < edges.Extent(); ++e)
-      if (edge_nodes[e].size() == 2 && edge_nodes[e][0] != edge_nodes[e][1])
-        remesher.set_corner_edge(edge_nodes[e][0], edge_nodes[e][1], e);
-    remesher.run();
-
-    mesh::SurfaceMesh out;
-    Eigen::VectorXi face;
-    remesher.extract(out.V, out.F, face);
-    out.patch.resize(face.size());
-    for (Eigen::Index t = 0; t < face.size(); ++t) out.patch(t) = original_face[face(t)];
+    const Sizes z = resolve_sizes(shape, options);
+    const WorkShape w = copy_without_triangulations(impl);
+    run_brepmesh(w, z, source);
+    mesh::SurfaceMesh out = remesh_on_brep(w, merge_triangulations(w, options, source), z, options);
     const std::string problem = closed_manifold_problem(out.F);
     if (!problem.empty()) throw MeshingError(source + ": the tessellation is not closed: " + problem);
     if (mesh::enclosed_volume(out.V, out.F) < 0) {
@@ -547,7 +613,7 @@ mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& o
     }
     if (stats) {
       *stats = tessellation_stats(shape, out);
-      stats->size = size;
+      stats->size = z.size;
       stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
       if (options.log && stats->brep_volume != 0 &&
           std::abs(stats->volume - stats->brep_volume) > 0.01 * std::abs(stats->brep_volume))

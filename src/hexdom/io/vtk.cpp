@@ -179,11 +179,9 @@ int region_rank(const std::string& name) {
   return 100;
 }
 
-}  // namespace
-
-mesh::Mesh read_vtk(const std::string& path) {
-  const std::string text = load_file(path);
-  Scanner sc(path, text);
+/// Reads the header lines; returns whether the data is binary. Fails unless the file is a legacy
+/// VTK UNSTRUCTURED_GRID or POLYDATA.
+bool read_header(Scanner& sc) {
   std::string head = sc.line();
   if (!starts_with_ci(head, "# vtk DataFile"))
     sc.fail_at(1, "not a legacy VTK file (first line must be '# vtk DataFile Version ...')");
@@ -197,22 +195,108 @@ mesh::Mesh read_vtk(const std::string& path) {
   if (kind != "unstructured_grid" && kind != "polydata")
     sc.fail("only UNSTRUCTURED_GRID and POLYDATA datasets are supported, found " + kind);
   sc.rest_of_line();
+  return binary;
+}
 
-  std::vector<double> pts;
-  long npts = -1;
-  std::vector<int64_t> offsets, conn;  // cell i uses conn[offsets[i] .. offsets[i+1])
-  std::vector<int64_t> types;
-  std::vector<double> region;
-  // Where the values came from, for messages: cell lists (classic layout: count, then nodes;
-  // 5.1 layout: the connectivity array), offsets (5.1), cell types, region ids.
-  LineIndex cell_lines, offset_lines, type_lines, region_lines;
-  bool classic_cells = true;
-  long types_line = 0;
-  int region_score = 1000;
-  long ncell_data = -1;
-  enum { None, PointData, CellData } attr = None;
+// The sections of a legacy VTK file after its header, read one by one into points, cells, cell
+// types and region ids, then checked and built into a mesh.
+class VtkReader {
+ public:
+  VtkReader(Scanner& sc, bool binary) : sc(sc), binary(binary) {}
 
-  auto read_offsets_layout = [&](long noff, long nconn) {
+  // Reads every section to the end of the file.
+  void read_sections() {
+    while (!sc.at_end()) {
+      std::string key = lower(sc.need_token("section keyword"));
+      if (key == "points") {
+        read_points();
+      } else if (key == "cells" || key == "polygons") {
+        read_cells(key);
+      } else if (key == "cell_types") {
+        read_cell_types();
+      } else if (key == "cell_data" || key == "point_data") {
+        read_attribute_header(key);
+      } else if (key == "scalars" || key == "vectors" || key == "normals" || key == "tensors" ||
+                 key == "texture_coordinates" || key == "color_scalars") {
+        read_attribute(key);
+      } else if (key == "lookup_table") {
+        read_lookup_table();
+      } else if (key == "field") {
+        read_field();
+      } else if (key == "metadata") {
+        sc.rest_of_line();
+        while (!sc.at_end() && !sc.line().empty()) {}
+      } else if (key == "vertices" || key == "lines" || key == "triangle_strips") {
+        sc.fail("POLYDATA " + key + " are not supported: only polygons (triangles, quads)");
+      } else {
+        sc.fail("unknown section '" + key + "'");
+      }
+    }
+  }
+
+  // The mesh of the sections read, after checking that they agree.
+  mesh::Mesh build() {
+    if (npts < 0) sc.fail("no POINTS section");
+    if (offsets.empty()) sc.fail("no CELLS section");
+    const long ncells = static_cast<long>(offsets.size()) - 1;
+    if (types.size() != static_cast<size_t>(ncells))
+      sc.fail_at(types_line ? types_line : sc.line_no(), "CELL_TYPES count " + std::to_string(types.size()) +
+                                                             " differs from CELLS count " + std::to_string(ncells));
+    if (!region.empty() && static_cast<long>(region.size()) != ncells) region.clear();
+    mesh::MeshBuilder b;
+    for (long c = 0; c < ncells; ++c) add_cell(b, c);
+    Eigen::MatrixXd V(npts, 3);
+    for (long i = 0; i < npts; ++i)
+      for (int k = 0; k < 3; ++k) V(i, k) = pts[3 * i + k];
+    return b.finish(std::move(V));
+  }
+
+ private:
+  void read_points() {
+    npts = sc.need_count("point count");
+    std::string type = sc.need_token("point data type");
+    if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
+    sc.rest_of_line();
+    pts = sc.numbers(static_cast<size_t>(3 * npts), type, binary, "POINTS");
+    if (binary) sc.end_binary();
+  }
+
+  // CELLS (or POLYGONS): the classic layout, a node count and the nodes per cell, or the 5.1 layout.
+  void read_cells(const std::string& key) {
+    long n = sc.need_count("cell count"), size = sc.need_count("cell list size");
+    sc.rest_of_line();
+    if (sc.at_end()) sc.fail("file ends after the CELLS header (truncated?)");
+    // VTK 5.1 layout: "CELLS noffsets nconn" followed by OFFSETS and CONNECTIVITY arrays.
+    {
+      Scanner probe = sc;
+      std::string t = lower(probe.token());
+      if (t == "offsets") {
+        read_offsets_layout(n, size);
+        if (key == "polygons") types.assign(n - 1, -1);
+        return;
+      }
+    }
+    cell_lines = LineIndex();
+    auto v = sc.integers(static_cast<size_t>(size), "int", binary, "CELLS", cell_lines);
+    if (binary) sc.end_binary();
+    offsets.assign(1, 0);
+    conn.clear();
+    classic_cells = true;
+    size_t i = 0;
+    for (long c = 0; c < n; ++c) {
+      if (i >= v.size()) sc.fail("CELLS: list ends at cell " + std::to_string(c) + " of " + std::to_string(n));
+      const int64_t k = v[i++];
+      if (k < 0 || k > static_cast<int64_t>(v.size() - i))
+        sc.fail_at(cell_lines.at(i - 1), "CELLS: cell " + std::to_string(c) + " claims " + std::to_string(k) +
+                                             " nodes beyond the list");
+      for (int64_t j = 0; j < k; ++j) conn.push_back(v[i++]);
+      offsets.push_back(static_cast<int64_t>(conn.size()));
+    }
+    if (key == "polygons") types.assign(n, -1);
+  }
+
+  // The OFFSETS and CONNECTIVITY arrays of the 5.1 layout, in either order.
+  void read_offsets_layout(long noff, long nconn) {
     const long header_line = sc.line_no();
     if (noff < 1) sc.fail("CELLS: the 5.1 layout needs at least one offset, found " + std::to_string(noff));
     for (int part = 0; part < 2; ++part) {
@@ -238,156 +322,113 @@ mesh::Mesh read_vtk(const std::string& path) {
     if (offsets.back() != static_cast<int64_t>(conn.size()))
       sc.fail_at(header_line, "OFFSETS: the last offset is " + std::to_string(offsets.back()) + ", but CONNECTIVITY has " +
                                   std::to_string(conn.size()) + " entries");
-  };
+  }
 
-  while (!sc.at_end()) {
-    std::string key = lower(sc.need_token("section keyword"));
-    if (key == "points") {
-      npts = sc.need_count("point count");
-      std::string type = sc.need_token("point data type");
-      if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
-      sc.rest_of_line();
-      pts = sc.numbers(static_cast<size_t>(3 * npts), type, binary, "POINTS");
-      if (binary) sc.end_binary();
-    } else if (key == "cells" || key == "polygons") {
-      long n = sc.need_count("cell count"), size = sc.need_count("cell list size");
-      sc.rest_of_line();
-      if (sc.at_end()) sc.fail("file ends after the CELLS header (truncated?)");
-      // VTK 5.1 layout: "CELLS noffsets nconn" followed by OFFSETS and CONNECTIVITY arrays.
-      {
-        Scanner probe = sc;
-        std::string t = lower(probe.token());
-        if (t == "offsets") {
-          read_offsets_layout(n, size);
-          if (key == "polygons") types.assign(n - 1, -1);
-          continue;
-        }
-      }
-      cell_lines = LineIndex();
-      auto v = sc.integers(static_cast<size_t>(size), "int", binary, "CELLS", cell_lines);
-      if (binary) sc.end_binary();
-      offsets.assign(1, 0);
-      conn.clear();
-      classic_cells = true;
-      size_t i = 0;
-      for (long c = 0; c < n; ++c) {
-        if (i >= v.size()) sc.fail("CELLS: list ends at cell " + std::to_string(c) + " of " + std::to_string(n));
-        const int64_t k = v[i++];
-        if (k < 0 || k > static_cast<int64_t>(v.size() - i))
-          sc.fail_at(cell_lines.at(i - 1), "CELLS: cell " + std::to_string(c) + " claims " + std::to_string(k) +
-                                               " nodes beyond the list");
-        for (int64_t j = 0; j < k; ++j) conn.push_back(v[i++]);
-        offsets.push_back(static_cast<int64_t>(conn.size()));
-      }
-      if (key == "polygons") types.assign(n, -1);
-    } else if (key == "cell_types") {
-      types_line = sc.line_no();
-      long n = sc.need_count("cell type count");
-      sc.rest_of_line();
-      type_lines = LineIndex();
-      types = sc.integers(static_cast<size_t>(n), "int", binary, "CELL_TYPES", type_lines);
-      if (binary) sc.end_binary();
-    } else if (key == "cell_data" || key == "point_data") {
-      long n = sc.need_count("attribute count");
-      attr = key == "cell_data" ? CellData : PointData;
-      if (attr == CellData) ncell_data = n;
-      else if (n != npts) sc.fail("POINT_DATA count " + std::to_string(n) + " differs from POINTS " + std::to_string(npts));
-      sc.rest_of_line();
-    } else if (key == "scalars" || key == "vectors" || key == "normals" || key == "tensors" ||
-               key == "texture_coordinates" || key == "color_scalars") {
-      if (attr == None) sc.fail(key + " outside CELL_DATA/POINT_DATA");
+  void read_cell_types() {
+    types_line = sc.line_no();
+    long n = sc.need_count("cell type count");
+    sc.rest_of_line();
+    type_lines = LineIndex();
+    types = sc.integers(static_cast<size_t>(n), "int", binary, "CELL_TYPES", type_lines);
+    if (binary) sc.end_binary();
+  }
+
+  // CELL_DATA or POINT_DATA: the arrays that follow belong to the cells or to the points.
+  void read_attribute_header(const std::string& key) {
+    long n = sc.need_count("attribute count");
+    attr = key == "cell_data" ? CellData : PointData;
+    if (attr == CellData) ncell_data = n;
+    else if (n != npts) sc.fail("POINT_DATA count " + std::to_string(n) + " differs from POINTS " + std::to_string(npts));
+    sc.rest_of_line();
+  }
+
+  // An attribute array (SCALARS, VECTORS, ...); a one-component cell array with a region name is
+  // kept as the region ids when its name ranks before the one kept so far.
+  void read_attribute(const std::string& key) {
+    if (attr == None) sc.fail(key + " outside CELL_DATA/POINT_DATA");
+    std::string name = sc.need_token("array name");
+    long ncomp = 1;
+    std::string type = "float";
+    if (key == "color_scalars") { ncomp = sc.need_count("component count"); type = binary ? "unsigned_char" : "float"; }
+    else if (key == "texture_coordinates") { ncomp = sc.need_count("dimension"); type = sc.need_token("data type"); }
+    else {
+      type = sc.need_token("data type");
+      if (key == "vectors" || key == "normals") ncomp = 3;
+      if (key == "tensors") ncomp = 9;
+    }
+    if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
+    const long header_line = sc.line_no();
+    std::string rest = sc.rest_of_line();
+    if (key == "scalars" && !rest.empty()) {
+      long c;
+      if (!parse_int(rest, c) || c < 1 || c > 4) sc.fail_at(header_line, "SCALARS component count '" + rest + "' must be 1..4");
+      ncomp = c;
+    }
+    if (key == "scalars") {
+      // Optional LOOKUP_TABLE line.
+      Scanner probe = sc;
+      if (lower(probe.token()) == "lookup_table") { sc.token(); sc.rest_of_line(); }
+    }
+    long count = attr == CellData ? ncell_data : npts;
+    LineIndex lines;
+    auto v = sc.numbers(static_cast<size_t>(count * ncomp), type, binary, key.c_str(), &lines);
+    if (binary) sc.end_binary();
+    if (attr == CellData && ncomp == 1 && region_rank(name) < region_score) {
+      region = std::move(v);
+      region_lines = std::move(lines);
+      region_score = region_rank(name);
+    }
+  }
+
+  void read_lookup_table() {
+    sc.need_token("table name");
+    long n = sc.need_count("table size");
+    sc.rest_of_line();
+    sc.numbers(static_cast<size_t>(4 * n), binary ? "unsigned_char" : "float", binary, "LOOKUP_TABLE");
+    if (binary) sc.end_binary();
+  }
+
+  // FIELD arrays; as in read_attribute, a one-component cell array with a region name may give
+  // the region ids.
+  void read_field() {
+    sc.need_token("field name");
+    long narr = sc.need_count("array count");
+    sc.rest_of_line();
+    for (long a = 0; a < narr; ++a) {
       std::string name = sc.need_token("array name");
-      long ncomp = 1;
-      std::string type = "float";
-      if (key == "color_scalars") { ncomp = sc.need_count("component count"); type = binary ? "unsigned_char" : "float"; }
-      else if (key == "texture_coordinates") { ncomp = sc.need_count("dimension"); type = sc.need_token("data type"); }
-      else {
-        type = sc.need_token("data type");
-        if (key == "vectors" || key == "normals") ncomp = 3;
-        if (key == "tensors") ncomp = 9;
-      }
+      if (lower(name) == "null_array") continue;
+      long ncomp = sc.need_count("component count"), ntup = sc.need_count("tuple count");
+      std::string type = sc.need_token("data type");
+      if (lower(type) == "string") sc.fail("string field arrays are not supported");
       if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
-      const long header_line = sc.line_no();
-      std::string rest = sc.rest_of_line();
-      if (key == "scalars" && !rest.empty()) {
-        long c;
-        if (!parse_int(rest, c) || c < 1 || c > 4) sc.fail_at(header_line, "SCALARS component count '" + rest + "' must be 1..4");
-        ncomp = c;
-      }
-      if (key == "scalars") {
-        // Optional LOOKUP_TABLE line.
-        Scanner probe = sc;
-        if (lower(probe.token()) == "lookup_table") { sc.token(); sc.rest_of_line(); }
-      }
-      long count = attr == CellData ? ncell_data : npts;
+      sc.rest_of_line();
       LineIndex lines;
-      auto v = sc.numbers(static_cast<size_t>(count * ncomp), type, binary, key.c_str(), &lines);
+      auto v = sc.numbers(static_cast<size_t>(ncomp * ntup), type, binary, name.c_str(), &lines);
       if (binary) sc.end_binary();
-      if (attr == CellData && ncomp == 1 && region_rank(name) < region_score) {
+      if (attr == CellData && ncomp == 1 && ntup == ncell_data && region_rank(name) < region_score) {
         region = std::move(v);
         region_lines = std::move(lines);
         region_score = region_rank(name);
       }
-    } else if (key == "lookup_table") {
-      sc.need_token("table name");
-      long n = sc.need_count("table size");
-      sc.rest_of_line();
-      sc.numbers(static_cast<size_t>(4 * n), binary ? "unsigned_char" : "float", binary, "LOOKUP_TABLE");
-      if (binary) sc.end_binary();
-    } else if (key == "field") {
-      sc.need_token("field name");
-      long narr = sc.need_count("array count");
-      sc.rest_of_line();
-      for (long a = 0; a < narr; ++a) {
-        std::string name = sc.need_token("array name");
-        if (lower(name) == "null_array") continue;
-        long ncomp = sc.need_count("component count"), ntup = sc.need_count("tuple count");
-        std::string type = sc.need_token("data type");
-        if (lower(type) == "string") sc.fail("string field arrays are not supported");
-        if (binary) sc.type_size(type);  // an unknown binary type is the header line's error
+      // VTK 9 may follow an array by a METADATA block ending at an empty line.
+      Scanner probe = sc;
+      if (lower(probe.token()) == "metadata") {
+        sc.token();
         sc.rest_of_line();
-        LineIndex lines;
-        auto v = sc.numbers(static_cast<size_t>(ncomp * ntup), type, binary, name.c_str(), &lines);
-        if (binary) sc.end_binary();
-        if (attr == CellData && ncomp == 1 && ntup == ncell_data && region_rank(name) < region_score) {
-          region = std::move(v);
-          region_lines = std::move(lines);
-          region_score = region_rank(name);
-        }
-        // VTK 9 may follow an array by a METADATA block ending at an empty line.
-        Scanner probe = sc;
-        if (lower(probe.token()) == "metadata") {
-          sc.token();
-          sc.rest_of_line();
-          while (!sc.at_end() && !sc.line().empty()) {}
-        }
+        while (!sc.at_end() && !sc.line().empty()) {}
       }
-    } else if (key == "metadata") {
-      sc.rest_of_line();
-      while (!sc.at_end() && !sc.line().empty()) {}
-    } else if (key == "vertices" || key == "lines" || key == "triangle_strips") {
-      sc.fail("POLYDATA " + key + " are not supported: only polygons (triangles, quads)");
-    } else {
-      sc.fail("unknown section '" + key + "'");
     }
   }
 
-  if (npts < 0) sc.fail("no POINTS section");
-  if (offsets.empty()) sc.fail("no CELLS section");
-  const long ncells = static_cast<long>(offsets.size()) - 1;
-  if (types.size() != static_cast<size_t>(ncells))
-    sc.fail_at(types_line ? types_line : sc.line_no(), "CELL_TYPES count " + std::to_string(types.size()) +
-                                                           " differs from CELLS count " + std::to_string(ncells));
-  if (!region.empty() && static_cast<long>(region.size()) != ncells) region.clear();
-
   // Line of node j of cell c (j = -1: the cell's start).
-  auto cell_line = [&](long c, long j) {
+  long cell_line(long c, long j) const {
     if (classic_cells) return cell_lines.at(static_cast<size_t>(offsets[c] + c + 1 + j));
     if (j < 0 || offsets[c] + j >= static_cast<int64_t>(conn.size())) return offset_lines.at(static_cast<size_t>(c + 1));
     return cell_lines.at(static_cast<size_t>(offsets[c] + j));
-  };
-  mesh::MeshBuilder b;
-  for (long c = 0; c < ncells; ++c) {
+  }
+
+  // Cell c into the builder, after checking its nodes, type and region id.
+  void add_cell(mesh::MeshBuilder& b, long c) {
     const long k = static_cast<long>(offsets[c + 1] - offsets[c]);
     int n[8];
     if (k < 3 || k > 8) sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
@@ -435,10 +476,32 @@ mesh::Mesh read_vtk(const std::string& path) {
       b.add(ct, n, rid);
     }
   }
-  Eigen::MatrixXd V(npts, 3);
-  for (long i = 0; i < npts; ++i)
-    for (int k = 0; k < 3; ++k) V(i, k) = pts[3 * i + k];
-  return b.finish(std::move(V));
+
+  Scanner& sc;
+  const bool binary;
+  std::vector<double> pts;
+  long npts = -1;
+  std::vector<int64_t> offsets, conn;  // cell i uses conn[offsets[i] .. offsets[i+1])
+  std::vector<int64_t> types;
+  std::vector<double> region;
+  // Where the values came from, for messages: cell lists (classic layout: count, then nodes;
+  // 5.1 layout: the connectivity array), offsets (5.1), cell types, region ids.
+  LineIndex cell_lines, offset_lines, type_lines, region_lines;
+  bool classic_cells = true;
+  long types_line = 0;
+  int region_score = 1000;
+  long ncell_data = -1;
+  enum { None, PointData, CellData } attr = None;
+};
+
+}  // namespace
+
+mesh::Mesh read_vtk(const std::string& path) {
+  const std::string text = load_file(path);
+  Scanner sc(path, text);
+  VtkReader reader(sc, read_header(sc));
+  reader.read_sections();
+  return reader.build();
 }
 
 namespace {

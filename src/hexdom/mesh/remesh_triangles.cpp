@@ -95,21 +95,21 @@ class TriangleGeometry : public remesh::RemeshGeometry {
 
 std::string vertex_pair(int a, int b) { return "(" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ")"; }
 
-}  // namespace
-
-SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions& options) {
-  const Eigen::MatrixXd& V = s.V;
-  const Eigen::MatrixXi& F = s.F;
-  const int nv = static_cast<int>(V.rows()), nt = static_cast<int>(F.rows());
-  if (nt == 0) throw InputError("remesh: the surface has no triangles");
-  if (s.patch.size() != nt)
-    throw InputError("remesh: " + std::to_string(s.patch.size()) + " face ids for " + std::to_string(nt) + " triangles");
+/// The target edge length: the option's, or for 0 the bounding-box diagonal / 30. InputError for
+/// a size that is negative or not finite, or a surface without extent.
+double target_size(const Eigen::MatrixXd& V, const RemeshTrianglesOptions& options) {
   double size = options.size;
   if (!(size >= 0) || !std::isfinite(size)) throw InputError("remesh: the size must be positive");
   if (size == 0) size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm() / 30.0;
   if (!(size > 0)) throw InputError("remesh: the surface has no extent");
+  return size;
+}
 
-  // Closed, 2-manifold, consistently oriented: every directed edge once, its reverse once.
+/// The triangle of each directed edge. InputError unless the surface is closed, 2-manifold and
+/// consistently oriented (every directed edge once, its reverse once), with valid vertex indices
+/// and no zero-area triangle.
+std::unordered_map<EdgeKey, int> directed_edges(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  const int nv = static_cast<int>(V.rows()), nt = static_cast<int>(F.rows());
   std::unordered_map<EdgeKey, int> directed;  // directed edge -> triangle
   directed.reserve(3 * nt);
   for (int t = 0; t < nt; ++t) {
@@ -130,15 +130,29 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
     if (!directed.count(key(b, a)))
       throw InputError("remesh: the surface is open: edge " + vertex_pair(a, b) + " has one triangle");
   }
+  return directed;
+}
 
-  // Feature edges: between two face ids, or (feature angle) sharper than the angle. The faces the
-  // remesher works on are the regions of one id that feature edges bound, so that a sharp edge
-  // inside a part is a curve between two faces, as a CAD edge is.
+/// Feature edges, the faces they bound and the corners where they meet.
+struct Features {
+  std::vector<int> face;                       ///< per triangle: its face (region)
+  std::vector<int> ids;                        ///< per face: its input id
+  std::vector<std::vector<int>> feature_nb;    ///< per vertex: its neighbours along feature edges
+  std::vector<std::vector<int>> faces_at;      ///< per vertex: the faces around it
+  std::vector<char> corner;                    ///< per vertex
+};
+
+// Feature edges: between two face ids, or (feature angle) sharper than the angle. The faces the
+// remesher works on are the regions of one id that feature edges bound, so that a sharp edge
+// inside a part is a curve between two faces, as a CAD edge is.
+Features find_features(const SurfaceMesh& s, const std::unordered_map<EdgeKey, int>& directed, double cos_feature) {
+  const Eigen::MatrixXd& V = s.V;
+  const Eigen::MatrixXi& F = s.F;
+  const int nv = static_cast<int>(V.rows()), nt = static_cast<int>(F.rows());
   auto unit_normal = [&](int t) -> Eigen::Vector3d {
     const Eigen::Vector3d a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
     return (b - a).cross(c - a).normalized();
   };
-  const double cos_feature = options.feature_angle > 0 ? std::cos(options.feature_angle * 3.14159265358979323846 / 180) : -2;
   std::vector<std::pair<int, int>> feature_edges;
   std::vector<int> parent(nt);
   for (int t = 0; t < nt; ++t) parent[t] = t;
@@ -155,35 +169,43 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
     else
       parent[find(t)] = find(u);
   }
-  std::vector<int> face(nt, -1), ids;  // region per triangle; the input id per region
+  Features ft;
+  ft.face.assign(nt, -1);  // region per triangle; the input id per region
   {
     std::unordered_map<int, int> region;
     for (int t = 0; t < nt; ++t) {
-      auto [it, fresh] = region.emplace(find(t), static_cast<int>(ids.size()));
-      if (fresh) ids.push_back(s.patch(t));
-      face[t] = it->second;
+      auto [it, fresh] = region.emplace(find(t), static_cast<int>(ft.ids.size()));
+      if (fresh) ft.ids.push_back(s.patch(t));
+      ft.face[t] = it->second;
     }
   }
-  std::vector<std::vector<int>> feature_nb(nv);
-  for (const auto& [a, b] : feature_edges) feature_nb[a].push_back(b), feature_nb[b].push_back(a);
-  std::vector<std::vector<int>> faces_at(nv);
+  ft.feature_nb.resize(nv);
+  for (const auto& [a, b] : feature_edges) ft.feature_nb[a].push_back(b), ft.feature_nb[b].push_back(a);
+  ft.faces_at.resize(nv);
   for (int t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
-      auto& fa = faces_at[F(t, k)];
-      if (std::find(fa.begin(), fa.end(), face[t]) == fa.end()) fa.push_back(face[t]);
+      auto& fa = ft.faces_at[F(t, k)];
+      if (std::find(fa.begin(), fa.end(), ft.face[t]) == fa.end()) fa.push_back(ft.face[t]);
     }
-  std::vector<char> corner(nv, 0);
+  ft.corner.assign(nv, 0);
   for (int v = 0; v < nv; ++v) {
-    corner[v] = (!feature_nb[v].empty() && feature_nb[v].size() != 2) || faces_at[v].size() >= 3;
-    if (!corner[v] && feature_nb[v].size() == 2 && cos_feature > -2) {
-      const Eigen::Vector3d in = (V.row(v) - V.row(feature_nb[v][0])).normalized();
-      const Eigen::Vector3d out = (V.row(feature_nb[v][1]) - V.row(v)).normalized();
-      corner[v] = in.dot(out) < cos_feature;
+    const std::vector<int>& nb = ft.feature_nb[v];
+    ft.corner[v] = (!nb.empty() && nb.size() != 2) || ft.faces_at[v].size() >= 3;
+    if (!ft.corner[v] && nb.size() == 2 && cos_feature > -2) {
+      const Eigen::Vector3d in = (V.row(v) - V.row(nb[0])).normalized();
+      const Eigen::Vector3d out = (V.row(nb[1]) - V.row(v)).normalized();
+      ft.corner[v] = in.dot(out) < cos_feature;
     }
   }
+  return ft;
+}
 
-  // Chains from corner to corner, then the loops that have no corner (one of their vertices
-  // becomes one).
+// Chains from corner to corner, then the loops that have no corner (one of their vertices
+// becomes one).
+std::vector<Chain> feature_chains(const Eigen::MatrixXd& V, Features& ft) {
+  const int nv = static_cast<int>(V.rows());
+  const std::vector<std::vector<int>>& feature_nb = ft.feature_nb;
+  std::vector<char>& corner = ft.corner;
   std::vector<Chain> chains;
   std::unordered_map<EdgeKey, int> edge_chain;  // undirected (min, max) -> chain
   auto walk = [&](int start, int next) {
@@ -211,22 +233,35 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
         corner[v] = 1;
         walk(v, w);
       }
+  return chains;
+}
 
+/// The input vertices as the remesher's: corners (each with the length of its shortest chain),
+/// curve vertices (chain and arc length along it) and face vertices.
+struct Vertices {
+  std::vector<RVertex> RV;
+  std::vector<double> corner_size;  ///< per corner
+};
+
+Vertices remesh_vertices(const Eigen::MatrixXd& V, const Features& ft, const std::vector<Chain>& chains) {
+  const int nv = static_cast<int>(V.rows());
+  Vertices out;
+  std::vector<RVertex>& RV = out.RV;
+  std::vector<double>& corner_size = out.corner_size;
   std::vector<int> corner_id(nv, -1);
-  std::vector<double> corner_size;
-  std::vector<RVertex> RV(nv);
+  RV.resize(nv);
   for (int v = 0; v < nv; ++v) {
     RV[v].p = V.row(v);
-    if (corner[v]) {
+    if (ft.corner[v]) {
       corner_id[v] = static_cast<int>(corner_size.size());
       corner_size.push_back(std::numeric_limits<double>::infinity());
       RV[v].kind = Kind::Corner;
       RV[v].owner = corner_id[v];
-    } else if (!feature_nb[v].empty()) {
+    } else if (!ft.feature_nb[v].empty()) {
       RV[v].kind = Kind::Curve;
     } else {
       RV[v].kind = Kind::Face;
-      RV[v].owner = faces_at[v][0];
+      RV[v].owner = ft.faces_at[v][0];
     }
   }
   for (int c = 0; c < static_cast<int>(chains.size()); ++c) {
@@ -239,6 +274,28 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
       else corner_size[corner_id[v]] = std::min(corner_size[corner_id[v]], ch.length);
     }
   }
+  return out;
+}
+
+}  // namespace
+
+SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions& options) {
+  const Eigen::MatrixXd& V = s.V;
+  const Eigen::MatrixXi& F = s.F;
+  const int nt = static_cast<int>(F.rows());
+  if (nt == 0) throw InputError("remesh: the surface has no triangles");
+  if (s.patch.size() != nt)
+    throw InputError("remesh: " + std::to_string(s.patch.size()) + " face ids for " + std::to_string(nt) + " triangles");
+  const double size = target_size(V, options);
+  const std::unordered_map<EdgeKey, int> directed = directed_edges(V, F);
+
+  const double cos_feature = options.feature_angle > 0 ? std::cos(options.feature_angle * 3.14159265358979323846 / 180) : -2;
+  Features ft = find_features(s, directed, cos_feature);
+  const std::vector<Chain> chains = feature_chains(V, ft);
+  Vertices rv = remesh_vertices(V, ft, chains);
+  const std::vector<int>& face = ft.face;
+  const std::vector<int>& ids = ft.ids;
+  const std::vector<double>& corner_size = rv.corner_size;
 
   std::vector<std::array<int, 3>> RF(nt);
   for (int t = 0; t < nt; ++t) RF[t] = {F(t, 0), F(t, 1), F(t, 2)};
@@ -248,7 +305,7 @@ SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions&
   rp.max_size = size;
   rp.iterations = options.iterations;
   rp.log = options.log;
-  remesh::SurfaceRemesher remesher(std::move(RV), RF, face, geometry, rp);
+  remesh::SurfaceRemesher remesher(std::move(rv.RV), RF, face, geometry, rp);
   for (int c = 0; c < static_cast<int>(chains.size()); ++c)
     if (chains[c].vertices.size() == 2) remesher.set_corner_edge(chains[c].vertices[0], chains[c].vertices[1], c);
   remesher.run();
