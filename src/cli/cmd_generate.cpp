@@ -22,9 +22,6 @@ void add_generate(CLI::App& app) {
   cmd->add_flag("--untangle,!--no-untangle", a->opt.untangle,
                 "after the plain relaxation, untangle the cells it leaves inverted (boundary nodes may slide within "
                 "the surface); on by default, --no-untangle turns it off");
-  cmd->add_option("--volume-slide", a->opt.volume_slide,
-                  "experiment: sweeps sliding boundary nodes within the surface to enlarge the enclosed volume (0: off)")
-      ->capture_default_str();
   cmd->add_option("--threads", a->opt.threads, "threads for the patch maps (0: one per hardware thread; same output)")
       ->capture_default_str();
   cmd->add_option("--report", a->report, "also write the quality report as JSON to this file");

@@ -102,13 +102,9 @@ _VOLUME_DEFECT = pytest.mark.xfail(
     "level 2 to 3 and 3.89 / 3.82 from 3 to 4: chordal O(h^2). No patch holds more than 13% of it and "
     "boundary-face areas vary by a median factor of 1.7 / 1.8 within a patch, so redistributing boundary "
     "nodes cannot reach 1%; a tube spanned by four block faces is a 16-gon at level 2 (2.6% short). "
-    "Sliding the boundary nodes within the surface (on the input triangles, within 0.45 of a lattice step) to "
-    "maximise the enclosed volume (hexdom generate --volume-slide 100, a volume upper bound for this node "
-    "count since it also bulges concave parts outward: rockerarm goes from -0.51% to +1.53%) reaches only "
-    "-1.85% on fertility with every moved node's cells kept >= min(0.3, their worst), -1.73% with no quality "
-    "floor, and -0.70% on ant, but lowers the mean hex SJ from 0.73 to 0.63 / 0.79 to 0.69, so it is not "
-    "part of generation. Level 3 is within 1%, see test_level3_volume_of_curved_models; everything else "
-    "holds at level 2")
+    "Sliding the boundary nodes within the surface to enlarge the volume does not reach 1% on fertility either "
+    "and costs 0.1 of mean hex SJ (docs/experiments/volume-slide.md). Level 3 is within 1%, see "
+    "test_level3_volume_of_curved_models; everything else holds at level 2")
 
 
 @pytest.mark.parametrize("model", MODELS)
