@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <map>
 
+#include "hexdom/common/error.h"
+#include "hexdom/mesh/cell_faces.h"
+
 namespace hexdom::polycube {
 
 namespace {
@@ -30,6 +33,22 @@ std::string kind_name(MatchProblemKind kind) {
     case MatchProblemKind::PatchOnManyFaces: return "patch_on_many_faces";
   }
   return "?";
+}
+
+std::vector<BlockFace> block_faces(const mesh::Mesh& structure) {
+  std::vector<BlockFace> out;
+  for (int b = 0; b < structure.num_cells(); ++b) {
+    if (!mesh::is_volume(structure.type(b)))
+      throw GeometryError("structure element " + std::to_string(b + 1) + " is a " + mesh::type_name(structure.type(b)) +
+                          ", not a hex, prism or tet block");
+    const auto [faces, n] = mesh::cell_faces(structure.type(b));
+    for (int f = 0; f < n; ++f) {
+      BlockFace bf{b, f, {}};
+      for (int i = 0; i < faces[f].n; ++i) bf.vertices.push_back(structure.cells(b, faces[f].v[i]));
+      out.push_back(std::move(bf));
+    }
+  }
+  return out;
 }
 
 FaceMatch match_faces_to_patches(const std::vector<BlockFace>& faces, const std::vector<std::vector<int>>& patch_corners) {

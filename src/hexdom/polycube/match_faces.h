@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdom/mesh/mesh.h"
+
 namespace hexdom::polycube {
 
 /// One face of one block.
@@ -47,6 +49,10 @@ struct FaceMatch {
   std::vector<MatchProblem> problems;
   bool ok() const { return problems.empty(); }
 };
+
+/// Every face of every block of `structure` (hex, prism and tet blocks), block by block in
+/// mesh::cell_faces order, vertices outward. Throws GeometryError naming a block that is no volume cell.
+std::vector<BlockFace> block_faces(const mesh::Mesh& structure);
 
 /// Matches `faces` (every face of every block) to patches given by their corners (structure vertex
 /// ids, any order; patch p = patch_corners[p]). Faces match when their sorted vertices are equal.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 
+#include "hexdom/common/error.h"
 #include "hexdom/mesh/cell_faces.h"
 
 using namespace hexdom;
@@ -143,4 +144,21 @@ TEST(MatchFaces, ProblemKindsHaveNames) {
   EXPECT_EQ(polycube::kind_name(polycube::MatchProblemKind::FaceOnNoPatch), "face_on_no_patch");
   EXPECT_EQ(polycube::kind_name(polycube::MatchProblemKind::PatchOnNoFace), "patch_on_no_face");
   EXPECT_EQ(polycube::kind_name(polycube::MatchProblemKind::PatchOnManyFaces), "patch_on_many_faces");
+}
+
+TEST(MatchFaces, BlockFacesOfAStructureMatchItsPatches) {
+  mesh::MeshBuilder mb;
+  mb.add(mesh::CellType::Hex, kA.data(), 1);
+  mb.add(mesh::CellType::Hex, kB.data(), 2);
+  const mesh::Mesh T = mb.finish(Eigen::MatrixXd::Zero(12, 3));
+  const auto faces = polycube::block_faces(T);
+  ASSERT_EQ(faces.size(), 12u);
+  EXPECT_EQ(faces[6].block, 1);
+  EXPECT_EQ(faces[6].face, 0);
+  const TwoHexes t;
+  EXPECT_TRUE(polycube::match_faces_to_patches(faces, t.patches).ok());
+  mesh::MeshBuilder quad;
+  const int q[4] = {0, 1, 2, 3};
+  quad.add(mesh::CellType::Quad, q, 1);
+  EXPECT_THROW(polycube::block_faces(quad.finish(Eigen::MatrixXd::Zero(4, 3))), GeometryError);
 }
