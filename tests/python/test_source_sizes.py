@@ -15,12 +15,6 @@ ALLOWED = {
     "src/hexdom/generation/generate.cpp": "not split yet (issue 18)",
     "src/hexdom/generation/generate.cpp:untangle_nodes": "not split yet (issue 18)",
     "src/hexdom/generation/generate.cpp:generate": "not split yet (issue 18)",
-    "src/hexdom/segmentation/check_patches.cpp:check_patches": "not split yet (issue 18)",
-    "src/hexdom/autopolycube/apex_blocks.cpp:collapse_apexes": "not split yet (issue 18)",
-    "src/hexdom/autopolycube/autopolycube.cpp:autopolycube": "not split yet (issue 18)",
-    "src/hexdom/autopolycube/chart_graph.cpp:chart_graph": "not split yet (issue 18)",
-    "src/hexdom/autopolycube/collapse_slivers.cpp:collapse_slivers": "not split yet (issue 18)",
-    "src/hexdom/autopolycube/cut_along_grid.cpp:cut_along_grid": "not split yet (issue 18)",
 }
 
 _CONTROL = re.compile(r"\s*(if|for|while|switch|else|do|return|catch|try)\b")

@@ -75,7 +75,9 @@ TEST(BoundaryGraph, CubeHasSixRegionsEightCornersTwelveCurves) {
     EXPECT_EQ(g.triangles[r].size(), 18u);
     for (int f : g.triangles[r]) EXPECT_EQ(g.region(f), r);
     EXPECT_EQ(g.label[r], s.patch(g.triangles[r][0]));
-    if (r > 0) EXPECT_LT(g.triangles[r - 1][0], g.triangles[r][0]);
+    if (r > 0) {
+      EXPECT_LT(g.triangles[r - 1][0], g.triangles[r][0]);
+    }
     tris += static_cast<int>(g.triangles[r].size());
   }
   EXPECT_EQ(tris, s.F.rows());
