@@ -280,6 +280,19 @@ def polycube_boundary(surface):
                             r["faces"], Mesh(*r["shells"]))
 
 
+def match_faces_to_patches(faces, patch_corners):
+    """Matches the faces of a structure's blocks to the patches by their corners (the core's
+    polycube::match_faces_to_patches). faces: (block, vertices) pairs, every face of every block;
+    patch_corners: each patch's corner vertices. Returns (problems, face_of_patch,
+    patch_of_face): problems as dicts (kind: "patches_share_corners", "face_in_many_blocks",
+    "face_on_no_patch", "patch_on_no_face" or "patch_on_many_faces"; patches: 0-based; faces:
+    indices into ``faces``, every use of the face; vertices: sorted; message), then per patch
+    the index of its boundary face and per face its patch (-1: none)."""
+    r = _hexdom.match_faces_to_patches([(int(b), [int(v) for v in vs]) for b, vs in faces],
+                                       [[int(v) for v in c] for c in patch_corners])
+    return r["problems"], r["face_of_patch"], r["patch_of_face"]
+
+
 def number_patches(surface):
     """Patch map with one id per connected region, 1..R (order of first triangle)."""
     return _hexdom.number_patches(surface.V, surface.F, surface.patch)

@@ -33,8 +33,8 @@ _PERMUTATIONS = {}
 @dataclass
 class Problem:
     """One reason the structure cannot be meshed: kind ("uncovered_patch", "patch_covered_twice",
-    "open_face", "face_shared", "inverted", "overlap", "duplicate_block", "unused_vertex",
-    "no_boundary"), a message, and what to highlight: 0-based blocks and vertices, 1-based
+    "patches_share_corners", "open_face", "face_shared", "inverted", "overlap",
+    "duplicate_block", "unused_vertex", "no_boundary"), a message, and what to highlight: 0-based blocks and vertices, 1-based
     patches, faces as vertex lists."""
 
     kind: str
@@ -531,10 +531,7 @@ class PolycubeBuilder(UndoableEditor):
         if self.boundary is None:
             problems.append(Problem("no_boundary", "no polycube boundary to fill{}".format(
                 ": " + self.boundary_error if self.boundary_error else " (no segmentation)")))
-        uses = {}
-        for i, (t, b) in enumerate(self.blocks):
-            for f in block_faces(t, b):
-                uses.setdefault(face_key(f), []).append((i, f))
+        faces = [(i, list(f)) for i, (t, b) in enumerate(self.blocks) for f in block_faces(t, b)]
         seen = {}
         for i, (t, b) in enumerate(self.blocks):
             key = face_key(b)
@@ -546,36 +543,7 @@ class PolycubeBuilder(UndoableEditor):
                     "duplicate_block", "blocks {} and {} have the same vertices".format(
                         seen[key] + 1, i + 1), blocks=[seen[key], i], vertices=list(b)))
             seen.setdefault(key, i)
-        for key, face in self.patch_faces.items():
-            used = uses.get(key, [])
-            corners = [int(c) for c in face["corners"]]
-            name = "patch {} (part {})".format(face["patch"], face["id"])
-            if not used:
-                problems.append(Problem(
-                    "uncovered_patch", "{} is covered by no block face (corners {})".format(
-                        name, " ".join(str(c) for c in corners)),
-                    patches=[face["patch"]], vertices=corners, faces=[corners]))
-            elif len(used) > 1:
-                problems.append(Problem(
-                    "patch_covered_twice", "{} is covered by {} block faces (blocks {})".format(
-                        name, len(used), ", ".join(str(i + 1) for i, _ in used)),
-                    blocks=[i for i, _ in used], patches=[face["patch"]], vertices=corners,
-                    faces=[corners]))
-        for key, used in uses.items():
-            if key in self.patch_faces:
-                continue
-            face = used[0][1]
-            text = " ".join(str(v) for v in face)
-            if len(used) == 1 and self.boundary is not None:
-                problems.append(Problem(
-                    "open_face", "face ({}) of block {} is on no patch and in no other block"
-                    .format(text, used[0][0] + 1), blocks=[used[0][0]], vertices=list(face),
-                    faces=[face]))
-            elif len(used) > 2:
-                problems.append(Problem(
-                    "face_shared", "face ({}) is shared by {} blocks ({})".format(
-                        text, len(used), ", ".join(str(i + 1) for i, _ in used)),
-                    blocks=[i for i, _ in used], vertices=list(face), faces=[face]))
+        problems += self._match_problems(faces)
         if self.blocks:
             sj = self.block_jacobians()
             for i, value in enumerate(sj.tolist()):
@@ -592,6 +560,58 @@ class PolycubeBuilder(UndoableEditor):
                     "unused_vertex", "interior vertex {} is used by no block (OK drops it)"
                     .format(v), vertices=[v]))
         return problems
+
+    def _match_problems(self, faces):
+        """The core's matching of the block faces ``faces`` ((block, vertices) pairs) to the
+        patches (core.match_faces_to_patches) as Problems: the patches' problems in patch
+        order, then the faces' in the order of their first block face."""
+        patches = list(self.boundary.faces) if self.boundary is not None else []
+        found, _, _ = core.match_faces_to_patches(faces, [p["corners"] for p in patches])
+
+        def name(p):
+            return "patch {} (part {})".format(patches[p]["patch"], patches[p]["id"])
+
+        on_patches, on_faces = [], []
+        for m in found:
+            uses = m["faces"]
+            blocks = [faces[i][0] for i in uses]
+            if m["patches"]:
+                p = m["patches"][-1]
+                corners = [int(c) for c in patches[p]["corners"]]
+                patch = [patches[q]["patch"] for q in m["patches"]]
+                if m["kind"] == "patches_share_corners":
+                    problem = Problem(
+                        "patches_share_corners", "{} and {} have the same corners ({})".format(
+                            name(m["patches"][0]), name(p), " ".join(str(c) for c in corners)),
+                        patches=patch, vertices=corners, faces=[corners])
+                elif m["kind"] == "patch_on_no_face":
+                    problem = Problem(
+                        "uncovered_patch", "{} is covered by no block face (corners {})".format(
+                            name(p), " ".join(str(c) for c in corners)),
+                        patches=patch, vertices=corners, faces=[corners])
+                else:
+                    problem = Problem(
+                        "patch_covered_twice", "{} is covered by {} block faces (blocks {})".format(
+                            name(p), len(uses), ", ".join(str(i + 1) for i in blocks)),
+                        blocks=blocks, patches=patch, vertices=corners, faces=[corners])
+                on_patches.append((p, problem))
+                continue
+            face = faces[uses[0]][1]
+            text = " ".join(str(v) for v in face)
+            if m["kind"] == "face_on_no_patch":
+                if self.boundary is None:
+                    continue
+                problem = Problem(
+                    "open_face", "face ({}) of block {} is on no patch and in no other block"
+                    .format(text, blocks[0] + 1), blocks=blocks, vertices=list(face), faces=[face])
+            else:
+                problem = Problem(
+                    "face_shared", "face ({}) is shared by {} blocks ({})".format(
+                        text, len(uses), ", ".join(str(i + 1) for i in blocks)),
+                    blocks=blocks, vertices=list(face), faces=[face])
+            on_faces.append((uses[0], problem))
+        return ([p for _, p in sorted(on_patches, key=lambda x: x[0])]
+                + [p for _, p in sorted(on_faces, key=lambda x: x[0])])
 
     def _overlaps(self):
         """Pairs of blocks whose insides meet, shared faces or not: points spread through each

@@ -16,6 +16,7 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame);
 void bind_segmentation(pybind11::module_& m);
+void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);
 void bind_auto(pybind11::module_& m);
 void bind_labels(pybind11::module_& m);

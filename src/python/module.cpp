@@ -163,6 +163,7 @@ PYBIND11_MODULE(_hexdom, m) {
   "Boundary nodes stay on the given surface (or the mesh's own boundary). Returns (V, cells, types, region).");
 
   python::bind_segmentation(m);
+  python::bind_polycube(m);
   python::bind_cad(m);
   python::bind_auto(m);
   python::bind_labels(m);

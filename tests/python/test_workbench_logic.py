@@ -378,6 +378,35 @@ def test_patches_covered_twice_and_faces_in_three_blocks_are_listed():
     assert [p.blocks for p in problems if p.kind == "overlap"] == [[0, 4]]
 
 
+def test_the_core_matcher_names_each_problem():
+    """core.match_faces_to_patches on one hex: its six faces are the six patches; a patch
+    dropped leaves an open face, a patch on no face and two patches with one set of corners
+    are listed, each naming its patches and faces."""
+    faces = [(0, list(f)) for f in polycube_building.block_faces(core.HEX, list(range(8)))]
+    patches = [sorted(f) for _, f in faces]
+    problems, face_of_patch, patch_of_face = core.match_faces_to_patches(faces, patches)
+    assert problems == [] and sorted(face_of_patch) == list(range(6))
+    assert [patch_of_face[face_of_patch[p]] for p in range(6)] == list(range(6))
+    problems, _, _ = core.match_faces_to_patches(faces, patches[1:] + [[0, 1, 8, 9]])
+    assert [p["kind"] for p in problems] == ["face_on_no_patch", "patch_on_no_face"]
+    assert problems[0]["faces"] == [0] and problems[1]["patches"] == [5]
+    assert "matches no patch" in problems[0]["message"]
+    problems, _, _ = core.match_faces_to_patches(faces, patches + [patches[2][::-1]])
+    assert [(p["kind"], p["patches"]) for p in problems] == [("patches_share_corners", [2, 6])]
+
+
+def test_patches_with_the_same_corners_are_a_problem():
+    b = PolycubeBuilder(core.read_surface(PATCHES))
+    b.import_structure(STRUCTURE)
+    twin = dict(b.boundary.faces[3], patch=99)
+    b.boundary.faces.append(twin)
+    b._problems = None
+    problems = b.problems()
+    assert [p.kind for p in problems] == ["patches_share_corners"]
+    assert problems[0].patches == [b.boundary.faces[3]["patch"], 99]
+    assert "have the same corners" in problems[0].message
+
+
 def test_interior_vertices_added_moved_deleted():
     b = PolycubeBuilder(core.read_surface(PATCHES))
     c = b.add_vertex_at_centroid([0, 1, 2])

@@ -8,6 +8,7 @@
 #include "hexdom/autopolycube/collapse_slivers.h"
 #include "hexdom/autopolycube/cut_triangles.h"
 #include "hexdom/common/format.h"
+#include "hexdom/polycube/match_faces.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/quality/metrics.h"
 #include "hexdom/segmentation/axis_labels.h"
@@ -194,58 +195,69 @@ std::vector<int> add_apex_caps(mesh::SurfaceMesh& s, const ApexCapOptions& opt) 
   return out;
 }
 
-CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vector<GP>& grid_of, mesh::SurfaceMesh& patches,
-                               const std::map<GP, int>& grid_vertex, const Eigen::MatrixXd& D, const std::vector<int>& apexes,
-                               LogCallback log_cb) {
-  CollapseApexes out;
-  out.apexes = static_cast<int>(apexes.size());
-  auto log = [&](const std::string& m) { if (log_cb) log_cb(0, m); };
-  if (apexes.empty()) return out;
-  const int nv = T.num_nodes(), nb = T.num_cells(), nsq = static_cast<int>(grid.squares.size());
-  const int nf = static_cast<int>(patches.F.rows());
-  for (int b = 0; b < nb; ++b)
-    if (T.type(b) != mesh::CellType::Hex) { log("apexes: left as hex blocks (the structure has blocks other than hexes)"); return out; }
-  for (int f = 0; f < nf; ++f)
-    if (patches.patch(f) < 1 || patches.patch(f) > nsq) { log("apexes: left as hex blocks (patches are not squares)"); return out; }
-  std::map<GP, int> vertex_of, block_of;
-  for (int v = 0; v < nv; ++v) vertex_of[grid_of[v]] = v;
-  std::vector<std::vector<int>> blocks_of(nv);
-  for (int b = 0; b < nb; ++b) {
-    GP lo = grid_of[T.cells(b, 0)];
-    for (int i = 0; i < 8; ++i) {
-      blocks_of[T.cells(b, i)].push_back(b);
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], grid_of[T.cells(b, i)][k]);
-    }
-    block_of[lo] = b;
-  }
-  std::vector<std::vector<int>> tris_of_square(nsq);
-  for (int f = 0; f < nf; ++f) tris_of_square[patches.patch(f) - 1].push_back(f);
-  std::vector<std::vector<int>> vtris(patches.V.rows());
+namespace {
+
+/// Grid point (i, j) at `level` along axis a, i along (a + 1) % 3 and j along (a + 2) % 3.
+GP grid_point(int a, int i, int j, int level) {
+  GP p{};
+  p[a] = level;
+  p[(a + 1) % 3] = i;
+  p[(a + 2) % 3] = j;
+  return p;
+}
+
+/// A column of blocks below a cap square, to the boundary square that ends it.
+struct Column {
+  int i = 0, j = 0, bottom = -1, far = 0;
+  std::vector<int> blocks, levels;  // levels: each block's lower grid level along the axis
+};
+
+/// What collapse_apexes looks up on the grid polycube: grid points, blocks and triangles.
+struct ApexContext {
+  const GridPolycube& gp;
+  int nv = 0, nb = 0, nsq = 0, nf = 0;
+  std::map<GP, int> vertex_of, block_of;      // grid point -> structure vertex; lower grid point -> block
+  std::vector<std::vector<int>> blocks_of;    // structure vertex -> blocks
+  std::vector<std::vector<int>> tris_of_square;
+  std::vector<std::vector<int>> vtris;        // patch vertex -> triangles
   std::map<std::pair<int, int>, int> tri_of_edge;  // directed edge -> triangle
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      vtris[patches.F(f, k)].push_back(f);
-      tri_of_edge[{patches.F(f, k), patches.F(f, (k + 1) % 3)}] = f;
+  std::vector<int> patch_vertex;              // structure vertex -> patch vertex (boundary grid points)
+
+  explicit ApexContext(const GridPolycube& g) : gp(g) {
+    const mesh::Mesh& T = gp.structure;
+    const mesh::SurfaceMesh& patches = gp.patches;
+    nv = T.num_nodes();
+    nb = T.num_cells();
+    nsq = static_cast<int>(gp.grid.squares.size());
+    nf = static_cast<int>(patches.F.rows());
+    for (int v = 0; v < nv; ++v) vertex_of[gp.grid_of[v]] = v;
+    blocks_of.resize(nv);
+    for (int b = 0; b < nb; ++b) {
+      GP lo = gp.grid_of[T.cells(b, 0)];
+      for (int i = 0; i < 8; ++i) {
+        blocks_of[T.cells(b, i)].push_back(b);
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], gp.grid_of[T.cells(b, i)][k]);
+      }
+      block_of[lo] = b;
     }
-  // Structure vertex -> patch vertex (boundary grid points).
-  std::vector<int> patch_vertex(nv, -1);
-  for (int v = 0; v < nv; ++v) {
-    auto it = grid_vertex.find(grid_of[v]);
-    if (it != grid_vertex.end()) patch_vertex[v] = it->second;
+    tris_of_square.resize(nsq);
+    for (int f = 0; f < nf; ++f) tris_of_square[patches.patch(f) - 1].push_back(f);
+    vtris.resize(patches.V.rows());
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        vtris[patches.F(f, k)].push_back(f);
+        tri_of_edge[{patches.F(f, k), patches.F(f, (k + 1) % 3)}] = f;
+      }
+    patch_vertex.assign(nv, -1);
+    for (int v = 0; v < nv; ++v) {
+      auto it = gp.grid_vertex.find(gp.grid_of[v]);
+      if (it != gp.grid_vertex.end()) patch_vertex[v] = it->second;
+    }
   }
 
-  State state;
-  state.rep.resize(nv);
-  for (int v = 0; v < nv; ++v) state.rep[v] = v;
-  state.X = T.V;
-  state.cells.resize(nb);
-  state.patch = patches.patch;
-  state.removed.assign(nf, 0);
-  state.next_patch = nsq + 1;
-  std::vector<int> apex_vertex_of(nv, -1);  // structure vertex -> the apex's patch vertex
-
-  // Every boundary face of the structure under `s` matches one patch by its corners.
-  auto matches = [&](const State& s, const std::vector<int>& apex_of, std::string* why) {
+  /// Every boundary face of the structure under `s` matches one patch by its corners.
+  bool matches(const State& s, const std::vector<int>& apex_of, std::string* why) const {
+    const mesh::SurfaceMesh& patches = gp.patches;
     mesh::SurfaceMesh surf;
     std::vector<std::array<int, 4>> F;
     for (int f = 0; f < nf; ++f)
@@ -273,18 +285,18 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
       *why = e.what();
       return false;
     }
-    std::map<std::vector<int>, int> face_count;
+    std::vector<polycube::BlockFace> faces;
     for (int b = 0; b < nb; ++b) {
       std::vector<Cell> cs = s.cells[b];
       if (cs.empty()) {
         Cell c{mesh::CellType::Hex, {}};
-        for (int i = 0; i < 8; ++i) c.second[i] = s.rep[T.cells(b, i)];
+        for (int i = 0; i < 8; ++i) c.second[i] = s.rep[gp.structure.cells(b, i)];
         cs.push_back(c);
       }
       for (const Cell& c : cs)
         for (const auto& vs : sorted_faces(c.first, c.second)) {
           if (std::adjacent_find(vs.begin(), vs.end()) != vs.end()) { *why = "a block with a collapsed face"; return false; }
-          ++face_count[vs];
+          faces.push_back({b, -1, vs});
         }
     }
     std::vector<std::vector<int>> patch_corners;
@@ -297,61 +309,25 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
         patch_corners.back().push_back(it->second);
       }
     }
-    return faces_match_patches(face_count, std::move(patch_corners), why);
-  };
+    const polycube::FaceMatch match = polycube::match_faces_to_patches(faces, patch_corners);
+    if (!match.ok()) *why = match.problems.front().message;
+    return match.ok();
+  }
 
-  double worst_before = 1e300, worst_after = 1e300;
-  for (int av : apexes) {
-    const std::string where = "apex at (" + fmt("%.4g, %.4g, %.4g", patches.V(av, 0), patches.V(av, 1), patches.V(av, 2)) + ")";
-    auto fail = [&](const std::string& why) { log(where + ": left as hex blocks under a cap (" + why + ")"); };
-    if (av < 0 || av >= patches.V.rows() || vtris[av].empty()) { fail("no such vertex"); continue; }
-    int chart = -1;
-    bool one = true;
-    for (int f : vtris[av]) {
-      const int c = grid.squares[patches.patch(f) - 1].chart;
-      one = one && (chart < 0 || c == chart) && !state.removed[f];
-      chart = c;
-    }
-    if (!one) { fail("its triangles lie on several charts"); continue; }
-    std::vector<int> cap;
-    for (int q = 0; q < nsq; ++q)
-      if (grid.squares[q].chart == chart) cap.push_back(q);
-    const GridSquare& s0 = grid.squares[cap.front()];
-    const int a = s0.axis, b = (a + 1) % 3, d = (a + 2) % 3, sg = s0.sign, plane = s0.plane;
-    bool flat = true;
-    for (int q : cap) flat = flat && grid.squares[q].axis == a && grid.squares[q].plane == plane && grid.squares[q].sign == sg;
-    if (!flat) { fail("a cap of several planes"); continue; }
-    auto gp = [&](int i, int j, int level) {
-      GP p{};
-      p[a] = level;
-      p[b] = i;
-      p[d] = j;
-      return p;
-    };
-    // The cap's corners collapse to one vertex at the apex.
-    std::set<int> cap_vertices;
+  /// The columns of blocks below the cap squares `cap` (axis a, sign sg, at `plane`), each ending at
+  /// a boundary square facing the other way, none touched by an earlier collapse; `tops` gets their
+  /// top blocks. False when a column does not end so.
+  bool find_columns(const std::vector<int>& cap, int a, int sg, int plane, const State& state, std::vector<Column>* columns,
+                    std::set<int>* tops) const {
+    const PolycubeGrid& grid = gp.grid;
     bool ok = true;
-    for (int q : cap)
-      for (int k = 0; k < 4; ++k) {
-        auto it = vertex_of.find(gp(grid.squares[q].i + (k & 1), grid.squares[q].j + (k >> 1), plane));
-        if (it == vertex_of.end()) ok = false;
-        else cap_vertices.insert(it->second);
-      }
-    if (!ok) { fail("a cap corner without a block vertex"); continue; }
-    // Columns of blocks below each cap square, to the boundary square that ends them.
-    struct Column {
-      int i = 0, j = 0, bottom = -1, far = 0;
-      std::vector<int> blocks, levels;  // levels: each block's lower grid level along the axis
-    };
-    std::vector<Column> columns;
-    std::set<int> tops;
     for (int q : cap) {
       Column c;
       c.i = grid.squares[q].i;
       c.j = grid.squares[q].j;
       int level = sg > 0 ? plane - 1 : plane;
       for (;;) {
-        auto it = block_of.find(gp(c.i, c.j, level));
+        auto it = block_of.find(grid_point(a, c.i, c.j, level));
         if (it == block_of.end()) break;
         c.blocks.push_back(it->second);
         c.levels.push_back(level);
@@ -362,30 +338,24 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
       auto sq = grid.square_of.find({a, c.far, c.i, c.j});
       if (sq == grid.square_of.end() || grid.squares[sq->second].sign != -sg) { ok = false; break; }
       c.bottom = sq->second;
-      tops.insert(c.blocks.front());
+      tops->insert(c.blocks.front());
       for (int blk : c.blocks)
         if (!state.cells[blk].empty()) ok = false;
-      columns.push_back(c);
+      columns->push_back(c);
     }
-    if (!ok) { fail("a column under the cap that does not end at a boundary square"); continue; }
-    for (int v : cap_vertices)
-      for (int blk : blocks_of[v])
-        if (!tops.count(blk)) ok = false;
-    if (!ok) { fail("a block beside the cap touches it"); continue; }
+    return ok;
+  }
 
-    State s = state;
-    const int apex_v = *cap_vertices.begin();
-    for (int v : cap_vertices) s.rep[v] = apex_v;
-    s.X.row(apex_v) = patches.V.row(av);
-    std::vector<int> apex_of = apex_vertex_of;
-    apex_of[apex_v] = av;
-    double before = 1e300, after = 1e300;
-    std::string why;
+  /// Each column's blocks become 2 tets (the top) and 2 prisms each (below) along the better
+  /// diagonal, and its end square splits along it, in `s`; the worst scaled Jacobian before and
+  /// after into *before / *after. Returns why it failed, or "".
+  std::string split_columns(const std::vector<Column>& columns, int a, int sg, int apex_v, State& s, double* before,
+                            double* after) const {
     for (const Column& c : columns) {
       for (int blk : c.blocks) {
-        before = std::min(before, quality::signed_sj(mesh::CellType::Hex, quality::cell_points(T, blk)));
+        *before = std::min(*before, quality::signed_sj(mesh::CellType::Hex, quality::cell_points(gp.structure, blk)));
       }
-      auto V = [&](int di, int dj, int level) { return vertex_of.at(gp(c.i + di, c.j + dj, level)); };
+      auto V = [&](int di, int dj, int level) { return vertex_of.at(grid_point(a, c.i + di, c.j + dj, level)); };
       // Two diagonals: (0,0)-(1,1) and (1,0)-(0,1); the better one that splits the end square.
       const int tri[2][2][3][2] = {{{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}},
                                    {{{1, 0}, {1, 1}, {0, 1}}, {{1, 0}, {0, 1}, {0, 0}}}};
@@ -413,11 +383,11 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
           best_cells = std::move(cells);
         }
       }
-      const int A = grid_vertex.at(gp(c.i + tri[best_o][0][0][0], c.j + tri[best_o][0][0][1], c.far));
-      const int C = grid_vertex.at(gp(c.i + tri[best_o][0][2][0], c.j + tri[best_o][0][2][1], c.far));
-      if (!split_square(patches, D, a, tris_of_square[c.bottom], A, C, c.bottom + 1, s.next_patch, s)) best_cells.clear();
-      if (best_cells.empty()) { why = "the square ending a column does not split along its diagonal"; break; }
-      after = std::min(after, best_q);
+      const int A = gp.grid_vertex.at(grid_point(a, c.i + tri[best_o][0][0][0], c.j + tri[best_o][0][0][1], c.far));
+      const int C = gp.grid_vertex.at(grid_point(a, c.i + tri[best_o][0][2][0], c.j + tri[best_o][0][2][1], c.far));
+      if (!split_square(gp.patches, gp.D, a, tris_of_square[c.bottom], A, C, c.bottom + 1, s.next_patch, s)) best_cells.clear();
+      if (best_cells.empty()) return "the square ending a column does not split along its diagonal";
+      *after = std::min(*after, best_q);
       for (size_t k = 0; k < c.blocks.size(); ++k) {
         s.cells[c.blocks[k]] = best_cells[k];
         (k == 0 ? s.tets : s.prisms) += 2;
@@ -425,8 +395,13 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
       ++s.next_patch;
       ++s.split;
     }
-    if (!why.empty()) { fail(why); continue; }
-    // The cap's triangles give way to a fan from the apex over the cap's boundary.
+    return "";
+  }
+
+  /// The cap's triangles give way to a fan from the apex `av` over the cap's boundary, in `s`.
+  /// Returns why it failed, or "".
+  std::string fan_over_cap(const std::vector<int>& cap, int av, State& s) const {
+    const mesh::SurfaceMesh& patches = gp.patches;
     std::set<int> cap_tris;
     for (int q : cap)
       for (int f : tris_of_square[q]) cap_tris.insert(f);
@@ -436,32 +411,21 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
     for (const auto& [u, w] : cap_edges) {
       if (cap_edges.count({w, u})) continue;
       auto it = tri_of_edge.find({w, u});
-      if (u == av || w == av || it == tri_of_edge.end() || s.removed[it->second]) { why = "the apex on the cap's boundary"; break; }
+      if (u == av || w == av || it == tri_of_edge.end() || s.removed[it->second]) return "the apex on the cap's boundary";
       const Eigen::Vector3d p = patches.V.row(av), x = patches.V.row(u), y = patches.V.row(w);
-      if ((x - p).cross(y - p).norm() <= 1e-12 * (x - p).norm() * (y - p).norm()) { why = "a fan triangle of no area"; break; }
+      if ((x - p).cross(y - p).norm() <= 1e-12 * (x - p).norm() * (y - p).norm()) return "a fan triangle of no area";
       s.added.push_back({av, u, w, s.patch(it->second)});
     }
-    if (!why.empty()) { fail(why); continue; }
     for (int f : cap_tris) s.removed[f] = 1;
-    if (after <= 0) { fail(fmt("an inverted block, scaled Jacobian %.3f", after)); continue; }
-    if (!matches(s, apex_of, &why)) { fail(why); continue; }
-    log(where + fmt(": %.0f cap squares collapsed, %.0f tet and %.0f prism blocks; worst block SJ %.3f", cap.size(),
-                    s.tets - state.tets, s.prisms - state.prisms, after) +
-        fmt(" (%.3f as hexes)", before));
-    worst_before = std::min(worst_before, before);
-    worst_after = std::min(worst_after, after);
-    state = std::move(s);
-    apex_vertex_of = std::move(apex_of);
-    ++out.collapsed;
+    return "";
   }
-  if (out.collapsed == 0) return out;
-  out.tets = state.tets;
-  out.prisms = state.prisms;
-  out.split_squares = state.split;
-  out.min_quality_before = worst_before;
-  out.min_quality_after = worst_after;
+};
 
-  // The new structure, unused vertices dropped.
+/// The structure and the patch surface of `state` into `gp`: unused vertices dropped, patch ids 1..n.
+void apply_apexes(const State& state, GridPolycube& gp) {
+  mesh::Mesh& T = gp.structure;
+  mesh::SurfaceMesh& patches = gp.patches;
+  const int nv = T.num_nodes(), nb = T.num_cells(), nf = static_cast<int>(patches.F.rows());
   mesh::MeshBuilder builder;
   std::vector<int> id(nv, -1), used;
   auto node = [&](int v) {
@@ -485,12 +449,11 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
   std::vector<GP> g2(used.size());
   for (size_t i = 0; i < used.size(); ++i) {
     V.row(i) = state.X.row(used[i]);
-    g2[i] = grid_of[used[i]];
+    g2[i] = gp.grid_of[used[i]];
   }
   T = builder.finish(V);
-  grid_of = std::move(g2);
+  gp.grid_of = std::move(g2);
 
-  // The new patch surface: patch ids 1..n, unused vertices dropped.
   std::vector<std::array<int, 4>> F;
   for (int f = 0; f < nf; ++f)
     if (!state.removed[f]) F.push_back({patches.F(f, 0), patches.F(f, 1), patches.F(f, 2), state.patch(f)});
@@ -516,6 +479,107 @@ CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& T, std::vec
     out_patches.patch(i) = F[i][3];
   }
   patches = std::move(out_patches);
+}
+
+}  // namespace
+
+CollapseApexes collapse_apexes(GridPolycube& polycube, const std::vector<int>& apexes, LogCallback log_cb) {
+  const PolycubeGrid& grid = polycube.grid;
+  const mesh::Mesh& T = polycube.structure;
+  const mesh::SurfaceMesh& patches = polycube.patches;
+  CollapseApexes out;
+  out.apexes = static_cast<int>(apexes.size());
+  auto log = [&](const std::string& m) { if (log_cb) log_cb(0, m); };
+  if (apexes.empty()) return out;
+  const int nv = T.num_nodes(), nb = T.num_cells(), nsq = static_cast<int>(grid.squares.size());
+  const int nf = static_cast<int>(patches.F.rows());
+  for (int b = 0; b < nb; ++b)
+    if (T.type(b) != mesh::CellType::Hex) { log("apexes: left as hex blocks (the structure has blocks other than hexes)"); return out; }
+  for (int f = 0; f < nf; ++f)
+    if (patches.patch(f) < 1 || patches.patch(f) > nsq) { log("apexes: left as hex blocks (patches are not squares)"); return out; }
+  const ApexContext cx(polycube);
+
+  State state;
+  state.rep.resize(nv);
+  for (int v = 0; v < nv; ++v) state.rep[v] = v;
+  state.X = T.V;
+  state.cells.resize(nb);
+  state.patch = patches.patch;
+  state.removed.assign(nf, 0);
+  state.next_patch = nsq + 1;
+  std::vector<int> apex_vertex_of(nv, -1);  // structure vertex -> the apex's patch vertex
+
+  double worst_before = 1e300, worst_after = 1e300;
+  for (int av : apexes) {
+    const std::string where = "apex at (" + fmt("%.4g, %.4g, %.4g", patches.V(av, 0), patches.V(av, 1), patches.V(av, 2)) + ")";
+    auto fail = [&](const std::string& why) { log(where + ": left as hex blocks under a cap (" + why + ")"); };
+    if (av < 0 || av >= patches.V.rows() || cx.vtris[av].empty()) { fail("no such vertex"); continue; }
+    int chart = -1;
+    bool one = true;
+    for (int f : cx.vtris[av]) {
+      const int c = grid.squares[patches.patch(f) - 1].chart;
+      one = one && (chart < 0 || c == chart) && !state.removed[f];
+      chart = c;
+    }
+    if (!one) { fail("its triangles lie on several charts"); continue; }
+    std::vector<int> cap;
+    for (int q = 0; q < nsq; ++q)
+      if (grid.squares[q].chart == chart) cap.push_back(q);
+    const GridSquare& s0 = grid.squares[cap.front()];
+    const int a = s0.axis, sg = s0.sign, plane = s0.plane;
+    bool flat = true;
+    for (int q : cap) flat = flat && grid.squares[q].axis == a && grid.squares[q].plane == plane && grid.squares[q].sign == sg;
+    if (!flat) { fail("a cap of several planes"); continue; }
+    // The cap's corners collapse to one vertex at the apex.
+    std::set<int> cap_vertices;
+    bool ok = true;
+    for (int q : cap)
+      for (int k = 0; k < 4; ++k) {
+        auto it = cx.vertex_of.find(grid_point(a, grid.squares[q].i + (k & 1), grid.squares[q].j + (k >> 1), plane));
+        if (it == cx.vertex_of.end()) ok = false;
+        else cap_vertices.insert(it->second);
+      }
+    if (!ok) { fail("a cap corner without a block vertex"); continue; }
+    std::vector<Column> columns;
+    std::set<int> tops;
+    if (!cx.find_columns(cap, a, sg, plane, state, &columns, &tops)) {
+      fail("a column under the cap that does not end at a boundary square");
+      continue;
+    }
+    for (int v : cap_vertices)
+      for (int blk : cx.blocks_of[v])
+        if (!tops.count(blk)) ok = false;
+    if (!ok) { fail("a block beside the cap touches it"); continue; }
+
+    State s = state;
+    const int apex_v = *cap_vertices.begin();
+    for (int v : cap_vertices) s.rep[v] = apex_v;
+    s.X.row(apex_v) = patches.V.row(av);
+    std::vector<int> apex_of = apex_vertex_of;
+    apex_of[apex_v] = av;
+    double before = 1e300, after = 1e300;
+    std::string why = cx.split_columns(columns, a, sg, apex_v, s, &before, &after);
+    if (!why.empty()) { fail(why); continue; }
+    why = cx.fan_over_cap(cap, av, s);
+    if (!why.empty()) { fail(why); continue; }
+    if (after <= 0) { fail(fmt("an inverted block, scaled Jacobian %.3f", after)); continue; }
+    if (!cx.matches(s, apex_of, &why)) { fail(why); continue; }
+    log(where + fmt(": %.0f cap squares collapsed, %.0f tet and %.0f prism blocks; worst block SJ %.3f", cap.size(),
+                    s.tets - state.tets, s.prisms - state.prisms, after) +
+        fmt(" (%.3f as hexes)", before));
+    worst_before = std::min(worst_before, before);
+    worst_after = std::min(worst_after, after);
+    state = std::move(s);
+    apex_vertex_of = std::move(apex_of);
+    ++out.collapsed;
+  }
+  if (out.collapsed == 0) return out;
+  out.tets = state.tets;
+  out.prisms = state.prisms;
+  out.split_squares = state.split;
+  out.min_quality_before = worst_before;
+  out.min_quality_after = worst_after;
+  apply_apexes(state, polycube);
   return out;
 }
 

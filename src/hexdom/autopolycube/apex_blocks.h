@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdom/autopolycube/polycube_grid.h"
+#include "hexdom/autopolycube/grid_polycube.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
@@ -58,18 +58,15 @@ struct CollapseApexes {
   double min_quality_before = 0, min_quality_after = 0;  ///< worst scaled Jacobian of the blocks changed
 };
 
-/// Collapses the cap charts around `apexes` (vertices of `patches`, whose patch = 1 + square
-/// index of `grid`; all blocks of `structure` hexes over the grid cells, `grid_of` the grid point of
-/// each structure vertex, `grid_vertex` the patch vertex of each grid point, D the patch vertices'
-/// polycube positions in grid units, GridCut::D). An apex is collapsed
+/// Collapses the cap charts around `apexes` (vertices of `polycube.patches`, whose patch = 1 + square
+/// index of `polycube.grid`; all blocks of `polycube.structure` hexes over the grid cells; see
+/// GridPolycube). An apex is collapsed
 /// only when its 1-ring lies on the squares of one chart, every block touching those squares'
 /// corners is a block under them, each column below ends at a boundary square (its triangles are
 /// cut along the chosen diagonal, as cut_along_grid cuts along grid lines), every boundary face of the result matches one patch by its
 /// corners and no block is inverted; otherwise it is left as it is (hex blocks under a cap) and the
 /// reason logged. Patch ids are renumbered 1..n when something collapsed; unused patch vertices
 /// and structure vertices are dropped.
-CollapseApexes collapse_apexes(const PolycubeGrid& grid, mesh::Mesh& structure, std::vector<std::array<int, 3>>& grid_of,
-                               mesh::SurfaceMesh& patches, const std::map<std::array<int, 3>, int>& grid_vertex,
-                               const Eigen::MatrixXd& D, const std::vector<int>& apexes, LogCallback log = {});
+CollapseApexes collapse_apexes(GridPolycube& polycube, const std::vector<int>& apexes, LogCallback log = {});
 
 }  // namespace hexdom::autopolycube

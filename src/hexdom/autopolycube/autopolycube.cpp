@@ -65,6 +65,65 @@ AutoPolycube autopolycube_in_frame(const mesh::SurfaceMesh& labels, const AutoPo
   return r;
 }
 
+/// The sliver strips, then (when no strip collapsed) the apexes of `gp` collapsed to prism and tet
+/// blocks, with their counts and the blocks' quality in `r`.
+void collapse_blocks(GridPolycube& gp, const mesh::SurfaceMesh& s, const std::vector<Eigen::Vector3d>& apexes,
+                     const AutoPolycubeOptions& opt, AutoPolycube& r) {
+  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  // The worst block and the inverted ones after a collapse changed the blocks.
+  auto measure_blocks = [&]() {
+    r.min_block_quality = 1.0;
+    r.inverted_blocks = 0;
+    for (int b = 0; b < gp.structure.num_cells(); ++b) {
+      const double q = quality::signed_sj(gp.structure.type(b), quality::cell_points(gp.structure, b));
+      r.min_block_quality = std::min(r.min_block_quality, q);
+      r.inverted_blocks += q <= 0;
+    }
+  };
+  if (opt.sliver_ratio > 0) {
+    CollapseSliversOptions co;
+    co.max_ratio = opt.sliver_ratio;
+    co.log = opt.log;
+    const int before = gp.structure.num_nodes();
+    const CollapseSlivers cs = collapse_slivers(gp, co);
+    r.slivers = cs.collapsed;
+    r.prism_blocks = cs.prisms;
+    r.tet_blocks = cs.tets;
+    if (cs.collapsed > 0) {
+      r.boundary_vertices -= before - gp.structure.num_nodes();
+      measure_blocks();
+      log("slivers: " + std::to_string(cs.collapsed) + " strips collapsed, " + std::to_string(cs.prisms) + " prism and " +
+          std::to_string(cs.tets) + " tet blocks, " + std::to_string(cs.merged_squares) + " squares joined a neighbouring patch");
+    }
+  }
+  if (!apexes.empty() && opt.collapse_apexes) {
+    // Apex vertices keep their indices in the patch surface (cut_along_grid).
+    std::vector<int> apex_vertices;
+    for (const Eigen::Vector3d& p : apexes) {
+      int best = -1;
+      double bd = 1e300;
+      for (int v = 0; v < s.V.rows(); ++v) {
+        const double dd = (s.V.row(v).transpose() - p).squaredNorm();
+        if (dd < bd) { bd = dd; best = v; }
+      }
+      apex_vertices.push_back(best);
+    }
+    if (r.slivers > 0) {
+      log("apexes: left as hex blocks under their caps (sliver strips collapsed)");
+    } else {
+      const int before = gp.structure.num_nodes();
+      const CollapseApexes ca = collapse_apexes(gp, apex_vertices, opt.log);
+      r.apexes_collapsed = ca.collapsed;
+      if (ca.collapsed > 0) {
+        r.tet_blocks += ca.tets;
+        r.prism_blocks += ca.prisms;
+        r.boundary_vertices -= before - gp.structure.num_nodes();
+        measure_blocks();
+      }
+    }
+  }
+}
+
 }  // namespace
 
 AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
@@ -190,64 +249,15 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
     so.untangle_rounds = opt.untangle_rounds;
     so.log = opt.log;
     GridStructure st = grid_structure(grid, cut.grid_vertex, cut.patches.V, so);
+    GridPolycube gp{std::move(grid), std::move(st.structure), std::move(st.grid), std::move(cut.patches),
+                    std::move(cut.grid_vertex), std::move(cut.D)};
     r.boundary_vertices = st.boundary_vertices;
     r.interior_vertices = st.interior_vertices;
     r.min_block_quality = st.min_quality;
     r.inverted_blocks = st.inverted;
-    // The worst block and the inverted ones after a collapse changed the blocks.
-    auto measure_blocks = [&]() {
-      r.min_block_quality = 1.0;
-      r.inverted_blocks = 0;
-      for (int b = 0; b < st.structure.num_cells(); ++b) {
-        const double q = quality::signed_sj(st.structure.type(b), quality::cell_points(st.structure, b));
-        r.min_block_quality = std::min(r.min_block_quality, q);
-        r.inverted_blocks += q <= 0;
-      }
-    };
-    if (opt.sliver_ratio > 0) {
-      CollapseSliversOptions co;
-      co.max_ratio = opt.sliver_ratio;
-      co.log = opt.log;
-      const int before = st.structure.num_nodes();
-      const CollapseSlivers cs = collapse_slivers(grid, st.structure, st.grid, cut.patches, cut.grid_vertex, co);
-      r.slivers = cs.collapsed;
-      r.prism_blocks = cs.prisms;
-      r.tet_blocks = cs.tets;
-      if (cs.collapsed > 0) {
-        r.boundary_vertices -= before - st.structure.num_nodes();
-        measure_blocks();
-        log("slivers: " + std::to_string(cs.collapsed) + " strips collapsed, " + std::to_string(cs.prisms) + " prism and " +
-            std::to_string(cs.tets) + " tet blocks, " + std::to_string(cs.merged_squares) + " squares joined a neighbouring patch");
-      }
-    }
-    if (!apexes.empty() && opt.collapse_apexes) {
-      // Apex vertices keep their indices in the patch surface (cut_along_grid).
-      std::vector<int> apex_vertices;
-      for (const Eigen::Vector3d& p : apexes) {
-        int best = -1;
-        double bd = 1e300;
-        for (int v = 0; v < s.V.rows(); ++v) {
-          const double dd = (s.V.row(v).transpose() - p).squaredNorm();
-          if (dd < bd) { bd = dd; best = v; }
-        }
-        apex_vertices.push_back(best);
-      }
-      if (r.slivers > 0) {
-        log("apexes: left as hex blocks under their caps (sliver strips collapsed)");
-      } else {
-        const int before = st.structure.num_nodes();
-        const CollapseApexes ca = collapse_apexes(grid, st.structure, st.grid, cut.patches, cut.grid_vertex, cut.D, apex_vertices, opt.log);
-        r.apexes_collapsed = ca.collapsed;
-        if (ca.collapsed > 0) {
-          r.tet_blocks += ca.tets;
-          r.prism_blocks += ca.prisms;
-          r.boundary_vertices -= before - st.structure.num_nodes();
-          measure_blocks();
-        }
-      }
-    }
-    r.patches = std::move(cut.patches);
-    r.structure = std::move(st.structure);
+    collapse_blocks(gp, s, apexes, opt, r);
+    r.patches = std::move(gp.patches);
+    r.structure = std::move(gp.structure);
     break;
   }
   return progress ? *progress : local;

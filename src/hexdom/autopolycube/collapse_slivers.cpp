@@ -8,6 +8,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
+#include "hexdom/polycube/match_faces.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/quality/metrics.h"
 
@@ -47,22 +48,20 @@ struct State {
   }
 };
 
-}  // namespace
+quality::CellPoints points(const mesh::DegenerateHex& d, const Eigen::MatrixXd& pos) {
+  quality::CellPoints cp = quality::CellPoints::Zero();
+  for (int i = 0; i < mesh::node_count(d.type); ++i) cp.row(i) = pos.row(d.nodes[i]);
+  return cp;
+}
 
-CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::vector<GP>& grid_of, mesh::SurfaceMesh& patches,
-                                 const std::map<GP, int>& grid_vertex, const CollapseSliversOptions& opt) {
-  CollapseSlivers out;
-  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
-  const int nv = T.num_nodes(), nb = T.num_cells(), nsq = static_cast<int>(grid.squares.size());
-  for (int b = 0; b < nb; ++b)
-    if (T.type(b) != mesh::CellType::Hex) throw MeshingError("collapse_slivers expects hex blocks");
-  std::map<GP, int> vertex_of;
-  for (int v = 0; v < nv; ++v) vertex_of[grid_of[v]] = v;
+double shape_quality(const mesh::DegenerateHex& d, const Eigen::MatrixXd& pos) { return quality::signed_sj(d.type, points(d, pos)); }
+
+/// Strips: charts whose squares fill a rectangle 1 or 2 squares wide (`vertex_of`: grid point ->
+/// structure vertex), each across the direction with the smaller ratio across / along.
+std::vector<Strip> find_strips(const PolycubeGrid& grid, const mesh::Mesh& T, const std::map<GP, int>& vertex_of) {
   auto X = [&](const GP& p) -> Eigen::RowVector3d { return T.V.row(vertex_of.at(p)); };
-
-  // Strips: charts whose squares fill a rectangle 1 or 2 squares wide.
   std::map<int, std::vector<int>> of_chart;
-  for (int q = 0; q < nsq; ++q) of_chart[grid.squares[q].chart].push_back(q);
+  for (int q = 0; q < static_cast<int>(grid.squares.size()); ++q) of_chart[grid.squares[q].chart].push_back(q);
   std::vector<Strip> strips;
   for (const auto& [chart, sq] : of_chart) {
     const GridSquare& s0 = grid.squares[sq.front()];
@@ -107,14 +106,15 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
       if (st.ratio < best.ratio) best = st;
     }
     if (best.chart < 0) continue;
-    ++out.candidates;
     strips.push_back(best);
   }
-  if (strips.empty()) return out;
+  return strips;
+}
 
-  // Grid edges -> squares, structure vertices -> blocks, surface vertices -> structure vertices.
+/// Grid edges (sorted grid points) -> the squares that have them.
+std::map<std::pair<GP, GP>, std::vector<int>> grid_edge_squares(const PolycubeGrid& grid) {
   std::map<std::pair<GP, GP>, std::vector<int>> edge_squares;
-  for (int q = 0; q < nsq; ++q) {
+  for (int q = 0; q < static_cast<int>(grid.squares.size()); ++q) {
     const GridSquare& s = grid.squares[q];
     const int b = (s.axis + 1) % 3, c = (s.axis + 2) % 3;
     GP p[4];
@@ -129,6 +129,122 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
       edge_squares[{u, w}].push_back(q);
     }
   }
+  return edge_squares;
+}
+
+/// The blocks of a structure under a State of collapses.
+struct Blocks {
+  const mesh::Mesh& T;
+  const mesh::SurfaceMesh& patches;
+  const std::vector<int>& structure_of;  // patch vertex -> structure vertex, -1 off the grid points
+
+  /// The block as it is under `s`: type and nodes, or false when its pattern is none of the three.
+  bool shape(State& s, int b, mesh::DegenerateHex* d) const {
+    std::array<int, 8> h;
+    for (int i = 0; i < 8; ++i) h[i] = s.find(T.cells(b, i));
+    try {
+      *d = mesh::classify_hex_nodes(h);
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+    return true;
+  }
+
+  /// Every boundary face of the structure under `s` matches one patch (one boundary loop) by its
+  /// corners, each class has at most one corner; on success the class positions go to `pos`.
+  bool matches(State& s, Eigen::MatrixXd& pos, std::string* why) const {
+    mesh::SurfaceMesh surf = patches;
+    for (int f = 0; f < surf.F.rows(); ++f) surf.patch(f) = 1 + s.owner_of(patches.patch(f) - 1);
+    const polycube::PatchLayout layout = polycube::patch_layout(surf);
+    std::map<int, int> corner_of_class;
+    for (size_t c = 0; c < layout.corners.size(); ++c) {
+      const int v = structure_of[layout.corners[c]];
+      if (v < 0) { *why = "a patch corner off the block vertices"; return false; }
+      if (!corner_of_class.emplace(s.find(v), v).second) { *why = "two corners for one block vertex"; return false; }
+    }
+    std::vector<polycube::BlockFace> faces;
+    for (int b = 0; b < T.num_cells(); ++b) {
+      mesh::DegenerateHex d;
+      if (!shape(s, b, &d)) { *why = "a block that is no hex, prism or tet"; return false; }
+      for (auto& vs : sorted_faces(d.type, d.nodes)) faces.push_back({b, -1, std::move(vs)});
+    }
+    std::vector<std::vector<int>> patch_corners;
+    for (const auto& patch : layout.patches) {
+      if (patch.num_loops != 1) { *why = "a patch that is not a disk"; return false; }
+      patch_corners.emplace_back();
+      for (int li : patch.corners) patch_corners.back().push_back(s.find(structure_of[patch.loop[li]]));
+    }
+    const polycube::FaceMatch match = polycube::match_faces_to_patches(faces, patch_corners);
+    if (!match.ok()) { *why = match.problems.front().message; return false; }
+    for (const auto& [cls, v] : corner_of_class) {
+      pos.row(cls) = T.V.row(v);
+      s.at[cls] = v;
+    }
+    return true;
+  }
+};
+
+/// The collapsed structure (positions P of the classes of `state`), unused vertices dropped, and
+/// the patches renumbered 1..n, into `gp`; the blocks' and squares' counts into `out`.
+void apply_collapse(State& state, const Eigen::MatrixXd& P, const Blocks& blocks, GridPolycube& gp, CollapseSlivers& out) {
+  mesh::Mesh& T = gp.structure;
+  const int nv = T.num_nodes(), nb = T.num_cells(), nsq = static_cast<int>(gp.grid.squares.size());
+  mesh::MeshBuilder builder;
+  std::vector<int> id(nv, -1);
+  std::vector<int> used;
+  for (int b = 0; b < nb; ++b) {
+    mesh::DegenerateHex d;
+    blocks.shape(state, b, &d);
+    int nodes[8];
+    for (int i = 0; i < mesh::node_count(d.type); ++i) {
+      int& x = id[d.nodes[i]];
+      if (x < 0) { x = static_cast<int>(used.size()); used.push_back(d.nodes[i]); }
+      nodes[i] = x;
+    }
+    out.prisms += d.type == mesh::CellType::Wedge;
+    out.tets += d.type == mesh::CellType::Tet;
+    builder.add(d.type, nodes, static_cast<int>(T.region(b)));
+  }
+  Eigen::MatrixXd V(static_cast<int>(used.size()), 3);
+  std::vector<GP> g2(used.size());
+  for (size_t i = 0; i < used.size(); ++i) {
+    V.row(i) = P.row(used[i]);
+    g2[i] = gp.grid_of[state.at[used[i]]];
+  }
+  T = builder.finish(V);
+  gp.grid_of = std::move(g2);
+  std::map<int, int> new_id;
+  for (int q = 0; q < nsq; ++q)
+    if (state.owner[q] != q) ++out.merged_squares;
+  for (int q = 0; q < nsq; ++q) {
+    const int o = state.owner_of(q);
+    if (!new_id.count(o)) new_id.emplace(o, static_cast<int>(new_id.size()) + 1);
+  }
+  for (int f = 0; f < gp.patches.F.rows(); ++f) gp.patches.patch(f) = new_id.at(state.owner_of(gp.patches.patch(f) - 1));
+}
+
+}  // namespace
+
+CollapseSlivers collapse_slivers(GridPolycube& polycube, const CollapseSliversOptions& opt) {
+  const PolycubeGrid& grid = polycube.grid;
+  mesh::Mesh& T = polycube.structure;
+  std::vector<GP>& grid_of = polycube.grid_of;
+  mesh::SurfaceMesh& patches = polycube.patches;
+  const std::map<GP, int>& grid_vertex = polycube.grid_vertex;
+  CollapseSlivers out;
+  auto log = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  const int nv = T.num_nodes(), nb = T.num_cells(), nsq = static_cast<int>(grid.squares.size());
+  for (int b = 0; b < nb; ++b)
+    if (T.type(b) != mesh::CellType::Hex) throw MeshingError("collapse_slivers expects hex blocks");
+  std::map<GP, int> vertex_of;
+  for (int v = 0; v < nv; ++v) vertex_of[grid_of[v]] = v;
+
+  const std::vector<Strip> strips = find_strips(grid, T, vertex_of);
+  out.candidates = static_cast<int>(strips.size());
+  if (strips.empty()) return out;
+
+  // Grid edges -> squares, structure vertices -> blocks, surface vertices -> structure vertices.
+  const std::map<std::pair<GP, GP>, std::vector<int>> edge_squares = grid_edge_squares(grid);
   std::vector<std::vector<int>> blocks_of(nv);
   for (int b = 0; b < nb; ++b)
     for (int i = 0; i < 8; ++i) blocks_of[T.cells(b, i)].push_back(b);
@@ -146,56 +262,9 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
   for (int q = 0; q < nsq; ++q) state.owner[q] = q;
   Eigen::MatrixXd P = T.V;  // class positions (at the representative)
 
-  // The block as it is under `s`: type and nodes, or false when its pattern is none of the three.
-  auto block_shape = [&](State& s, int b, mesh::DegenerateHex* d) {
-    std::array<int, 8> h;
-    for (int i = 0; i < 8; ++i) h[i] = s.find(T.cells(b, i));
-    try {
-      *d = mesh::classify_hex_nodes(h);
-    } catch (const std::invalid_argument&) {
-      return false;
-    }
-    return true;
-  };
-  auto points = [&](const mesh::DegenerateHex& d, const Eigen::MatrixXd& pos) {
-    quality::CellPoints cp = quality::CellPoints::Zero();
-    for (int i = 0; i < mesh::node_count(d.type); ++i) cp.row(i) = pos.row(d.nodes[i]);
-    return cp;
-  };
-  auto shape_quality = [&](const mesh::DegenerateHex& d, const Eigen::MatrixXd& pos) {
-    return quality::signed_sj(d.type, points(d, pos));
-  };
-  // Every boundary face of the structure under `s` matches one patch (one boundary loop) by its
-  // corners, each class has at most one corner; on success the class positions go to `pos`.
-  auto matches = [&](State& s, Eigen::MatrixXd& pos, std::string* why) {
-    mesh::SurfaceMesh surf = patches;
-    for (int f = 0; f < surf.F.rows(); ++f) surf.patch(f) = 1 + s.owner_of(patches.patch(f) - 1);
-    const polycube::PatchLayout layout = polycube::patch_layout(surf);
-    std::map<int, int> corner_of_class;
-    for (size_t c = 0; c < layout.corners.size(); ++c) {
-      const int v = structure_of[layout.corners[c]];
-      if (v < 0) { *why = "a patch corner off the block vertices"; return false; }
-      if (!corner_of_class.emplace(s.find(v), v).second) { *why = "two corners for one block vertex"; return false; }
-    }
-    std::map<std::vector<int>, int> face_count;
-    for (int b = 0; b < nb; ++b) {
-      mesh::DegenerateHex d;
-      if (!block_shape(s, b, &d)) { *why = "a block that is no hex, prism or tet"; return false; }
-      for (const auto& vs : sorted_faces(d.type, d.nodes)) ++face_count[vs];
-    }
-    std::vector<std::vector<int>> patch_corners;
-    for (const auto& patch : layout.patches) {
-      if (patch.num_loops != 1) { *why = "a patch that is not a disk"; return false; }
-      patch_corners.emplace_back();
-      for (int li : patch.corners) patch_corners.back().push_back(s.find(structure_of[patch.loop[li]]));
-    }
-    if (!faces_match_patches(face_count, std::move(patch_corners), why)) return false;
-    for (const auto& [cls, v] : corner_of_class) {
-      pos.row(cls) = T.V.row(v);
-      s.at[cls] = v;
-    }
-    return true;
-  };
+  const Blocks blocks{T, patches, structure_of};
+  auto block_shape = [&](State& s, int b, mesh::DegenerateHex* d) { return blocks.shape(s, b, d); };
+  auto matches = [&](State& s, Eigen::MatrixXd& pos, std::string* why) { return blocks.matches(s, pos, why); };
 
   for (const Strip& st : strips) {
     // Blocks around the strip's vertices and their worst quality now.
@@ -237,7 +306,7 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
         const int te = st.nt == 2 ? (t == st.t0 ? t : t + 1) : side == 0 ? t : t + 1;
         GP u = st.point(te, l), w = st.point(te, l + 1);
         if (w < u) std::swap(u, w);
-        const auto& es = edge_squares[{u, w}];
+        const auto& es = edge_squares.at({u, w});
         int nbr = -1;
         for (int o : es)
           if (o != q) nbr = nbr < 0 ? o : -2;
@@ -289,39 +358,7 @@ CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& T, std::v
   }
   if (out.collapsed == 0) return out;
 
-  // The collapsed structure, unused vertices dropped, and the patches renumbered 1..n.
-  mesh::MeshBuilder builder;
-  std::vector<int> id(nv, -1);
-  std::vector<int> used;
-  for (int b = 0; b < nb; ++b) {
-    mesh::DegenerateHex d;
-    block_shape(state, b, &d);
-    int nodes[8];
-    for (int i = 0; i < mesh::node_count(d.type); ++i) {
-      int& x = id[d.nodes[i]];
-      if (x < 0) { x = static_cast<int>(used.size()); used.push_back(d.nodes[i]); }
-      nodes[i] = x;
-    }
-    out.prisms += d.type == mesh::CellType::Wedge;
-    out.tets += d.type == mesh::CellType::Tet;
-    builder.add(d.type, nodes, static_cast<int>(T.region(b)));
-  }
-  Eigen::MatrixXd V(static_cast<int>(used.size()), 3);
-  std::vector<GP> g2(used.size());
-  for (size_t i = 0; i < used.size(); ++i) {
-    V.row(i) = P.row(used[i]);
-    g2[i] = grid_of[state.at[used[i]]];
-  }
-  T = builder.finish(V);
-  grid_of = std::move(g2);
-  std::map<int, int> new_id;
-  for (int q = 0; q < nsq; ++q)
-    if (state.owner[q] != q) ++out.merged_squares;
-  for (int q = 0; q < nsq; ++q) {
-    const int o = state.owner_of(q);
-    if (!new_id.count(o)) new_id.emplace(o, static_cast<int>(new_id.size()) + 1);
-  }
-  for (int f = 0; f < patches.F.rows(); ++f) patches.patch(f) = new_id.at(state.owner_of(patches.patch(f) - 1));
+  apply_collapse(state, P, blocks, polycube, out);
   return out;
 }
 
@@ -333,24 +370,6 @@ std::vector<std::vector<int>> sorted_faces(mesh::CellType type, const std::array
     std::sort(out[f].begin(), out[f].end());
   }
   return out;
-}
-
-bool faces_match_patches(const std::map<std::vector<int>, int>& face_count, std::vector<std::vector<int>> patch_corners,
-                         std::string* why) {
-  std::set<std::vector<int>> patches;
-  for (auto& vs : patch_corners) {
-    std::sort(vs.begin(), vs.end());
-    if (!patches.insert(vs).second) { *why = "two patches with the same corners"; return false; }
-  }
-  size_t boundary = 0;
-  for (const auto& [vs, n] : face_count) {
-    if (n > 2) { *why = "a face shared by three blocks"; return false; }
-    if (n == 2) continue;
-    ++boundary;
-    if (!patches.count(vs)) { *why = "a boundary face that matches no patch"; return false; }
-  }
-  if (boundary != patches.size()) { *why = "patches that match no boundary face"; return false; }
-  return true;
 }
 
 }  // namespace hexdom::autopolycube

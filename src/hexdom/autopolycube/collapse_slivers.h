@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdom/autopolycube/polycube_grid.h"
+#include "hexdom/autopolycube/grid_polycube.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
@@ -45,9 +45,9 @@ struct CollapseSlivers {
   int merged_squares = 0;  ///< squares whose triangles joined a neighbouring patch
 };
 
-/// Collapses the sliver strips of `grid` in `structure` (hex blocks over the grid cells, VTK order,
-/// `grid_of` the grid point of each vertex) and merges their squares' patches in `patches` (patch =
-/// 1 + square index, renumbered 1..n after merging; `grid_vertex` maps grid points to its vertices).
+/// Collapses the sliver strips of `polycube.grid` in `polycube.structure` (hex blocks over the grid
+/// cells) and merges their squares' patches in `polycube.patches` (patch = 1 + square index,
+/// renumbered 1..n after merging).
 /// A strip is a chart whose squares form a 1 x n or 2 x n rectangle (wider strips cannot collapse
 /// by patch ids: more patches than the 4 squares around a grid point would have to meet at one
 /// corner); its cross lines (n + 1 of them) each become one vertex, the one that stays a corner of the patch surface (the middle of a
@@ -55,21 +55,11 @@ struct CollapseSlivers {
 /// collapse is kept only if every block stays a hex, prism or tet, every boundary face of the
 /// structure matches exactly one patch by its corners, and the blocks' quality does not drop
 /// (thin strips) or rises (strips with poor hex blocks).
-/// Unused vertices are dropped from `structure` (and `grid_of`).
-CollapseSlivers collapse_slivers(const PolycubeGrid& grid, mesh::Mesh& structure, std::vector<std::array<int, 3>>& grid_of,
-                                 mesh::SurfaceMesh& patches, const std::map<std::array<int, 3>, int>& grid_vertex,
-                                 const CollapseSliversOptions& options = {});
+/// Unused vertices are dropped from `structure` (and `grid_of`); `grid`, `grid_vertex` and `D` stay.
+CollapseSlivers collapse_slivers(GridPolycube& polycube, const CollapseSliversOptions& options = {});
 
 /// The vertex ids of each face of a cell of `type` with `nodes` (VTK order), sorted: faces of
 /// different cells are the same face when these match.
 std::vector<std::vector<int>> sorted_faces(mesh::CellType type, const std::array<int, 8>& nodes);
-
-/// Whether collapsed blocks and a patch surface still conform: `face_count` maps each block face (its
-/// sorted vertex ids) to the number of blocks that have it, `patch_corners` holds each patch's corner
-/// vertex ids (any order). True when no face is in three blocks, no two patches have the same
-/// corners, and the faces in one block are exactly the patches; otherwise false with `*why`.
-/// (collapse_slivers and collapse_apexes both check their result with it.)
-bool faces_match_patches(const std::map<std::vector<int>, int>& face_count, std::vector<std::vector<int>> patch_corners,
-                         std::string* why);
 
 }  // namespace hexdom::autopolycube

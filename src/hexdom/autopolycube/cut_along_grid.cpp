@@ -20,6 +20,60 @@ struct Poly {
   std::vector<Support> sup;  // per edge v[i] -> v[i+1]
 };
 
+/// The vertex of `poly` to fan it from: the one whose fan has the largest smallest area (in the plane
+/// of axes ax[0], ax[1], facing sg).
+int fan_apex(const Poly& poly, const int ax[2], int sg) {
+  const int n = static_cast<int>(poly.v.size());
+  auto area = [&](int i, int j, int l) {
+    const Eigen::Vector3d& p = poly.v[i].d;
+    const Eigen::Vector3d& q = poly.v[j].d;
+    const Eigen::Vector3d& r = poly.v[l].d;
+    return sg * ((q(ax[0]) - p(ax[0])) * (r(ax[1]) - p(ax[1])) - (r(ax[0]) - p(ax[0])) * (q(ax[1]) - p(ax[1])));
+  };
+  int best = 0;
+  double best_min = -1e300;
+  for (int r = 0; r < n; ++r) {
+    double mn = 1e300;
+    for (int q = 1; q + 1 < n; ++q) mn = std::min(mn, area(r, (r + q) % n, (r + q + 1) % n));
+    if (mn > best_min) { best_min = mn; best = r; }
+    if (n == 3) break;
+  }
+  return best;
+}
+
+/// The cut surface of vertices at outX (polycube positions outD), triangles `tris` with patch ids
+/// `patch`, and its grid points.
+GridCut assemble_cut(const std::vector<Eigen::Vector3d>& outD, const std::vector<Eigen::Vector3d>& outX,
+                     const std::vector<std::array<int, 3>>& tris, const std::vector<int>& patch) {
+  GridCut out;
+  const int nout = static_cast<int>(outD.size());
+  out.patches.V.resize(nout, 3);
+  out.D.resize(nout, 3);
+  for (int v = 0; v < nout; ++v) {
+    out.patches.V.row(v) = outX[v].transpose();
+    out.D.row(v) = outD[v].transpose();
+  }
+  out.patches.F.resize(static_cast<int>(tris.size()), 3);
+  out.patches.patch.resize(static_cast<int>(tris.size()));
+  for (size_t t = 0; t < tris.size(); ++t) {
+    for (int k = 0; k < 3; ++k) out.patches.F(t, k) = tris[t][k];
+    out.patches.patch(t) = patch[t];
+  }
+  for (int v = 0; v < nout; ++v) {
+    const Eigen::Vector3d& d = outD[v];
+    if (d(0) != std::round(d(0)) || d(1) != std::round(d(1)) || d(2) != std::round(d(2))) continue;
+    const std::array<int, 3> key{static_cast<int>(d(0)), static_cast<int>(d(1)), static_cast<int>(d(2))};
+    auto [it, fresh] = out.grid_vertex.emplace(key, v);
+    if (!fresh)
+      throw MeshingError("cutting along the grid: vertices " + std::to_string(it->second + 1) + " and " + std::to_string(v + 1) +
+                         " both lie on grid point (" + std::to_string(key[0]) + ", " + std::to_string(key[1]) + ", " +
+                         std::to_string(key[2]) + ") of the polycube, at (" + std::to_string(outX[it->second](0)) + ", " +
+                         std::to_string(outX[it->second](1)) + ", " + std::to_string(outX[it->second](2)) + ") and (" +
+                         std::to_string(outX[v](0)) + ", " + std::to_string(outX[v](1)) + ", " + std::to_string(outX[v](2)) + ")");
+  }
+  return out;
+}
+
 }  // namespace
 
 GridCut cut_along_grid(const mesh::SurfaceMesh& s, const ChartGraph& g, const PolycubeMap& m, const PolycubeGrid& grid) {
@@ -45,7 +99,7 @@ GridCut cut_along_grid(const mesh::SurfaceMesh& s, const ChartGraph& g, const Po
   std::vector<int> patch;
 
   for (int f = 0; f < nf; ++f) {
-    const int c = g.chart(f), a = (g.label[c] - 1) / 2, ax[2] = {(a + 1) % 3, (a + 2) % 3};
+    const int c = g.region(f), a = (g.label[c] - 1) / 2, ax[2] = {(a + 1) % 3, (a + 2) % 3};
     const int sg = g.label[c] % 2 == 1 ? 1 : -1;
     int P[3] = {s.F(f, 0), s.F(f, 1), s.F(f, 2)};
     std::vector<Poly> pieces(1);
@@ -146,21 +200,7 @@ GridCut cut_along_grid(const mesh::SurfaceMesh& s, const ChartGraph& g, const Po
         throw MeshingError("cutting along the grid: triangle " + std::to_string(f + 1) + " of " + chart_name(g, c) +
                            " falls outside the polycube's squares (piece centre " + std::to_string(cen(0)) + ", " +
                            std::to_string(cen(1)) + ", " + std::to_string(cen(2)) + ")");
-      // Fan from the vertex whose fan has the largest smallest area.
-      auto area = [&](int i, int j, int l) {
-        const Eigen::Vector3d& p = poly.v[i].d;
-        const Eigen::Vector3d& q = poly.v[j].d;
-        const Eigen::Vector3d& r = poly.v[l].d;
-        return sg * ((q(ax[0]) - p(ax[0])) * (r(ax[1]) - p(ax[1])) - (r(ax[0]) - p(ax[0])) * (q(ax[1]) - p(ax[1])));
-      };
-      int best = 0;
-      double best_min = -1e300;
-      for (int r = 0; r < n; ++r) {
-        double mn = 1e300;
-        for (int q = 1; q + 1 < n; ++q) mn = std::min(mn, area(r, (r + q) % n, (r + q + 1) % n));
-        if (mn > best_min) { best_min = mn; best = r; }
-        if (n == 3) break;
-      }
+      const int best = fan_apex(poly, ax, sg);
       for (int q = 1; q + 1 < n; ++q) {
         tris.push_back({poly.v[best].id, poly.v[(best + q) % n].id, poly.v[(best + q + 1) % n].id});
         patch.push_back(it->second + 1);
@@ -168,33 +208,7 @@ GridCut cut_along_grid(const mesh::SurfaceMesh& s, const ChartGraph& g, const Po
     }
   }
 
-  GridCut out;
-  const int nout = static_cast<int>(outD.size());
-  out.patches.V.resize(nout, 3);
-  out.D.resize(nout, 3);
-  for (int v = 0; v < nout; ++v) {
-    out.patches.V.row(v) = outX[v].transpose();
-    out.D.row(v) = outD[v].transpose();
-  }
-  out.patches.F.resize(static_cast<int>(tris.size()), 3);
-  out.patches.patch.resize(static_cast<int>(tris.size()));
-  for (size_t t = 0; t < tris.size(); ++t) {
-    for (int k = 0; k < 3; ++k) out.patches.F(t, k) = tris[t][k];
-    out.patches.patch(t) = patch[t];
-  }
-  for (int v = 0; v < nout; ++v) {
-    const Eigen::Vector3d& d = outD[v];
-    if (d(0) != std::round(d(0)) || d(1) != std::round(d(1)) || d(2) != std::round(d(2))) continue;
-    const std::array<int, 3> key{static_cast<int>(d(0)), static_cast<int>(d(1)), static_cast<int>(d(2))};
-    auto [it, fresh] = out.grid_vertex.emplace(key, v);
-    if (!fresh)
-      throw MeshingError("cutting along the grid: vertices " + std::to_string(it->second + 1) + " and " + std::to_string(v + 1) +
-                         " both lie on grid point (" + std::to_string(key[0]) + ", " + std::to_string(key[1]) + ", " +
-                         std::to_string(key[2]) + ") of the polycube, at (" + std::to_string(outX[it->second](0)) + ", " +
-                         std::to_string(outX[it->second](1)) + ", " + std::to_string(outX[it->second](2)) + ") and (" +
-                         std::to_string(outX[v](0)) + ", " + std::to_string(outX[v](1)) + ", " + std::to_string(outX[v](2)) + ")");
-  }
-  return out;
+  return assemble_cut(outD, outX, tris, patch);
 }
 
 }  // namespace hexdom::autopolycube

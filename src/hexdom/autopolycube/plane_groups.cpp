@@ -14,7 +14,7 @@ PlaneGroups plane_groups(const mesh::SurfaceMesh& s, const ChartGraph& g) {
   };
   Eigen::MatrixXi first = Eigen::MatrixXi::Constant(nv, 3, -1);  // first chart met per vertex and axis
   for (int f = 0; f < s.F.rows(); ++f) {
-    const int c = g.chart(f), a = (g.label[c] - 1) / 2;
+    const int c = g.region(f), a = (g.label[c] - 1) / 2;
     for (int k = 0; k < 3; ++k) {
       int& m = first(s.F(f, k), a);
       if (m < 0) m = c;

@@ -656,8 +656,8 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
   for (int f = 0; f < nf; ++f) {
     const Eigen::Vector3d p = s.V.row(s.F(f, 0)), q = s.V.row(s.F(f, 1)), r = s.V.row(s.F(f, 2));
     const Eigen::Vector3d n = (q - p).cross(r - p);  // twice the area, outward
-    centroid[g.chart(f)] += 0.5 * n.norm() * (p + q + r) / 3.0;
-    normal[g.chart(f)] += 0.5 * n;
+    centroid[g.region(f)] += 0.5 * n.norm() * (p + q + r) / 3.0;
+    normal[g.region(f)] += 0.5 * n;
   }
   for (int c = 0; c < g.num_charts(); ++c) {
     if (g.area[c] > 0) centroid[c] /= g.area[c];
@@ -668,7 +668,7 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
   // ---- 3. positions: planes, straight curves, harmonic chart interiors
   place_on_planes(in, m);
   std::vector<std::vector<int>> chart_tris(g.num_charts());
-  for (int f = 0; f < nf; ++f) chart_tris[g.chart(f)].push_back(f);
+  for (int f = 0; f < nf; ++f) chart_tris[g.region(f)].push_back(f);
   // A vertex is on a chart boundary exactly when two or more axes' planes give it a coordinate.
   std::vector<char> on_boundary(nv, 0);
   for (int v = 0; v < nv; ++v) on_boundary[v] = (pg.of_vertex.row(v).array() >= 0).count() >= 2;

@@ -74,7 +74,7 @@ CurveConvexity curve_convexity(const mesh::SurfaceMesh& s, const ChartGraph& g, 
     const int u = c.vertices[i], v = c.vertices[i + 1];
     int fl = -1, fr = -1;
     for (int f : vt[u])
-      if (s.F(f, 0) == v || s.F(f, 1) == v || s.F(f, 2) == v) (g.chart(f) == c.left ? fl : fr) = f;
+      if (s.F(f, 0) == v || s.F(f, 1) == v || s.F(f, 2) == v) (g.region(f) == c.left ? fl : fr) = f;
     const double len = (s.V.row(u) - s.V.row(v)).norm();
     out.length += len;
     if (fl < 0 || fr < 0) continue;
@@ -95,7 +95,7 @@ CurveConvexity curve_convexity(const mesh::SurfaceMesh& s, const ChartGraph& g, 
 // Charts of the triangles around vertex v.
 std::vector<int> charts_at(const ChartGraph& g, const std::vector<std::vector<int>>& vt, int v) {
   std::set<int> cs;
-  for (int f : vt[v]) cs.insert(g.chart(f));
+  for (int f : vt[v]) cs.insert(g.region(f));
   return {cs.begin(), cs.end()};
 }
 
@@ -121,8 +121,8 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
     out.push_back({ProblemKind::Pinch, cs, v, "a chart meets itself at " + vertex_text(s, v) + " (charts " + m + ")"});
   }
   for (int c = 0; c < g.num_charts(); ++c)
-    for (const auto& loop : g.loop_corners[c])
-      if (!loop.empty() && loop.size() < 4) {
+    for (const auto& lp : g.loops[c])
+      if (const auto& loop = lp.corners; !loop.empty() && loop.size() < 4) {
         out.push_back({ProblemKind::FewCorners, {c}, loop.front(),
                        name(c) + " has a boundary loop with " + std::to_string(loop.size()) +
                            " corners (a polycube face needs at least 4) at " + vertex_text(s, loop.front())});
@@ -159,14 +159,14 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
     return u;
   };
   for (int c = 0; c < g.num_charts(); ++c) {
-    if (!std::all_of(g.loop_corners[c].begin(), g.loop_corners[c].end(), [](const auto& l) { return l.size() >= 4; })) continue;
+    if (!std::all_of(g.loops[c].begin(), g.loops[c].end(), [](const auto& l) { return l.corners.size() >= 4; })) continue;
     const int a = (g.label[c] - 1) / 2, sg = g.label[c] % 2 == 1 ? 1 : -1, b = (a + 1) % 3, cc = (a + 2) % 3;
     int outer = 0;
     bool bad = false;
     std::string what;
     std::set<int> blame{c};
-    for (size_t l = 0; l < g.loop_curves[c].size(); ++l) {
-      const auto& loop = g.loop_curves[c][l];
+    for (size_t l = 0; l < g.loops[c].size(); ++l) {
+      const auto& loop = g.loops[c][l].curves;
       const int n = static_cast<int>(loop.size());
       int turn = 0;
       for (int i = 0; i < n; ++i) {
@@ -174,7 +174,7 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
         const int cross = u(b) * w(cc) - u(cc) * w(b);
         if (cross == 0 && u.dot(w) < 0) {
           bad = true;
-          const int v = g.loop_corners[c][l][(i + 1) % n];
+          const int v = g.loops[c][l].corners[(i + 1) % n];
           if (what.empty()) what = "turns back at " + vertex_text(s, v);
           for (int sc : {loop[i], loop[(i + 1) % n]}) {
             const auto& cv = g.curves[sc < 0 ? ~sc : sc];
@@ -193,11 +193,11 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
     }
     if (!bad) continue;
     if (blame.size() == 1)
-      for (int ci : g.chart_curves[c]) blame.insert(g.curves[ci].left == c ? g.curves[ci].right : g.curves[ci].left);
+      for (int ci : g.region_curves[c]) blame.insert(g.curves[ci].left == c ? g.curves[ci].right : g.curves[ci].left);
     std::vector<int> charts{c};  // the chart itself first, then the neighbours to blame
     for (int b : blame)
       if (b != c) charts.push_back(b);
-    out.push_back({ProblemKind::BadTurning, charts, g.loop_corners[c].empty() || g.loop_corners[c][0].empty() ? -1 : g.loop_corners[c][0][0],
+    out.push_back({ProblemKind::BadTurning, charts, g.loops[c].empty() || g.loops[c][0].corners.empty() ? -1 : g.loops[c][0].corners[0],
                    name(c) + " cannot be a polycube face: its boundary " + what});
   }
   return out;
@@ -226,7 +226,7 @@ namespace {
 std::array<double, 6> label_fit(const mesh::SurfaceMesh& s, const ChartGraph& g, int chart) {
   std::array<double, 6> fit{};
   for (int f = 0; f < s.F.rows(); ++f) {
-    if (g.chart(f) != chart) continue;
+    if (g.region(f) != chart) continue;
     const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), d = s.V.row(s.F(f, 2));
     const Eigen::Vector3d n = 0.5 * (b - a).cross(d - a);
     for (int l = 1; l <= 6; ++l) fit[l - 1] += n.dot(segmentation::label_axis(l));
@@ -243,7 +243,7 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
   // number of charts always drops.
   const std::array<double, 6> fit = label_fit(s, g, chart);
   std::set<int> joins;
-  for (int ci : g.chart_curves[chart]) {
+  for (int ci : g.region_curves[chart]) {
     const auto& c = g.curves[ci];
     joins.insert(g.label[c.left == chart ? c.right : c.left]);
   }
@@ -259,7 +259,7 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
     mesh::SurfaceMesh t = s;
     for (int l = 1; l <= 6; ++l) {
       if (l == g.label[chart] || (!joins.count(l) && fit[l - 1] <= 0)) continue;
-      for (int f = 0; f < s.F.rows(); ++f) t.patch(f) = g.chart(f) == chart ? l : s.patch(f);
+      for (int f = 0; f < s.F.rows(); ++f) t.patch(f) = g.region(f) == chart ? l : s.patch(f);
       const ChartGraph tg = chart_graph(t);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
       const long key[3] = {n, joins.count(l) ? 0 : 1, -static_cast<long>(std::llround(1e6 * fit[l - 1] / std::max(g.area[chart], 1e-300)))};
@@ -272,7 +272,7 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
   }
   Eigen::VectorXi label = s.patch;
   for (int f = 0; f < s.F.rows(); ++f)
-    if (g.chart(f) == chart) label(f) = best;
+    if (g.region(f) == chart) label(f) = best;
   return label;
 }
 
@@ -291,7 +291,7 @@ Eigen::VectorXi relabel_band(const mesh::SurfaceMesh& s, const ChartGraph& g, in
   std::vector<char> seen(s.F.rows(), 0);
   std::vector<int> stack;
   for (int f = 0; f < s.F.rows(); ++f)
-    if (g.chart(f) == chart)
+    if (g.region(f) == chart)
       for (int k = 0; k < 3; ++k)
         if (on_curve.count(s.F(f, k)) && !seen[f]) { seen[f] = 1; stack.push_back(f); }
   while (!stack.empty()) {
@@ -307,7 +307,7 @@ Eigen::VectorXi relabel_band(const mesh::SurfaceMesh& s, const ChartGraph& g, in
     label(f) = best;
     for (int k = 0; k < 3; ++k) {
       const int h = TT(f, k);
-      if (h >= 0 && !seen[h] && g.chart(h) == chart && distance(h) <= width) { seen[h] = 1; stack.push_back(h); }
+      if (h >= 0 && !seen[h] && g.region(h) == chart && distance(h) <= width) { seen[h] = 1; stack.push_back(h); }
     }
   }
   return label;
@@ -379,7 +379,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
   const int nf = static_cast<int>(s.F.rows());
   auto crease = [&](int f, int k) {
     const int h = TT(f, k);
-    return h >= 0 && g.chart(h) == g.chart(f) && geo.normal.row(f).dot(geo.normal.row(h)) < cos_crease;
+    return h >= 0 && g.region(h) == g.region(f) && geo.normal.row(f).dot(geo.normal.row(h)) < cos_crease;
   };
   // Sides: parts of each chart between its creases.
   std::vector<int> side(nf, -1);
@@ -389,7 +389,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
   for (int f0 = 0; f0 < nf; ++f0) {
     if (side[f0] >= 0) continue;
     const int id = static_cast<int>(side_chart.size());
-    side_chart.push_back(g.chart(f0));
+    side_chart.push_back(g.region(f0));
     side_crease_vertices.emplace_back();
     side_crease_length.push_back(0);
     std::vector<int> stack{f0};
@@ -399,7 +399,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
       stack.pop_back();
       for (int k = 0; k < 3; ++k) {
         const int h = TT(f, k);
-        if (h < 0 || g.chart(h) != g.chart(f)) continue;
+        if (h < 0 || g.region(h) != g.region(f)) continue;
         if (crease(f, k)) {
           side_crease_vertices[id].push_back(s.F(f, k));
           side_crease_vertices[id].push_back(s.F(f, (k + 1) % 3));
@@ -426,7 +426,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
     // The band grows from the crease inside this side only: a chart made of the side's triangles.
     ChartGraph sg = g;
     for (int f = 0; f < nf; ++f)
-      if (g.chart(f) == side_chart[id] && side[f] != static_cast<int>(id)) sg.chart(f) = -1;
+      if (g.region(f) == side_chart[id] && side[f] != static_cast<int>(id)) sg.region(f) = -1;
     for (double w : {0.5 * width, width, 2.0 * width}) {
       t.patch = relabel_band(s, sg, side_chart[id], side_crease_vertices[id], w);
       const ChartGraph tg = chart_graph(t);
@@ -479,7 +479,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
     for (int chart : {c.left, c.right}) {
       const int other = chart == c.left ? c.right : c.left;
       std::vector<int> others;  // vertices of the chart's other curves
-      for (int cj : g.chart_curves[chart])
+      for (int cj : g.region_curves[chart])
         if (cj != ci)
           for (int v : g.curves[cj].vertices)
             if (!on_curve.count(v)) others.push_back(v);
@@ -494,7 +494,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
           std::vector<char> seen(s.F.rows(), 0);
           std::vector<int> stack;
           for (int f = 0; f < s.F.rows(); ++f)
-            if (g.chart(f) == chart)
+            if (g.region(f) == chart)
               for (int k = 0; k < 3; ++k)
                 if (seeds.count(s.F(f, k)) && !seen[f] && !touches_others(f)) { seen[f] = 1; stack.push_back(f); }
           while (!stack.empty()) {
@@ -503,7 +503,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
             t.patch(f) = g.label[other];
             for (int k = 0; k < 3; ++k) {
               const int h = TT(f, k);
-              if (h < 0 || seen[h] || g.chart(h) != chart || touches_others(h)) continue;
+              if (h < 0 || seen[h] || g.region(h) != chart || touches_others(h)) continue;
               const double d = distance(h, *part);
               if (d <= w && d < distance(h, others)) { seen[h] = 1; stack.push_back(h); }
             }

@@ -14,13 +14,13 @@ mesh::SurfaceMesh split_chords(const mesh::SurfaceMesh& s, const ChartGraph& g, 
   std::vector<char> boundary(nv, 0);
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
-      if (g.chart(TT(f, k)) != g.chart(f)) boundary[s.F(f, k)] = boundary[s.F(f, (k + 1) % 3)] = 1;
+      if (g.region(TT(f, k)) != g.region(f)) boundary[s.F(f, k)] = boundary[s.F(f, (k + 1) % 3)] = 1;
   std::vector<Eigen::RowVector3d> extra;
   std::map<std::pair<int, int>, int> mid;
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      if (a > b || g.chart(TT(f, k)) != g.chart(f) || !boundary[a] || !boundary[b]) continue;
+      if (a > b || g.region(TT(f, k)) != g.region(f) || !boundary[a] || !boundary[b]) continue;
       mid[{a, b}] = nv + static_cast<int>(extra.size());
       extra.push_back(0.5 * (s.V.row(a) + s.V.row(b)));
     }

@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "hexdom/common/error.h"
-#include "hexdom/polycube/patch_layout.h"
+#include "hexdom/polycube/boundary_graph.h"
 
 namespace hexdom::segmentation {
 

@@ -79,6 +79,33 @@ std::vector<double> turning(const mesh::SurfaceMesh& s, const std::vector<int>& 
   return turn;
 }
 
+/// One report per patch: its id, axis, normal, area, size, first loop's corners and curves.
+std::vector<PatchReport> patch_reports(const mesh::SurfaceMesh& s, const PatchGraph& g, const CheckOptions& opt) {
+  std::vector<PatchReport> out;
+  const std::set<int> tri_ids(opt.triangular_ids.begin(), opt.triangular_ids.end());
+  for (int r = 0; r < g.num_patches(); ++r) {
+    const auto& p = g.layout.patches[r];
+    PatchReport pr;
+    pr.patch = r + 1;
+    pr.id = s.patch(p.triangles[0]);
+    pr.orientation = g.axis(r);
+    pr.normal = g.normal.row(r).transpose();
+    pr.area = g.area(r);
+    pr.triangles = static_cast<int>(p.triangles.size());
+    pr.curves = static_cast<int>(g.patch_curves(r).size());
+    pr.loops = p.num_loops;
+    pr.euler = g.euler[r];
+    for (int c : p.corners) pr.corners.push_back(p.loop[c]);
+    for (int c : g.patch_curves(r)) {
+      const PatchCurve& cv = g.curves[c >= 0 ? c : ~c];
+      pr.neighbours.push_back((c >= 0 ? cv.right : cv.left) + 1);
+    }
+    pr.triangular = tri_ids.empty() ? pr.curves == 3 : tri_ids.count(pr.id) > 0;
+    out.push_back(std::move(pr));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string kind_name(ViolationKind kind) {
@@ -102,28 +129,7 @@ PatchCheck check_patches(const mesh::SurfaceMesh& s, const CheckOptions& opt) {
   out.corners = L.corners;
   out.curves = static_cast<int>(g.curves.size());
 
-  // Reports per patch.
-  const std::set<int> tri_ids(opt.triangular_ids.begin(), opt.triangular_ids.end());
-  for (int r = 0; r < np; ++r) {
-    const auto& p = L.patches[r];
-    PatchReport pr;
-    pr.patch = r + 1;
-    pr.id = s.patch(p.triangles[0]);
-    pr.orientation = g.axis(r);
-    pr.normal = g.normal.row(r).transpose();
-    pr.area = g.area(r);
-    pr.triangles = static_cast<int>(p.triangles.size());
-    pr.curves = static_cast<int>(g.patch_curves[r].size());
-    pr.loops = p.num_loops;
-    pr.euler = g.euler[r];
-    for (int c : p.corners) pr.corners.push_back(p.loop[c]);
-    for (int c : g.patch_curves[r]) {
-      const PatchCurve& cv = g.curves[c >= 0 ? c : ~c];
-      pr.neighbours.push_back((c >= 0 ? cv.right : cv.left) + 1);
-    }
-    pr.triangular = tri_ids.empty() ? pr.curves == 3 : tri_ids.count(pr.id) > 0;
-    out.patches.push_back(std::move(pr));
-  }
+  out.patches = patch_reports(s, g, opt);
 
   // 1) Opposite orientations sharing a boundary.
   std::map<std::pair<int, int>, std::vector<int>> shared;  // patch pair -> vertices of shared edges
@@ -193,13 +199,13 @@ PatchCheck check_patches(const mesh::SurfaceMesh& s, const CheckOptions& opt) {
   for (const PatchCurve& c : g.curves) {
     const auto pair = std::vector<int>{std::min(c.left, c.right), std::max(c.left, c.right)};
     const std::string between = "the boundary between " + cx.patch(pair[0]) + " and " + cx.patch(pair[1]);
-    if (c.closed()) {
+    if (c.closed) {
       const int v = c.vertices[c.vertices.size() / 2];
       out.violations.push_back(cx.make(ViolationKind::TwoPatchCorner, pair, v,
           between + " is a closed curve without corners (no third patch meets it), through " + cx.vertex(v)));
     }
     if (!(opt.corner_angle > 0)) continue;
-    const std::vector<double> turn = turning(s, c.vertices, c.closed(), opt.turn_window * mean_edge);
+    const std::vector<double> turn = turning(s, c.vertices, c.closed, opt.turn_window * mean_edge);
     // One report per run of vertices above the threshold, at its sharpest vertex.
     for (size_t i = 0; i < turn.size();) {
       if (turn[i] <= opt.corner_angle) { ++i; continue; }

@@ -16,7 +16,7 @@ PolycubeBoundary polycube_boundary(const mesh::SurfaceMesh& s) {
   const PatchGraph g = patch_graph(s);
   const auto& L = g.layout;
   PolycubeBoundary b;
-  b.corner_vertices = L.corners;  // ascending: patch_layout scans vertices in order
+  b.corner_vertices = L.corners;  // ascending (BoundaryGraph::corners)
   std::sort(b.corner_vertices.begin(), b.corner_vertices.end());
   std::unordered_map<int, int> corner_of;
   b.corners.resize(static_cast<int>(b.corner_vertices.size()), 3);

@@ -94,7 +94,7 @@ TEST(Autopolycube, AHolesSideAndAnOuterSideWhoseSpansTouchStayACellApart) {
   const auto pg = autopolycube::plane_groups(s, g);
   auto group_at = [&](int label, double x) {  // plane group of the chart of `label` at coordinate x
     for (int f = 0; f < s.F.rows(); ++f)
-      if (s.patch(f) == label && std::abs(s.V(s.F(f, 0), 0) - x) < 1e-9) return pg.of_chart[g.chart(f)];
+      if (s.patch(f) == label && std::abs(s.V(s.F(f, 0), 0) - x) < 1e-9) return pg.of_chart[g.region(f)];
     return -1;
   };
   const int hole_side = group_at(2, 2.0), outer_side = group_at(1, 3.0);

@@ -58,7 +58,7 @@ TEST(PolycubeMap, ARoundRimStaysOutsideABoltHoleNearIt) {
     if (g.label[c] != 1 && g.label[c] != 2) continue;
     double out = 0, off = 0;  // largest distance of its vertices from the disc's axis and from the hole's
     for (int f = 0; f < s.F.rows(); ++f)
-      if (g.chart(f) == c)
+      if (g.region(f) == c)
         for (int k = 0; k < 3; ++k) {
           const Eigen::Vector3d p = s.V.row(s.F(f, k));
           out = std::max(out, std::hypot(p(0), p(1)));

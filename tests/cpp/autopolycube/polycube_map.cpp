@@ -41,7 +41,7 @@ HoleWidths widths(double tilt, double h, bool keep_widths) {
     const Eigen::Vector3d p = (s.V.row(s.F(f, 0)) + s.V.row(s.F(f, 1)) + s.V.row(s.F(f, 2))) / 3.0;
     const double along = c * p(0) + sn * p(2), z = -sn * p(0) + c * p(2);
     if (along < 0.5 || along > 11.5) continue;
-    (std::hypot(p(1), z) < 3.0 ? hole : outer)[l - 3] = m.plane(pg.of_chart[g.chart(f)]);
+    (std::hypot(p(1), z) < 3.0 ? hole : outer)[l - 3] = m.plane(pg.of_chart[g.region(f)]);
   }
   HoleWidths w;
   for (int a = 0; a < 2; ++a) {

@@ -91,14 +91,14 @@ TEST(RepairLabels, BandTakesOnlyTheTrianglesNearTheCurveAndAnotherAxis) {
   for (int c = 0; c < g.num_charts(); ++c)
     if (g.label[c] == 5) top = c;
   ASSERT_GE(top, 0);
-  for (int ci : g.chart_curves[top])
+  for (int ci : g.region_curves[top])
     if (g.label[g.curves[ci].left] == 1 || g.label[g.curves[ci].right] == 1) curve = ci;
   ASSERT_GE(curve, 0);
   const Eigen::VectorXi l = autopolycube::relabel_band(s, g, top, g.curves[curve].vertices, 0.3);
   int changed = 0;
   for (int f = 0; f < s.F.rows(); ++f) {
     const Eigen::Vector3d c = (s.V.row(s.F(f, 0)) + s.V.row(s.F(f, 1)) + s.V.row(s.F(f, 2))) / 3.0;
-    const bool in_band = g.chart(f) == top && c.x() > 0.75;  // the column of squares along x = 1
+    const bool in_band = g.region(f) == top && c.x() > 0.75;  // the column of squares along x = 1
     if (!in_band) {
       EXPECT_EQ(l(f), s.patch(f)) << "triangle " << f;
       continue;

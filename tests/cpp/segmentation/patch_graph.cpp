@@ -11,19 +11,19 @@ TEST(PatchGraph, BoxCurvesJoinCornersAndSeparateNeighbours) {
   EXPECT_EQ(g.curves.size(), 12u);
   for (int r = 0; r < 6; ++r) {
     EXPECT_EQ(g.euler[r], 1);
-    EXPECT_EQ(g.patch_curves[r].size(), 4u);
+    EXPECT_EQ(g.patch_curves(r).size(), 4u);
     EXPECT_EQ(g.axis(r), s.patch(g.layout.patches[r].triangles[0]));
     EXPECT_NEAR(g.normal.row(r).norm(), 1.0, 1e-12);
   }
   for (size_t i = 0; i < g.curves.size(); ++i) {
     const auto& c = g.curves[i];
-    EXPECT_FALSE(c.closed());
+    EXPECT_FALSE(c.closed);
     EXPECT_GE(g.layout.corner_of(c.vertices.front()), 0);
     EXPECT_GE(g.layout.corner_of(c.vertices.back()), 0);
     for (size_t k = 1; k + 1 < c.vertices.size(); ++k) EXPECT_LT(g.layout.corner_of(c.vertices[k]), 0);
     // Listed once as itself by its left patch and once reversed by its right patch.
     auto has = [&](int r, int entry) {
-      const auto& v = g.patch_curves[r];
+      const auto& v = g.patch_curves(r);
       return std::find(v.begin(), v.end(), entry) != v.end();
     };
     EXPECT_TRUE(has(c.left, static_cast<int>(i)));
