@@ -18,7 +18,7 @@ void place_boundary_nodes(GenerationState& g) {
   g.X = Eigen::MatrixXd::Zero(nn, 3);
   g.known.assign(nn, 0);
   NodeFreedom& freedom = g.freedom;
-  freedom.kind.assign(nn, NodeFreedom::Free);
+  freedom.kind.assign(nn, optimize::NodeKind::Interior);
   freedom.param.assign(nn, {0.0, 0.0});
   g.on_curve.assign(nn, nullptr);
   g.on_patch.assign(nn, nullptr);
@@ -34,12 +34,12 @@ void place_boundary_nodes(GenerationState& g) {
     if (m == 1) {  // a structure vertex
       X.row(id) = g.P[vs[0]].transpose();
       g.known[id] = 1;
-      if (g.vertex_corner[vs[0]] >= 0) freedom.kind[id] = NodeFreedom::Fixed;
+      if (g.vertex_corner[vs[0]] >= 0) freedom.kind[id] = optimize::NodeKind::Corner;
     } else if (m == 2) {  // on a structure edge: on its curve when the edge is on the boundary
       auto c = g.curves.find({vs[0], vs[1]});
       if (g.boundary_edges.count({vs[0], vs[1]}) && c != g.curves.end()) {
         X.row(id) = c->second.at(static_cast<double>(ws[1]) / N3).transpose();
-        freedom.kind[id] = NodeFreedom::Curve;
+        freedom.kind[id] = optimize::NodeKind::Curve;
         freedom.param[id] = {static_cast<double>(ws[1]) / N3, 0.0};
         g.on_curve[id] = &c->second;
       } else {
@@ -56,7 +56,7 @@ void place_boundary_nodes(GenerationState& g) {
       uv /= N3;
       X.row(id) = evaluate(pm, g.S, uv(0), uv(1)).transpose();
       g.known[id] = 1;
-      freedom.kind[id] = NodeFreedom::Patch;
+      freedom.kind[id] = optimize::NodeKind::Surface;
       freedom.param[id] = {uv(0), uv(1)};
       g.on_patch[id] = &pm;
     }

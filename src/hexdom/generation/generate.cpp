@@ -43,14 +43,14 @@ void set_surface_moves(GenerationState& g) {
   NodeFreedom& freedom = g.freedom;
   freedom.now = freedom.param;
   freedom.place = [&g](int v, const double* q, double* x) {
-    Vec3 p = g.freedom.kind[v] == NodeFreedom::Curve ? g.on_curve[v]->at(q[0]) : evaluate(*g.on_patch[v], g.S, q[0], q[1]);
+    Vec3 p = g.freedom.kind[v] == optimize::NodeKind::Curve ? g.on_curve[v]->at(q[0]) : evaluate(*g.on_patch[v], g.S, q[0], q[1]);
     x[0] = p(0);
     x[1] = p(1);
     x[2] = p(2);
   };
   freedom.clamp = [&g](int v, double* q) {
     const double e = 1e-6;
-    if (g.freedom.kind[v] == NodeFreedom::Curve) {
+    if (g.freedom.kind[v] == optimize::NodeKind::Curve) {
       q[0] = std::clamp(q[0], e, 1 - e);
       return;
     }

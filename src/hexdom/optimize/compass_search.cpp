@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hexdom/mesh/adjacency.h"
 #include "hexdom/quality/metrics.h"
 
 namespace hexdom::optimize {
@@ -15,9 +16,7 @@ double cell_value(const mesh::Mesh& m, int c) { return quality::signed_sj(m.type
 Eigen::VectorXd compass_untangle(mesh::Mesh& T, const std::vector<char>& fixed,
                                  const std::vector<std::vector<int>>& nbr, const CompassOptions& opt) {
   const int n = T.num_nodes();
-  std::vector<std::vector<int>> cells_of(n);
-  for (int b = 0; b < T.num_cells(); ++b)
-    for (int i = 0; i < mesh::node_count(T.type(b)); ++i) cells_of[T.cells(b, i)].push_back(b);
+  const mesh::NodeCells cells_of = mesh::node_cells(T);
   Eigen::VectorXd q(T.num_cells());
   for (int b = 0; b < T.num_cells(); ++b) q(b) = cell_value(T, b);
   std::vector<double> shortest_allowed(n, 0.0);

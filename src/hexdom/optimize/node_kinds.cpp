@@ -13,10 +13,8 @@ using Vec = Eigen::Vector3d;
 NodeKinds node_kinds(const mesh::Mesh& m, double feature_angle, const std::vector<char>* sharp) {
   NodeKinds t;
   const int nn = m.num_nodes();
-  t.node_cells.assign(nn, {});
+  t.node_cells = mesh::node_cells(m);
   t.node_faces.assign(nn, {});
-  for (int c = 0; c < m.num_cells(); ++c)
-    for (int i = 0; i < mesh::node_count(m.type(c)); ++i) t.node_cells[m.cells(c, i)].push_back(c);
   t.edge_nbrs.assign(nn, {});
   {
     static const int he[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};

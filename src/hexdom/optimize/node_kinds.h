@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "hexdom/mesh/adjacency.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/mesh/mesh.h"
@@ -14,12 +15,13 @@ namespace hexdom::optimize {
 
 /// How a node may move, from most to least constrained: not at all (where three or more feature
 /// curves meet, or a node held fixed), along its feature curve, on the boundary surface, or freely
-/// inside the volume.
-enum NodeKind : char { Corner, Curve, Surface, Interior };
+/// inside the volume. The values of Curve and Surface are the numbers of parameters a node of that
+/// kind moves in on the surface (NodeFreedom).
+enum NodeKind : signed char { Corner = 0, Curve = 1, Surface = 2, Interior = 3 };
 
 /// The boundary structure of a volume mesh the optimiser works with.
 struct NodeKinds {
-  std::vector<std::vector<int>> node_cells;  ///< per node: its cells, in increasing order
+  mesh::NodeCells node_cells;                ///< per node: its cells, in increasing order
   std::vector<std::vector<int>> node_faces;  ///< per node: its boundary faces (indices into `faces`)
   std::vector<mesh::BoundaryFace> faces;     ///< mesh::boundary_faces, in its order
   std::vector<NodeKind> kind;                ///< per node

@@ -64,7 +64,7 @@ std::string relax_poor(mesh::Mesh& M, const mesh::NodeCells& adj, const std::vec
     if (!is_poor[c]) continue;
     poor_cells.push_back(c);
     for (int i = 0; i < cnt[c]; ++i)
-      if (kind[cells[c * stride + i]] == NodeFreedom::Free) candidate[cells[c * stride + i]] = 1;
+      if (kind[cells[c * stride + i]] == NodeKind::Interior) candidate[cells[c * stride + i]] = 1;
   }
   // Cells that may be below left_threshold at the end: the poor ones and those around moved nodes.
   auto report_left = [&](const std::vector<int>& inc) {
@@ -256,7 +256,7 @@ void Untangler::enqueue_cell(int c, std::vector<int>& list) {
   for (int i = 0; i < shapes_.count[c]; ++i) {
     const int v = M_.cells(c, i);
     const int k = F_.kind[v];
-    if (!mark_[v] || k == NodeFreedom::Fixed || queued_[v] || (k != NodeFreedom::Free && sj_[c] > poor_surface_)) continue;
+    if (!mark_[v] || k == NodeKind::Corner || queued_[v] || (k != NodeKind::Interior && sj_[c] > poor_surface_)) continue;
     queued_[v] = 1;
     list.push_back(v);
   }
@@ -341,7 +341,7 @@ void Untangler::visit(int v, std::vector<int>& next) {
   double* xv = &x_[3 * v];
   double best = evaluate_at(xv, nullptr);
   const double before = best;
-  if (F_.kind[v] == NodeFreedom::Free) {
+  if (F_.kind[v] == NodeKind::Interior) {
     double trial[3];
     for (double step : {1.0, 0.5, 0.25}) {
       for (int d = 0; d < 3; ++d) trial[d] = xv[d] + step * (centroid[d] - xv[d]);
@@ -368,15 +368,15 @@ void Untangler::visit(int v, std::vector<int>& next) {
 // by the ratio of parameter to 3D length near the node.
 bool Untangler::descend(int v, double& best, double h) {
   const int kind = F_.kind[v];
-  const int dims = kind == NodeFreedom::Free ? 3 : kind;
+  const int dims = kind == NodeKind::Interior ? 3 : kind;
   double* xv = &x_[3 * v];
   double scale = 1;  // 3D length per unit parameter
   auto position = [&](const double* q, double* out) {
-    if (kind == NodeFreedom::Free) std::copy(q, q + 3, out);
+    if (kind == NodeKind::Interior) std::copy(q, q + 3, out);
     else F_.place(v, q, out);
   };
-  double* pv = kind == NodeFreedom::Free ? xv : F_.now[v].data();
-  if (kind != NodeFreedom::Free) {
+  double* pv = kind == NodeKind::Interior ? xv : F_.now[v].data();
+  if (kind != NodeKind::Interior) {
     double probe[3], tp[2];
     std::copy(pv, pv + dims, tp);
     tp[0] += 1e-3;
@@ -408,7 +408,7 @@ bool Untangler::descend(int v, double& best, double h) {
     bool moved = false;
     for (double step = 0.5 * h / scale; step > 1e-3 * h / scale; step *= 0.5) {
       for (int d = 0; d < dims; ++d) q[d] = pv[d] - step * g[d] / gn;
-      if (kind != NodeFreedom::Free) {
+      if (kind != NodeKind::Interior) {
         // Within `box` of its lattice parameters, so that surface nodes keep their order.
         for (int d = 0; d < dims; ++d) q[d] = std::clamp(q[d], F_.param[v][d] - box_, F_.param[v][d] + box_);
         F_.clamp(v, q);

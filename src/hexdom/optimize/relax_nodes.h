@@ -11,15 +11,15 @@
 
 #include "hexdom/mesh/adjacency.h"
 #include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/node_kinds.h"
 
 namespace hexdom::optimize {
 
-/// How each node may move: freely (inside the volume), in the parameter plane of its patch, along
-/// its boundary curve (both keep it on the surface that `place` evaluates), or not at all (corners).
-/// For a Curve node only the first parameter is used.
+/// How each node may move (its NodeKind): freely (Interior), in the parameter plane of its patch
+/// (Surface), along its boundary curve (Curve; both keep it on the surface that `place`
+/// evaluates), or not at all (Corner). A Curve node uses only the first parameter.
 struct NodeFreedom {
-  enum Kind : signed char { Fixed = 0, Curve = 1, Patch = 2, Free = 3 };
-  std::vector<signed char> kind;             ///< per node
+  std::vector<signed char> kind;             ///< per node, a NodeKind
   std::vector<std::array<double, 2>> param;  ///< per node: the parameters where it was made
   std::vector<std::array<double, 2>> now;    ///< per node: the parameters of its current position
   /// 3D position x of surface node v at parameters q.
@@ -28,7 +28,7 @@ struct NodeFreedom {
   std::function<void(int v, double* q)> clamp;
 };
 
-/// Moves nodes of kind Free (`kind`: NodeFreedom::Kind per node) that belong to a cell whose
+/// Moves nodes of kind Interior (`kind`: a NodeKind per node) that belong to a cell whose
 /// scaled Jacobian (quality::scaled_jacobian, -1 for inverted cells) is at most `poor` towards the
 /// centroid of their edge neighbours (steps 1, 1/2, 1/4 of the way), keeping a move only when the
 /// worst scaled Jacobian of the node's cells rises by more than 1e-12. Sweeps over those nodes in
@@ -36,7 +36,7 @@ struct NodeFreedom {
 /// failed try, until a sweep moves none or after `sweeps` sweeps.
 /// Inputs: `cells` = mesh::node_cells(M); the search for poor cells runs on `threads` threads (the
 /// result does not depend on their number).
-/// Guarantees: only nodes of kind Free move; no cell of a moved node falls below the worst of that
+/// Guarantees: only Interior nodes move; no cell of a moved node falls below the worst of that
 /// node's cells before the move, so the mesh's worst cell never gets worse; deterministic.
 /// When `left` is given it receives, in increasing order, every cell some of whose Jacobian samples
 /// are at most `left_threshold` (< poor) afterwards.
@@ -46,7 +46,7 @@ std::string relax_poor(mesh::Mesh& M, const mesh::NodeCells& cells, const std::v
 
 /// Untangles and raises poor cells: the cells with a Jacobian sample at most `trigger` (only those
 /// in `candidates` when given: a superset of them in increasing order) are poor; their nodes are
-/// visited, nodes not Fixed, surface nodes only next to poor cells whose worst sample is at most
+/// visited, nodes not Corner, surface nodes only next to poor cells whose worst sample is at most
 /// `poor_surface`. A visited node inside the volume first tries the centroid of its edge
 /// neighbours (steps 1, 1/2, 1/4); a node whose worst sample is below poor / 2 then descends a
 /// penalty on its samples below `poor` by finite differences (surface nodes in their curve or

@@ -9,6 +9,7 @@
 using namespace hexdom;
 using mesh::CellType;
 using optimize::NodeFreedom;
+using optimize::NodeKind;
 
 namespace {
 
@@ -41,9 +42,9 @@ struct Grid {
   NodeFreedom freedom() const {
     NodeFreedom F;
     const int nn = m.num_nodes();
-    F.kind.assign(nn, NodeFreedom::Free);
+    F.kind.assign(nn, NodeKind::Interior);
     for (int v = 0; v < nn; ++v)
-      if (on_boundary(v)) F.kind[v] = NodeFreedom::Fixed;
+      if (on_boundary(v)) F.kind[v] = NodeKind::Corner;
     F.param.assign(nn, {0.0, 0.0});
     F.now = F.param;
     return F;
@@ -138,7 +139,7 @@ TEST(UntangleNodes, SurfaceNodesSlideWithinTheirPatch) {
   Grid g(3);
   NodeFreedom F = g.freedom();
   const int v = g.node(1, 1, 0);
-  F.kind[v] = NodeFreedom::Patch;
+  F.kind[v] = NodeKind::Surface;
   F.param[v] = {1.0 / 3, 1.0 / 3};
   F.now[v] = {2.5 / 3, 1.0 / 3};
   g.m.V.row(v) << 2.5, 1, 0;  // past the node at x = 2: the cells above it are inverted
