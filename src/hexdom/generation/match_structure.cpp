@@ -4,16 +4,11 @@
 
 #include "hexdom/generation/steps.h"
 #include "hexdom/mesh/cell_faces.h"
+#include "hexdom/polycube/match_faces.h"
 
 namespace hexdom::generation {
 
 namespace {
-
-std::string vertex_list(const std::vector<int>& v) {
-  std::string s;
-  for (size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + std::to_string(v[i] + 1);
-  return s;
-}
 
 // The curve of the loop segment from corner position s0 to the next corner, along the loop.
 Curve loop_curve(const mesh::SurfaceMesh& S, const polycube::Patch& patch, int s0, int len) {
@@ -150,63 +145,44 @@ void snap_structure(GenerationState& g) {
 void match_faces(GenerationState& g) {
   const mesh::Mesh& T = g.T;
   const polycube::PatchLayout& layout = g.layout;
-  const int nb = T.num_cells();
-  // Faces of all blocks, keyed by their sorted vertices.
-  std::map<std::vector<int>, std::vector<std::pair<int, int>>> faces;
-  for (int b = 0; b < nb; ++b) {
-    auto [lf, nlf] = mesh::cell_faces(T.type(b));
-    for (int f = 0; f < nlf; ++f) {
-      std::vector<int> vs;
-      for (int i = 0; i < lf[f].n; ++i) vs.push_back(T.cells(b, lf[f].v[i]));
-      std::sort(vs.begin(), vs.end());
-      faces[vs].push_back({b, f});
-    }
+  // Each patch's corners as structure vertices, then the one matcher of block faces and patches.
+  std::vector<std::vector<int>> corners(layout.patches.size());
+  for (size_t p = 0; p < layout.patches.size(); ++p)
+    for (int li : layout.patches[p].corners) corners[p].push_back(g.corner_vertex[layout.corner_of(layout.patches[p].loop[li])]);
+  const std::vector<polycube::BlockFace> faces = polycube::block_faces(T);
+  const polycube::FaceMatch match = polycube::match_faces_to_patches(faces, corners);
+  if (!match.ok()) {
+    const size_t more = match.problems.size() - 1;
+    throw GeometryError(match.problems.front().message +
+                        (more ? " (and " + std::to_string(more) + " more problem" + (more > 1 ? "s" : "") + ")" : std::string()));
   }
-  // Patch corner sets -> patch index.
-  std::map<std::vector<int>, int> patch_of_corners;
-  for (size_t p = 0; p < layout.patches.size(); ++p) {
-    std::vector<int> vs;
-    for (int li : layout.patches[p].corners) vs.push_back(g.corner_vertex[layout.corner_of(layout.patches[p].loop[li])]);
+  // The boundary faces in the order of their sorted vertices: the order of the patch maps.
+  std::vector<std::pair<std::vector<int>, int>> boundary;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (match.patch_of_face[i] < 0) continue;
+    std::vector<int> vs = faces[i].vertices;
     std::sort(vs.begin(), vs.end());
-    patch_of_corners[vs] = static_cast<int>(p);
+    boundary.emplace_back(std::move(vs), static_cast<int>(i));
   }
+  std::sort(boundary.begin(), boundary.end());
   g.maps.resize(layout.patches.size());
-  std::vector<int> patch_face(layout.patches.size(), -1);
   int bf_count = 0;
   std::vector<int> local_of(g.S.V.rows(), -1);  // surface vertex -> local vertex of the current patch
-  for (const auto& [vs, users] : faces) {
-    if (users.size() > 2)
-      throw GeometryError("structure face (vertices " + vertex_list(vs) + ") is shared by " + std::to_string(users.size()) + " blocks");
-    if (users.size() == 2) continue;
-    const int b = users[0].first, f = users[0].second;
-    const mesh::LocalFace& lf = mesh::cell_faces(T.type(b)).first[f];
-    auto it = patch_of_corners.find(vs);
-    if (it == patch_of_corners.end())
-      throw GeometryError("block " + std::to_string(b + 1) + " face " + std::to_string(f + 1) + " (vertices " + vertex_list(vs) +
-                          ") is on the boundary but matches no patch: no patch has exactly these corners");
-    const int p = it->second;
+  for (const auto& [vs, i] : boundary) {
+    const int b = faces[i].block, f = faces[i].face, p = match.patch_of_face[i];
     const polycube::Patch& patch = layout.patches[p];
-    if (patch_face[p] >= 0)
-      throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(patch.label) + ") matches two boundary faces");
-    patch_face[p] = bf_count++;
+    ++bf_count;
     g.boundary_face_patch[vs] = p;
     if (patch.num_loops != 1)
       throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(patch.label) + ") has " +
                           std::to_string(patch.num_loops) + " boundary loops: a patch must be a disk");
     // Face vertices in outward order and the loop's corners in loop order.
-    std::vector<int> fv(lf.v, lf.v + lf.n);
-    for (int& x : fv) x = T.cells(b, x);
-    std::vector<int> lc;
-    for (int li : patch.corners) lc.push_back(g.corner_vertex[layout.corner_of(patch.loop[li])]);
-    if (!same_cycle(lc, fv))
+    const std::vector<int>& fv = faces[i].vertices;
+    if (!same_cycle(corners[p], fv))
       throw GeometryError("patch " + std::to_string(p + 1) + " visits its corners in an order that does not match block " +
                           std::to_string(b + 1) + " face " + std::to_string(f + 1));
-    add_map_job(g, p, fv, lc, local_of);
+    add_map_job(g, p, fv, corners[p], local_of);
   }
-  for (size_t p = 0; p < layout.patches.size(); ++p)
-    if (patch_face[p] < 0)
-      throw GeometryError("patch " + std::to_string(p + 1) + " (label " + std::to_string(layout.patches[p].label) +
-                          ", " + std::to_string(layout.patches[p].triangles.size()) + " triangles) matches no boundary face of the structure");
   g.stats.boundary_faces = bf_count;
   // Boundary edges of the structure: edges of boundary faces.
   for (const auto& [vs, p] : g.boundary_face_patch) {

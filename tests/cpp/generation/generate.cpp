@@ -131,3 +131,20 @@ TEST(Generate, RelaxationNeverLowersTheWorstCellAndUntangles) {
   for (int v = 0; v < m0.num_nodes(); ++v) moved += (m0.V.row(v) - m1.V.row(v)).norm() > 0;
   EXPECT_GT(moved, 0);
 }
+
+// The structure's faces are matched to the patches by polycube::match_faces_to_patches: with
+// patch 2 merged into patch 1, a block face matches no patch's corners, and the merged patch no
+// block face; generate names the first problem and counts the others.
+TEST(Generate, PatchesThatDoNotFitTheStructureNameTheFirstProblemAndCountTheRest) {
+  Example ex;
+  for (Eigen::Index t = 0; t < ex.surface.patch.size(); ++t)
+    if (ex.surface.patch(t) == 2) ex.surface.patch(t) = 1;
+  try {
+    generation::generate(ex.surface, ex.structure, generation::GenerateOptions{});
+    FAIL() << "patches that do not fit the structure were accepted";
+  } catch (const GeometryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("matches no patch"), std::string::npos) << what;
+    EXPECT_NE(what.find("more problem"), std::string::npos) << what;
+  }
+}
