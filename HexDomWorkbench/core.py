@@ -180,6 +180,12 @@ def cube_frame(surface, min_gain=0.02):
     return _hexdom.cube_frame(surface.V, surface.F, float(min_gain))
 
 
+def cell_faces(vtk_type):
+    """The faces of a hex (12), wedge (13) or tet (10): tuples of local node indices in VTK order,
+    each outward (the core's one face table)."""
+    return [tuple(f) for f in _hexdom.cell_faces(int(vtk_type))]
+
+
 def nearest_label(normals):
     """Label 1..6 of the axis nearest each row of ``normals`` (#N x 3, or one vector: an array of
     one label); ties and zero rows go to the lower label."""

@@ -1,15 +1,14 @@
 """The faces of hex, prism and tet blocks (VTK node order, right-hand normals pointing out of the
-block), the one table the workbench has of them, and the boundary of a block structure."""
+block), as the core's one face table gives them, and the boundary of a block structure."""
 
 import numpy as np
 
+from .. import core
+
 HEX, WEDGE, TET = 12, 13, 10  # VTK cell types, as core.HEX, core.WEDGE, core.TET
 NODE_COUNT = {HEX: 8, WEDGE: 6, TET: 4}
-BLOCK_FACES = {
-    HEX: [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)],
-    WEDGE: [(0, 1, 2), (3, 5, 4), (0, 3, 4, 1), (1, 4, 5, 2), (2, 5, 3, 0)],
-    TET: [(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)],
-}
+# The core's face table (mesh::cell_faces), read once.
+BLOCK_FACES = {t: core.cell_faces(t) for t in (HEX, WEDGE, TET)}
 
 
 def face_key(vertices):

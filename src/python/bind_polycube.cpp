@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "hexdom/mesh/cell_faces.h"
 #include "hexdom/polycube/match_faces.h"
 
 namespace py = pybind11;
@@ -12,6 +13,19 @@ namespace py = pybind11;
 namespace hexdom::python {
 
 void bind_polycube(py::module_& m) {
+  m.def("cell_faces",
+        [](int vtk_type) {
+          const mesh::CellType t = static_cast<mesh::CellType>(vtk_type);
+          if (!mesh::is_volume(t)) throw GeometryError("cell type " + std::to_string(vtk_type) + " is not a hex (12), wedge (13) or tet (10)");
+          std::vector<std::vector<int>> out;
+          auto [faces, n] = mesh::cell_faces(t);
+          for (int f = 0; f < n; ++f) out.emplace_back(faces[f].v, faces[f].v + faces[f].n);
+          return out;
+        },
+        py::arg("vtk_type"),
+        "The faces of a hex (12), wedge (13) or tet (10) as local node lists in VTK order, each outward\n"
+        "(right-hand normal out of the cell): the core's one face table (mesh::cell_faces).");
+
   m.def("match_faces_to_patches",
         [](const std::vector<std::pair<int, std::vector<int>>>& faces, const std::vector<std::vector<int>>& patch_corners) {
           std::vector<polycube::BlockFace> fs;

@@ -528,3 +528,17 @@ def test_labels_from_normals_is_the_cores_and_matches_the_axis_nearest_each_norm
     assert labels.nearest_label([[0, 0, -2], [0, 3, 0], [0, 0, 0]]).tolist() == [6, 3, 1]
     with pytest.raises(Exception, match="rotation"):
         labels.labels_from_normals(V, F, frame=np.eye(3) * 2)
+
+
+def test_the_block_face_table_is_the_cores():
+    # One face table: the workbench reads mesh::cell_faces through _hexdom; each face is outward,
+    # so every hex face's normal points away from the unit cube's centre.
+    from HexDomWorkbench import core
+    assert cells.BLOCK_FACES[cells.HEX] == core.cell_faces(12) and len(cells.BLOCK_FACES[cells.HEX]) == 6
+    cube = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
+    for face in cells.BLOCK_FACES[cells.HEX]:
+        p = cube[list(face)]
+        n = np.cross(p[1] - p[0], p[2] - p[0])
+        assert np.dot(n, p.mean(axis=0) - 0.5) > 0, face
+    with pytest.raises(core.Error):
+        core.cell_faces(9)
