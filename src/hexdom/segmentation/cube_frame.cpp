@@ -164,8 +164,8 @@ CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& o
     if (e > best) { best = e; best_R = R; }
   }
   // Then with a sharp exponent from there: faces square to the frame win over the compromise the
-  // fourth powers strike with faces at an angle (i10o_simp's tilted bore pulls that 10 degrees off
-  // its plate).
+  // fourth powers strike with faces at an angle (a tilted bore can pull it degrees off a plate;
+  // docs/tuning-notes.md).
   for (int p : kSharpExponents) ascend(ns, best_R, opt.iterations, p);
   polish(ns, best_R);
   best = fit_of(ns, best_R, nullptr);
