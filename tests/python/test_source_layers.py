@@ -60,6 +60,28 @@ def upward_includes(core_dir, order):
     return problems
 
 
+# The automatic polycube's own steps, in order; its entry (autopolycube.h/.cpp) sits above them.
+AUTOPOLYCUBE_STEPS = ["repair", "map", "blocks"]
+
+
+def test_the_automatic_polycube_s_steps_include_only_steps_before_them():
+    folder = os.path.join(CORE, "autopolycube")
+    steps = sorted(d for d in os.listdir(folder) if os.path.isdir(os.path.join(folder, d)))
+    assert steps == sorted(AUTOPOLYCUBE_STEPS), f"src/hexdom/autopolycube holds {steps}"
+    rank = {name: i for i, name in enumerate(AUTOPOLYCUBE_STEPS)}
+    problems = []
+    for step in AUTOPOLYCUBE_STEPS:
+        for path in source_files(os.path.join(folder, step)):
+            for number, target in includes(path):
+                parts = target.split("/")
+                if parts[:2] != ["hexdom", "autopolycube"]:
+                    continue
+                other = parts[2] if len(parts) > 3 else "autopolycube.h (the entry)"
+                if rank.get(other, len(rank)) > rank[step]:
+                    problems.append(f"{os.path.relpath(path, ROOT)}:{number}: {target} ({step} includes {other})")
+    assert not problems, "includes that go up the automatic polycube's steps:\n" + "\n".join(problems)
+
+
 def test_the_stages_are_the_folders():
     folders = sorted(d for d in os.listdir(CORE) if os.path.isdir(os.path.join(CORE, d)))
     assert folders == sorted(ORDER), f"src/hexdom holds {folders}; the order names {ORDER}"

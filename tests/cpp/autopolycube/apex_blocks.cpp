@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/apex_blocks.h"
+#include "hexdom/autopolycube/blocks/apex_blocks.h"
 
 #include <map>
 #include <set>

@@ -1,5 +1,5 @@
 #include "hexdom/autopolycube/autopolycube.h"
-#include "hexdom/autopolycube/polycube_map.h"
+#include "hexdom/autopolycube/map/polycube_map.h"
 
 #include <map>
 

@@ -3,11 +3,11 @@
 // build has it).
 #ifdef HEXDOM_WITH_CAD
 #include "cad/cad_test_util.h"
-#include "hexdom/autopolycube/chart_graph.h"
-#include "hexdom/autopolycube/plane_groups.h"
-#include "hexdom/autopolycube/polycube_map.h"
-#include "hexdom/autopolycube/repair_labels.h"
-#include "hexdom/autopolycube/split_chords.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
+#include "hexdom/autopolycube/map/polycube_map.h"
+#include "hexdom/autopolycube/repair/repair_labels.h"
+#include "hexdom/autopolycube/repair/split_chords.h"
 #include "hexdom/segmentation/axis_labels.h"
 
 using namespace hexdom;

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
 
 #include "auto_test_util.h"
 #include "hexdom/common/error.h"

@@ -1,14 +1,14 @@
-#include "hexdom/autopolycube/polycube_map.h"
+#include "hexdom/autopolycube/map/polycube_map.h"
 
 #include <array>
 #include <cmath>
 #include <vector>
 
 #include "auto_test_util.h"
-#include "hexdom/autopolycube/apex_blocks.h"
+#include "hexdom/autopolycube/blocks/apex_blocks.h"
 #include "hexdom/autopolycube/autopolycube.h"
-#include "hexdom/autopolycube/chart_graph.h"
-#include "hexdom/autopolycube/plane_groups.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
 #include "test_common.h"
 
 using namespace hexdom;

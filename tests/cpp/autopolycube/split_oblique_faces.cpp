@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/split_oblique_faces.h"
+#include "hexdom/autopolycube/repair/split_oblique_faces.h"
 
 #include <set>
 

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/untangle_plane_map.h"
+#include "hexdom/autopolycube/map/untangle_plane_map.h"
 
 #include <map>
 #include <set>

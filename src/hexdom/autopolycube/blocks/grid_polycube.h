@@ -7,7 +7,7 @@
 #include <map>
 #include <vector>
 
-#include "hexdom/autopolycube/polycube_grid.h"
+#include "hexdom/autopolycube/blocks/polycube_grid.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::autopolycube {

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/split_chords.h"
+#include "hexdom/autopolycube/repair/split_chords.h"
 
 #include <array>
 #include <map>

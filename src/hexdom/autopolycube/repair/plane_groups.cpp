@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/plane_groups.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
 
 #include <numeric>
 

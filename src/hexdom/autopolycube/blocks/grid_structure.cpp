@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/grid_structure.h"
+#include "hexdom/autopolycube/blocks/grid_structure.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>

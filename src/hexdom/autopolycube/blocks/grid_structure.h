@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-#include "hexdom/autopolycube/polycube_grid.h"
+#include "hexdom/autopolycube/blocks/polycube_grid.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/polycube_map.h"
+#include "hexdom/autopolycube/map/polycube_map.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
@@ -9,7 +9,7 @@
 #include <queue>
 #include <set>
 
-#include "hexdom/autopolycube/untangle_plane_map.h"
+#include "hexdom/autopolycube/map/untangle_plane_map.h"
 #include "hexdom/parametrization/harmonic_map.h"
 #include "hexdom/segmentation/axis_labels.h"
 

@@ -1,10 +1,10 @@
-#include "hexdom/autopolycube/split_oblique_faces.h"
+#include "hexdom/autopolycube/repair/split_oblique_faces.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "hexdom/autopolycube/cut_triangles.h"
+#include "hexdom/autopolycube/repair/cut_triangles.h"
 #include "hexdom/common/format.h"
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/mesh/triangle_adjacency.h"

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdom/autopolycube/grid_polycube.h"
+#include "hexdom/autopolycube/blocks/grid_polycube.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/cut_along_grid.h"
+#include "hexdom/autopolycube/blocks/cut_along_grid.h"
 
 #include <cmath>
 #include <vector>

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::autopolycube {

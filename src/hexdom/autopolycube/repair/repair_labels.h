@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "hexdom/autopolycube/chart_graph.h"
-#include "hexdom/autopolycube/plane_groups.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/cut_triangles.h"
+#include "hexdom/autopolycube/repair/cut_triangles.h"
 
 #include <algorithm>
 #include <cmath>

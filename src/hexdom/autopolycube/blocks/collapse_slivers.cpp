@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/collapse_slivers.h"
+#include "hexdom/autopolycube/blocks/collapse_slivers.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // its midpoint gives the triangle an interior vertex.
 #pragma once
 
-#include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::autopolycube {

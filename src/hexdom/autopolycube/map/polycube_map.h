@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "hexdom/autopolycube/chart_graph.h"
-#include "hexdom/autopolycube/plane_groups.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 

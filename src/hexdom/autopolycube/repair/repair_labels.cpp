@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/repair_labels.h"
+#include "hexdom/autopolycube/repair/repair_labels.h"
 
 #include <algorithm>
 #include <array>

@@ -6,9 +6,9 @@
 #include <array>
 #include <map>
 
-#include "hexdom/autopolycube/chart_graph.h"
-#include "hexdom/autopolycube/polycube_grid.h"
-#include "hexdom/autopolycube/polycube_map.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/blocks/polycube_grid.h"
+#include "hexdom/autopolycube/map/polycube_map.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 

@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/polycube_grid.h"
+#include "hexdom/autopolycube/blocks/polycube_grid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "hexdom/autopolycube/chart_graph.h"
-#include "hexdom/autopolycube/plane_groups.h"
-#include "hexdom/autopolycube/polycube_map.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
+#include "hexdom/autopolycube/map/polycube_map.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::autopolycube {

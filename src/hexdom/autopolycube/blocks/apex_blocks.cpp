@@ -1,12 +1,12 @@
-#include "hexdom/autopolycube/apex_blocks.h"
+#include "hexdom/autopolycube/blocks/apex_blocks.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <set>
 
-#include "hexdom/autopolycube/collapse_slivers.h"
-#include "hexdom/autopolycube/cut_triangles.h"
+#include "hexdom/autopolycube/blocks/collapse_slivers.h"
+#include "hexdom/autopolycube/repair/cut_triangles.h"
 #include "hexdom/common/format.h"
 #include "hexdom/polycube/match_faces.h"
 #include "hexdom/polycube/patch_layout.h"

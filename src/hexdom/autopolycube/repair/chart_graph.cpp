@@ -1,4 +1,4 @@
-#include "hexdom/autopolycube/chart_graph.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
 
 #include "hexdom/common/error.h"
 #include "hexdom/segmentation/axis_labels.h"
