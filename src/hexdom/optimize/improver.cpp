@@ -20,22 +20,6 @@ using Vec = Eigen::Vector3d;
 
 namespace {
 
-// Corner coordinates of cell c (rows past its node count left unset).
-inline CellPoints gather(const mesh::Mesh& m, int c) {
-  CellPoints P;
-  const int n = mesh::node_count(m.type(c));
-  const double* x = m.V.data();
-  const Eigen::Index rows = m.V.rows();
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Index v = m.cells(c, i);
-    P(i, 0) = x[v];
-    P(i, 1) = x[v + rows];
-    P(i, 2) = x[v + 2 * rows];
-  }
-  for (int i = n; i < 8; ++i) P.row(i).setZero();
-  return P;
-}
-
 // Weight of a cell in the volume-weighted centre: its volume, for hexes and prisms taken from the
 // Jacobian at the centre (exact for parallelepipeds and straight prisms, and far cheaper than
 // quadrature, which matters in a loop over every node's cells).
@@ -58,7 +42,7 @@ double centre_volume(CellType t, const CellPoints& P) {
 }  // namespace
 
 double cell_sj(const mesh::Mesh& m, int c) {
-  const double sj = scaled_jacobian(m.type(c), gather(m, c));
+  const double sj = scaled_jacobian(m.type(c), cell_points(m, c));
   return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj;
 }
 
@@ -169,7 +153,7 @@ bool Improver::smoothing_target(int v, Vec* out) const {
   double wsum = 0;
   if (t_.kind[v] == Interior) {
     for (int q : t_.node_cells[v]) {
-      const CellPoints P = gather(m_, q);
+      const CellPoints P = cell_points(m_, q);
       const int n = mesh::node_count(m_.type(q));
       // Valid cells: the cheap centre volume; inverted or tangled ones: the true volume (the centre
       // volume of a tangled hex misweights it, and untangling stalls).

@@ -195,13 +195,6 @@ double signed_sj(double sj) { return std::isfinite(sj) && sj < 2 ? sj : -1.0; }
 
 double signed_sj(mesh::CellType type, const CellPoints& P) { return signed_sj(scaled_jacobian(type, P)); }
 
-CellPoints cell_points(const mesh::Mesh& m, int c) {
-  CellPoints P = CellPoints::Zero();
-  const int k = mesh::node_count(m.type(c));
-  for (int i = 0; i < k; ++i) P.row(i) = m.V.row(m.cells(c, i));
-  return P;
-}
-
 CellMetrics compute_metrics(const mesh::Mesh& m) {
   CellMetrics r;
   const int n = m.num_cells();

@@ -40,8 +40,22 @@ double signed_sj(double scaled_jacobian);
 /// signed_sj of the cell's scaled Jacobian.
 double signed_sj(mesh::CellType type, const CellPoints& P);
 
-/// Points of cell `c` of `mesh`.
-CellPoints cell_points(const mesh::Mesh& mesh, int c);
+/// Points of cell `c` of `mesh` (rows past its node count zero). Inline: the optimisers call it for
+/// every trial position.
+inline CellPoints cell_points(const mesh::Mesh& mesh, int c) {
+  CellPoints P;
+  const int n = mesh::node_count(mesh.type(c));
+  const double* x = mesh.V.data();  // column-major: x, then y, then z of every node
+  const Eigen::Index rows = mesh.V.rows();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Index v = mesh.cells(c, i);
+    P(i, 0) = x[v];
+    P(i, 1) = x[v + rows];
+    P(i, 2) = x[v + 2 * rows];
+  }
+  for (int i = n; i < 8; ++i) P.row(i).setZero();
+  return P;
+}
 
 /// Per-cell metrics of a whole mesh (#C each; NaN for 2D cells).
 struct CellMetrics {
