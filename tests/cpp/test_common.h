@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -48,6 +49,25 @@ inline const std::vector<std::string>& paper_models() {
 
 /// Unit cube as a hex, unit wedge (equilateral triangles, Verdict's ideal), and the corner unit tet,
 /// in VTK order.
+// Worst scaled Jacobian of each cell type and of all cells (quality::signed_sj: -1 for a
+// degenerate cell), and the number of inverted cells, by the quality module.
+struct Worst {
+  double hex = 2, prism = 2, tet = 2, all = 2;
+  int inverted = 0;
+};
+inline Worst worst_of(const mesh::Mesh& m) {
+  Worst w;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const double raw = quality::scaled_jacobian(m.type(c), quality::cell_points(m, c));
+    w.inverted += quality::is_inverted(raw);
+    const double sj = quality::signed_sj(raw);
+    double& t = m.type(c) == mesh::CellType::Hex ? w.hex : m.type(c) == mesh::CellType::Wedge ? w.prism : w.tet;
+    t = std::min(t, sj);
+    w.all = std::min(w.all, sj);
+  }
+  return w;
+}
+
 inline quality::CellPoints unit_hex() {
   quality::CellPoints P;
   P << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;

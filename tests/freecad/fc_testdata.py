@@ -126,3 +126,16 @@ def edge_lengths(V, F):
     F = np.asarray(F, np.int64).reshape(-1, 3)
     edges = np.unique(np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0)
     return np.linalg.norm(V[edges[:, 0]] - V[edges[:, 1]], axis=1)
+
+
+def island(editor, patch_id=5):
+    """Triangles (an array) around a triangle in the middle of ``patch_id`` touching no other
+    patch, for a PatchEditor (HexDomWorkbench.logic.patch_editing) to plant a patch inside another."""
+    tris = np.flatnonzero(editor.patches == patch_id)
+    inner = [t for t in tris.tolist()
+             if all(set(editor.patches[editor.vertex_triangles(v)].tolist()) == {patch_id}
+                    for v in editor.F[t])]
+    centre = editor.V[editor.F[tris]].mean(axis=(0, 1))
+    t0 = min(inner, key=lambda t: np.linalg.norm(editor.V[editor.F[t]].mean(axis=0) - centre))
+    ring = np.unique(np.concatenate([editor.vertex_triangles(v) for v in editor.F[t0]]))
+    return np.array([t for t in ring.tolist() if t in set(inner)])

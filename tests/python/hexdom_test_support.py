@@ -78,16 +78,11 @@ def write_k_surface(path, V, F, part):
 
 def island(editor, patch_id=5):
     """Triangles around a triangle in the middle of ``patch_id`` touching no other patch, for a
-    PatchEditor (HexDomWorkbench.logic.patch_editing) to plant a patch inside another."""
-    import numpy as np
-    tris = np.flatnonzero(editor.patches == patch_id)
-    inner = [t for t in tris.tolist()
-             if all(set(editor.patches[editor.vertex_triangles(v)].tolist()) == {patch_id}
-                    for v in editor.F[t])]
-    centre = editor.V[editor.F[tris]].mean(axis=(0, 1))
-    t0 = min(inner, key=lambda t: np.linalg.norm(editor.V[editor.F[t]].mean(axis=0) - centre))
-    ring = np.unique(np.concatenate([editor.vertex_triangles(v) for v in editor.F[t0]]))
-    return np.array([t for t in ring.tolist() if t in set(inner)])
+    PatchEditor (HexDomWorkbench.logic.patch_editing) to plant a patch inside another: the one
+    helper of tests/freecad/fc_testdata.py, which the GUI tests use too."""
+    sys.path.insert(0, str(REPO / "tests" / "freecad"))
+    import fc_testdata
+    return fc_testdata.island(editor, patch_id)
 
 
 def missing(path):

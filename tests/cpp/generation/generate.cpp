@@ -79,25 +79,6 @@ TEST(Generate, RockerarmMatchesPaperCounts) {
 }
 
 namespace {
-// Worst scaled Jacobian of each cell type and the number of inverted cells, by the quality module.
-struct Worst {
-  double hex = 2, prism = 2, tet = 2, all = 2;
-  int inverted = 0;
-};
-Worst worst_of(const mesh::Mesh& m) {
-  Worst w;
-  for (int c = 0; c < m.num_cells(); ++c) {
-    double sj = quality::scaled_jacobian(m.type(c), quality::cell_points(m, c));
-    if (quality::is_inverted(sj)) {
-      ++w.inverted;
-      if (!(sj <= 0)) sj = -1;  // DBL_MAX or NaN: as bad as it gets
-    }
-    double& t = m.type(c) == CellType::Hex ? w.hex : m.type(c) == CellType::Wedge ? w.prism : w.tet;
-    t = std::min(t, sj);
-    w.all = std::min(w.all, sj);
-  }
-  return w;
-}
 }  // namespace
 
 // The untangling moves a node only when the worst scaled Jacobian sample around it rises, so the
@@ -118,7 +99,7 @@ TEST(Generate, RelaxationNeverLowersTheWorstCellAndUntangles) {
   untangle.untangle = true;
   const auto m1 = generation::generate(surface, structure, untangle);
   const auto m2 = generation::generate(surface, structure);
-  const Worst w0 = worst_of(m0), w1 = worst_of(m1), w2 = worst_of(m2);
+  const test::Worst w0 = test::worst_of(m0), w1 = test::worst_of(m1), w2 = test::worst_of(m2);
   EXPECT_GT(w0.inverted, 0) << "the raw placement of fertility should have inverted cells to untangle";
   EXPECT_EQ(w1.inverted, 0);
   EXPECT_GE(w1.all, w0.all);

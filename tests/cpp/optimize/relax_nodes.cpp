@@ -51,22 +51,6 @@ struct Grid {
   }
 };
 
-struct Worst {
-  double sj = 2;
-  int inverted = 0;
-};
-Worst worst_of(const mesh::Mesh& m) {
-  Worst w;
-  for (int c = 0; c < m.num_cells(); ++c) {
-    double sj = quality::scaled_jacobian(m.type(c), quality::cell_points(m, c));
-    if (quality::is_inverted(sj)) {
-      ++w.inverted;
-      if (!(sj <= 0)) sj = -1;
-    }
-    w.sj = std::min(w.sj, sj);
-  }
-  return w;
-}
 
 }  // namespace
 
@@ -81,18 +65,18 @@ TEST(RelaxPoor, RaisesTheWorstCellOfAPerturbedGridAndNeverLowersIt) {
       for (int d = 0; d < 3; ++d) g.m.V(v, d) += u(rng);
   const NodeFreedom F = g.freedom();
   const mesh::Mesh before = g.m;
-  const Worst w0 = worst_of(before);
-  ASSERT_LT(w0.sj, 0.2) << "the shaken grid should have poor cells";
+  const test::Worst w0 = test::worst_of(before);
+  ASSERT_LT(w0.all, 0.2) << "the shaken grid should have poor cells";
   // One sweep at a time: the worst cell never falls.
-  double last = w0.sj;
+  double last = w0.all;
   const mesh::NodeCells cells = mesh::node_cells(g.m);
   for (int round = 0; round < 5; ++round) {
     optimize::relax_poor(g.m, cells, F.kind, 1, 0.2, 1);
-    const double now = worst_of(g.m).sj;
+    const double now = test::worst_of(g.m).all;
     EXPECT_GE(now, last) << "round " << round;
     last = now;
   }
-  EXPECT_GT(last, w0.sj + 0.05);
+  EXPECT_GT(last, w0.all + 0.05);
   for (int v = 0; v < g.m.num_nodes(); ++v) {
     if (g.on_boundary(v)) {
       EXPECT_TRUE(g.m.V.row(v) == before.V.row(v)) << "boundary node " << v << " moved";
@@ -118,13 +102,13 @@ TEST(UntangleNodes, UntanglesAnInvertedHexInAGrid) {
   g.m.V.row(v) << 2.3, 1.2, 1.1;  // past the nodes at x = 2
   NodeFreedom F = g.freedom();
   const mesh::Mesh before = g.m;
-  const Worst w0 = worst_of(before);
+  const test::Worst w0 = test::worst_of(before);
   ASSERT_GT(w0.inverted, 0);
   std::vector<int> left;
   const std::string summary = optimize::untangle_nodes(g.m, mesh::node_cells(g.m), F, 10, 0.0, 0.2, 0.0, 0.1, nullptr, &left);
-  const Worst w1 = worst_of(g.m);
+  const test::Worst w1 = test::worst_of(g.m);
   EXPECT_EQ(w1.inverted, 0) << summary;
-  EXPECT_GT(w1.sj, w0.sj);
+  EXPECT_GT(w1.all, w0.all);
   EXPECT_TRUE(left.empty());
   for (int u = 0; u < g.m.num_nodes(); ++u) {
     if (g.on_boundary(u)) {
@@ -152,10 +136,10 @@ TEST(UntangleNodes, SurfaceNodesSlideWithinTheirPatch) {
     q[0] = std::clamp(q[0], 1e-6, 1 - 1e-6);
     q[1] = std::clamp(q[1], 1e-6, 1 - 1e-6);
   };
-  ASSERT_GT(worst_of(g.m).inverted, 0);
+  ASSERT_GT(test::worst_of(g.m).inverted, 0);
   const double box = 0.15;
   const std::string summary = optimize::untangle_nodes(g.m, mesh::node_cells(g.m), F, 10, 0.0, 0.2, 0.0, box);
-  EXPECT_EQ(worst_of(g.m).inverted, 0) << summary;
+  EXPECT_EQ(test::worst_of(g.m).inverted, 0) << summary;
   EXPECT_EQ(g.m.V(v, 2), 0.0);
   EXPECT_LE(std::abs(F.now[v][0] - F.param[v][0]), box + 1e-15);
   EXPECT_NEAR(g.m.V(v, 0), 3 * F.now[v][0], 1e-15);

@@ -38,6 +38,17 @@ mesh::Mesh rebuild(const mesh::SurfaceMesh& s, const pipeline::MeshSurfaceOption
   return optimize::improve(generation::generate(p.patches, p.structure, go), io).mesh;
 }
 
+// The bar with a hole tilted by 40 degrees most tests here mesh, and its options: element size 1,
+// level 1, in the model's axes (the bar is tilted whole: in its own frame its hole would not be).
+mesh::SurfaceMesh tilted_hole_bar() { return test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0); }
+pipeline::MeshSurfaceOptions tilted_hole_options() {
+  pipeline::MeshSurfaceOptions o;
+  o.align = false;
+  o.size = 1.0;
+  o.level = 1;
+  return o;
+}
+
 void expect_same_mesh(const mesh::Mesh& a, const mesh::Mesh& b) {
   for (auto t : {mesh::CellType::Hex, mesh::CellType::Wedge, mesh::CellType::Tet}) EXPECT_EQ(a.count(t), b.count(t));
   ASSERT_EQ(a.V.rows(), b.V.rows());
@@ -49,12 +60,9 @@ void expect_same_mesh(const mesh::Mesh& a, const mesh::Mesh& b) {
 // hole kept, the tunnel is 2 x 2 blocks and the volume error less than half of what it is with the
 // least-squares offsets alone (a tunnel of 1 x 1 block, the hole carried by 8 nodes around).
 TEST(MeshSurface, ATiltedHoleKeepsItsWidthAndTheVolume) {
-  const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
+  const auto s = tilted_hole_bar();
   const double reference = test::enclosed_volume(s);
-  pipeline::MeshSurfaceOptions o;
-  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
-  o.size = 1.0;
-  o.level = 1;
+  pipeline::MeshSurfaceOptions o = tilted_hole_options();
   const auto r = pipeline::mesh_surface(s, o);
   EXPECT_EQ(r.quality.hex.inverted, 0);
   EXPECT_LT(volume_error(r, reference), 0.015) << r.quality.total_volume << " vs " << reference;
@@ -72,12 +80,9 @@ TEST(MeshSurface, ATiltedHoleKeepsItsWidthAndTheVolume) {
 // When the first candidate misses a target, the second is meshed and the better kept, and the run
 // says which: with an unreachable worst-SJ target both are measured.
 TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
-  const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
+  const auto s = tilted_hole_bar();
   const double reference = test::enclosed_volume(s);
-  pipeline::MeshSurfaceOptions o;
-  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
-  o.size = 1.0;
-  o.level = 1;
+  pipeline::MeshSurfaceOptions o = tilted_hole_options();
   o.target_sj = 2.0;  // no mesh meets it
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
@@ -111,7 +116,7 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
   EXPECT_EQ(r.segmentations, 1);
 
   // The tilted hole's walls are kept apart: there the second candidate is meshed (test above).
-  const auto h = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
+  const auto h = tilted_hole_bar();
   o.size = 1.0;
   EXPECT_GT(pipeline::mesh_surface(h, o).polycube.widened, 0);
 }
@@ -119,11 +124,8 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
 // The second candidate (without the widths of holes) and a finer level take the first candidate's
 // label repair instead of repairing the same labelling again.
 TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
-  auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
-  pipeline::MeshSurfaceOptions o;
-  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
-  o.size = 1.0;
-  o.level = 1;
+  auto s = tilted_hole_bar();
+  pipeline::MeshSurfaceOptions o = tilted_hole_options();
   o.target_sj = 2.0;  // no mesh meets it: both candidates are meshed
   o.verbose = true;
   std::string log;
@@ -144,11 +146,8 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
 // its objects. Tilted hole: with an unreachable SJ target both width candidates are measured and
 // the one with the widths kept; with keep_widths off from the start, it says so.
 TEST(MeshSurface, TheKeptCandidatesOptionsAreReportedAndRebuildItsMesh) {
-  const auto s = test::holed_bar_surface(4.0, 2.0, 12.0, 8, 24, 4, 40.0 * M_PI / 180.0);
-  pipeline::MeshSurfaceOptions o;
-  o.align = false;  // the bar is tilted whole: in its own frame its hole would not be tilted
-  o.size = 1.0;
-  o.level = 1;
+  const auto s = tilted_hole_bar();
+  pipeline::MeshSurfaceOptions o = tilted_hole_options();
   o.target_sj = 2.0;  // no mesh meets it: both candidates are measured
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };

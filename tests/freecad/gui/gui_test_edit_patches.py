@@ -22,23 +22,11 @@ TEST_DIR = os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(
     os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, TEST_DIR)
 
+import fc_testdata  # noqa: E402
 import gui_shots as g  # noqa: E402
 
 g.start_watchdog(170.0)
 check = g.check
-
-
-def island(editor, patch_id=5):
-    """Triangles around the middle of ``patch_id`` that touch no other patch."""
-    import numpy as np
-    tris = np.flatnonzero(editor.patches == patch_id)
-    inner = [t for t in tris.tolist()
-             if all(set(editor.patches[editor.vertex_triangles(v)].tolist()) == {patch_id}
-                    for v in editor.F[t])]
-    centre = editor.V[editor.F[tris]].mean(axis=(0, 1))
-    t0 = min(inner, key=lambda t: np.linalg.norm(editor.V[editor.F[t]].mean(axis=0) - centre))
-    ring = np.unique(np.concatenate([editor.vertex_triangles(v) for v in editor.F[t0]]))
-    return [t for t in ring.tolist() if t in set(inner)]
 
 
 def screen_of(panel, points):
@@ -96,7 +84,6 @@ def run():
     import Part
     from PySide import QtGui
 
-    import fc_testdata
     from HexDomWorkbench import api, make, paths
     from HexDomWorkbench.taskpanels import task_segmentation
 
@@ -155,7 +142,7 @@ def run():
 
     # 2. Plant a violation: click facets in the middle of patch 5 (+X, facing the camera).
     e = panel.editor
-    planted = island(e)
+    planted = fc_testdata.island(e).tolist()
     f.cb_pick_mode.setCurrentIndex(0)
     picked = []
     for t in planted:
