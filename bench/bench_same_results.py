@@ -1,12 +1,13 @@
 """Same results before and after a refactoring: the figures a behaviour-keeping change must not move.
 
-For `hexdom mesh` on the shared CAD parts (../shared/data/cad) and the bundled bracket, and for
-`hexdom generate` (level 2) + `hexdom improve` on the six paper models' hand-built structures, prints
+For `hexdom mesh` on the shared CAD parts (../shared/data/cad), the bundled bracket, the six paper
+models' raw surfaces and, with --corpus, our own parts (bench/make_corpus.py), and for `hexdom
+generate` (level 2) + `hexdom improve` on the six paper models' hand-built structures, prints
 per run: cells per type, worst and mean scaled Jacobian per type, the total volume, and two
 fingerprints of the written mesh (sum of the node coordinates, and a hash of the connectivity) that
 change when any node moves or any cell changes.
 
-Run:   HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_same_results.py [--save F] [--compare F] [names]
+Run:   HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_same_results.py [--save F] [--compare F] [--corpus D] [names]
 --save writes the figures as JSON; --compare reads such a file (e.g. made before the change) and prints
 every figure that differs by more than 1e-9, per run. Prints, never asserts.
 """
@@ -28,16 +29,8 @@ DATA = os.environ.get("HEXDOM_DATA", os.path.join(ROOT, "..", "shared", "data"))
 BUILD = os.environ.get("HEXDOM_BUILD_DIR", os.path.join(ROOT, "build"))
 HEXDOM = os.path.join(BUILD, "bin", "hexdom")
 
-PAPER = {  # model: (patch file, hand-built structure)
-    "rockerarm": ("rockerarm_indexPatch_hexdom.k", "rockerarm_polycube_withtet.k"),
-    "mount1": ("mount1_patch_hexdom.k", "mount1_polycube_hexdom_withtet.k"),
-    "hepta": ("hepta_patch_hexdom.k", "hepta_polycube_withtet.k"),
-    "fertility": ("fertility_indexPatch_hexdom.k", "fertility_polycube_hexdom_withtet.k"),
-    "ant": ("ant_indexPatch_hexdom.k", "ant_polycube_withtet.k"),
-    "mountwithhole": ("mountwithhole_patch_hexdom.k", "mountwithhole_polycube_withtet.k"),
-}
-CAD = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
-       "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
+sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+from hexdom_test_support import PAPER_MODELS as PAPER  # noqa: E402  (model: patch file, hand-built structure)
 
 
 def fingerprint(path):
@@ -85,15 +78,18 @@ def paper_model(model, tmp):
     return figures(rep, out)
 
 
-def cases(names):
+def cases(names, corpus):
     bracket = os.path.join(ROOT, "examples", "data", "bracket.step")
     all_cases = [("bracket", lambda t: mesh_part(bracket, t))]
-    for stem in CAD:
-        paths = glob.glob(os.path.join(DATA, "cad", stem + ".*"))
-        all_cases.append((stem, (lambda p: lambda t: mesh_part(p, t))(paths[0]) if paths else None))
+    for path in sorted(glob.glob(os.path.join(DATA, "cad", "*.st*p"))):
+        all_cases.append((os.path.splitext(os.path.basename(path))[0], (lambda p: lambda t: mesh_part(p, t))(path)))
     for model in PAPER:
         ok = os.path.exists(os.path.join(DATA, "hexdom", model))
         all_cases.append((model + " (hand, level 2)", (lambda m: lambda t: paper_model(m, t))(model) if ok else None))
+        raw = os.path.join(DATA, "hexdom", model, model + ".k")
+        all_cases.append((model + " (raw surface)", (lambda p: lambda t: mesh_part(p, t))(raw) if ok else None))
+    for path in sorted(glob.glob(os.path.join(corpus, "*.step"))) if corpus else []:
+        all_cases.append(("corpus/" + os.path.splitext(os.path.basename(path))[0], (lambda p: lambda t: mesh_part(p, t))(path)))
     return [c for c in all_cases if not names or c[0].split()[0] in names]
 
 
@@ -114,11 +110,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--save")
     ap.add_argument("--compare")
+    ap.add_argument("--corpus", help="also every .step in this folder (bench/make_corpus.py writes one)")
     ap.add_argument("names", nargs="*")
     args = ap.parse_args()
     before = json.load(open(args.compare)) if args.compare else None
     results, same = {}, 0
-    for name, fn in cases(args.names):
+    for name, fn in cases(args.names, args.corpus):
         if fn is None:
             print(f"{name:30s} skipped: shared data missing under {DATA}")
             continue
@@ -127,7 +124,7 @@ def main():
             try:
                 r = fn(tmp)
             except RuntimeError as e:
-                r = {"error": str(e)[:200]}
+                r = {"error": str(e).replace(tmp, "<tmp>")[:200]}
         results[name] = r
         sec = time.perf_counter() - t0
         if "error" in r:
