@@ -123,8 +123,13 @@ std::string stem_of(const std::string& path) {
 void add_mesh(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "mesh",
-      "Hex mesh of a closed surface or a CAD part with no manual step: segment -> autopolycube -> generate ->\n"
-      "improve, one progress line per stage, then the quality summary. The structure has hex blocks, and\n"
+      "Hex mesh of a closed surface or a CAD part with no manual step, by one of two paths (--method): the\n"
+      "polycube (segment -> autopolycube -> generate -> improve; aligned with the part, the coarsest mesh) or\n"
+      "the overlay grid (cells of the element size laid over the part, the ones well inside kept, one layer\n"
+      "of cells out to the surface with its curves and corners, then optimised; meshes any closed solid).\n"
+      "auto (the default) runs the polycube and, when it fails or its mesh misses a target (an inverted cell,\n"
+      "a worst scaled Jacobian below 0.3, a volume more than 1% off), the overlay grid too, the better kept.\n"
+      "One progress line per stage, then the quality summary. The structure has hex blocks, and\n"
       "prism blocks along wedge-like features (knife edges; --sliver-ratio). CAD files (.step/.stp, .iges/.igs,\n"
       ".brep/.brp) are tessellated first (hexdom tessellate, CAD faces kept for the segmentation), and the\n"
       "final boundary nodes are put exactly on the B-rep (stage snap: faces, edges, vertices; interior\n"
@@ -143,12 +148,18 @@ void add_mesh(CLI::App& app) {
     std::string in, out, report;
     bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
     int solid = 0;
+    std::string method = "auto";
     pipeline::MeshSurfaceOptions opt;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("input", a->in, "closed triangle surface (.k, .stl, .obj, .vtk) or CAD part (.step, .stp, .iges, .igs, .brep, .brp)")
       ->required();
   cmd->add_option("-o,--output", a->out, "mesh to write (.vtk, .vtu, .inp, .k)")->required();
+  cmd->add_option("--method", a->method,
+                  "meshing path: polycube (aligned, coarsest), overlay (a grid laid over the part: meshes any closed "
+                  "solid), or auto: the polycube, and the overlay grid too when the polycube fails or misses a target, "
+                  "the better kept")
+      ->capture_default_str()->check(CLI::IsMember({"auto", "polycube", "overlay"}));
   cmd->add_option("--size", a->opt.size, "target element size H; 0: the bounding-box diagonal / 30")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("-s,--level", a->opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
@@ -176,6 +187,7 @@ void add_mesh(CLI::App& app) {
     a->opt.log = print_log;
     a->opt.improve = !a->no_improve;
     a->opt.align = !a->no_align;
+    a->opt.method = pipeline::method_from_name(a->method);
     const std::string stem = stem_of(a->out);
     mesh::SurfaceMesh surface;
     cad::Shape shape;
@@ -238,7 +250,7 @@ void add_mesh(CLI::App& app) {
       }
     }
     if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
-    print_log(0, "kept: " + pipeline::choice_text(run));
+    print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
     if (snapped) {
       const cad::SnapReport& q = snap;
       char line[400];

@@ -54,7 +54,11 @@ const char* kMeshSurfaceDoc =
     "edge_weight, keep_widths, collapse_apexes (segment with edge_weight, then autopolycube with level,\n"
     "keep_widths and collapse_apexes rebuild its polycube), frame (the cube_frame dict the labels and the\n"
     "polycube refer to: segment and autopolycube with its rotation rebuild them; align=False: the model's\n"
-    "axes; frame: this 3 x 3 rotation instead of the one the faces fit) and choice (them as one line of text). Inverted cells left are reported, not raised.";
+    "axes; frame: this 3 x 3 rotation instead of the one the faces fit) and choice (them as one line of text).\n"
+    "method: \"polycube\", \"overlay\" (a grid laid over the part, which meshes any closed surface) or \"auto\"\n"
+    "(the polycube, and the overlay too when the polycube fails or misses a target; the better kept). The\n"
+    "dict's method names the path that made the mesh, polycube_note why the overlay was tried (empty when it\n"
+    "was not). Inverted cells left are reported, not raised.";
 
 }  // namespace
 
@@ -72,14 +76,17 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["keep_widths"] = r.keep_widths;
   d["collapse_apexes"] = r.collapse_apexes;
   d["choice"] = pipeline::choice_text(r);
+  d["method"] = pipeline::method_name(r.method);
+  d["polycube_note"] = r.polycube_note;
   d["frame"] = frame_dict(r.frame);
   return d;
 }
 
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
-                                                      const std::optional<Eigen::Matrix3d>& frame) {
+                                                      const std::optional<Eigen::Matrix3d>& frame, const std::string& method) {
   pipeline::MeshSurfaceOptions opt;
+  opt.method = pipeline::method_from_name(method);
   opt.align = align;
   if (frame) opt.segment.frame = opt.polycube.frame = checked_rotation(*frame);
   opt.size = size;
@@ -121,10 +128,10 @@ void bind_auto(py::module_& m) {
 
   m.def("mesh_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           const pipeline::MeshSurfaceOptions opt =
-              mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame);
+              mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method);
           pipeline::MeshSurfaceRun r;
           {
             py::gil_scoped_release nogil;
@@ -134,7 +141,8 @@ void bind_auto(py::module_& m) {
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
-        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), kMeshSurfaceDoc);
+        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), py::arg("method") = "auto",
+        kMeshSurfaceDoc);
 }
 
 }  // namespace hexdom::python

@@ -212,11 +212,11 @@ void bind_cad(py::module_& m) {
 
   m.def("mesh_cad",
         [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame) {
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method) {
           pipeline::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
-          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame);
+          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           {
@@ -235,8 +235,9 @@ void bind_cad(py::module_& m) {
         },
         py::arg("source"), py::arg("size") = 0.0, py::arg("solid") = 0, py::arg("snap") = true, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
-        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(),
-        "A CAD part (file path or BREP text) meshed as `hexdom mesh` does: tessellate, mesh_surface, snap onto\n"
+        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), py::arg("method") = "auto",
+        "A CAD part (file path or BREP text) meshed as `hexdom mesh` does: tessellate, mesh_surface (`method`:\n"
+        "auto, polycube or overlay, as mesh_surface), snap onto\n"
         "the B-rep; when the tessellation's labelling defeats the automatic polycube or cells stay inverted, the\n"
         "B-rep is tessellated again with triangles of 0.97, 1.03, 0.94, 1.06 x the size (the first two for\n"
         "inverted cells; the polycube grid kept)\n"

@@ -14,7 +14,8 @@ pybind11::dict run_dict(const pipeline::MeshSurfaceRun& r);
 /// The MeshSurfaceOptions of mesh_surface's and mesh_cad's keyword arguments (bind_auto.cpp).
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
-                                                      const std::optional<Eigen::Matrix3d>& frame);
+                                                      const std::optional<Eigen::Matrix3d>& frame,
+                                                  const std::string& method = "auto");
 void bind_segmentation(pybind11::module_& m);
 void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);

@@ -246,12 +246,26 @@ def test_mesh_segments_again_when_the_labelling_defeats_autopolycube(paper_mesh)
 def test_mesh_failure_leaves_the_intermediate_files(tmp_path):
     raw = _raw("rockerarm")
     out = tmp_path / "r.vtk"
-    r = _run("mesh", raw, "-o", out, "--max-relabels", "0", ok=False)
+    r = _run("mesh", raw, "-o", out, "--max-relabels", "0", "--method", "polycube", ok=False)
     assert r.returncode == 1
     assert "problems of the labelling remain" in r.stderr
     assert not out.exists()
     V, F, label = _k_surface(tmp_path / "r_labels.k")
     assert len(F) > 0 and set(label.tolist()) <= set(range(1, 7))
+
+
+def test_auto_meshes_with_the_overlay_grid_where_the_polycube_fails(tmp_path):
+    """The same labelling defeat under --method auto (the default): the overlay grid meshes the
+    surface instead, and the log says why and which path made the mesh."""
+    raw = _raw("rockerarm")
+    out = tmp_path / "r.vtu"
+    r = _run("mesh", raw, "-o", out, "--max-relabels", "0", "--allow-inverted")
+    assert "the polycube path failed" in r.stderr and "problems of the labelling remain" in r.stderr
+    assert "kept: overlay path" in r.stderr
+    g = oracle.read_vtu(out)
+    assert g.GetNumberOfCells() > 1000
+    V, F, _ = _k_surface(raw)
+    assert np.sum(oracle.signed_volumes(g)) == pytest.approx(abs(_enclosed(V, F)), rel=0.01)
 
 
 def test_mesh_missing_input_is_exit_1(tmp_path):

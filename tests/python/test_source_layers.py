@@ -12,7 +12,7 @@ CORE = os.path.join(ROOT, "src", "hexdom")
 
 # The stages, in dependency order (docs/architecture.md).
 ORDER = ["common", "mesh", "io", "quality", "parametrization", "polycube", "segmentation", "optimize", "cad",
-         "generation", "autopolycube", "pipeline"]
+         "generation", "autopolycube", "overlay", "pipeline"]
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 OCCT_HEADER = re.compile(r"^(Standard_|TopoDS|TopExp|TopAbs|BRep|Geom|gp_|STEP|IGES|Interface_|TopLoc|Poly_|TColgp|"

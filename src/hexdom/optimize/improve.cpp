@@ -55,6 +55,10 @@ class Run {
       }
       // The pillowed boundary has the original geometry, so the angle test finds the same features.
       t_ = node_kinds(m_, opt.feature_angle, sharp_in ? &sharp : nullptr);
+      if (!with_pillow && !opt.kinds.empty()) {
+        t_.kind = opt.kinds;
+        t_.curve_nbrs = opt.curve_neighbours;
+      }
       if (!partial) break;
       std::vector<char> inverted_before(m_.num_cells(), 0);
       for (int c = 0; c < m_.num_cells(); ++c) inverted_before[c] = cell_sj(m_, c) <= 0;
@@ -214,6 +218,10 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       sharp[v] = 1;
     }
   }
+  if (!opt.kinds.empty() && (static_cast<int>(opt.kinds.size()) != input.num_nodes() ||
+                             opt.curve_neighbours.size() != opt.kinds.size()))
+    throw GeometryError("node kinds given for " + std::to_string(opt.kinds.size()) + " nodes, curve neighbours for " +
+                        std::to_string(opt.curve_neighbours.size()) + ", the mesh has " + std::to_string(input.num_nodes()));
   for (int v : opt.fixed_nodes)
     if (v < 0 || v >= input.num_nodes())
       throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
@@ -223,7 +231,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   cons.project = opt.project;
   const QualityReport before = quality_report(input);
   const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
-  const std::vector<char> layer = smooth_layer_faces(input, t0);
+  const std::vector<char> layer = opt.kinds.empty() ? smooth_layer_faces(input, t0) : std::vector<char>();
 
   ImproveResult r;
   if (!recommended) {
@@ -247,6 +255,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     std::vector<int> plain_rounds;  // each run's rounds before the pattern search
     bool plain_good = false;  // a pillowed run reached the bar with the gradient alone
     for (const std::vector<char>* faces : {&layer, static_cast<const std::vector<char>*>(nullptr)}) {
+      if (!opt.kinds.empty()) break;  // given kinds are the input's nodes': no layer
       if (faces && faces->empty()) continue;
       try {
         runs.push_back(std::make_unique<Run>(input, opt, true, sp, cons, log, faces));

@@ -39,6 +39,13 @@ struct ImproveOptions {
   std::vector<int> sharp_nodes;
   /// Surface the boundary nodes must stay on; empty: the mesh's own initial boundary.
   mesh::SurfaceMesh surface;
+  /// Where not empty (#V of the input), every node's kind, used instead of the classification by
+  /// sharp edges, with `curve_neighbours` (#V lists; a curve node's neighbours along its curve, the
+  /// target of its smoothing) for a mesh whose boundary nodes were put on known features (the
+  /// overlay path); with `project` it says where each goes. The recommended sequence then makes no
+  /// pillowed runs (the kinds are the input's nodes').
+  std::vector<NodeKind> kinds;
+  std::vector<std::vector<int>> curve_neighbours;
   /// Nodes that never move (0-based indices into the input mesh), e.g. boundary nodes already put
   /// on the exact CAD geometry; after pillowing, a fixed boundary node's boundary copy is fixed.
   std::vector<int> fixed_nodes;

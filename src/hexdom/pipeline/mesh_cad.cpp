@@ -57,6 +57,8 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   std::exception_ptr first_error;
   bool meshed = attempt(opt.mesh, r, &first_error);
   if (meshed && inverted_cells(r.run.quality) == 0) return r;
+  // The overlay grid hardly depends on the triangles: another tessellation would give the same mesh.
+  if (meshed && r.run.method == Method::Overlay) return r;
   // Later tessellations: the same grid (the element size the first run took, in its frame), other
   // triangles.
   MeshSurfaceOptions mo = opt.mesh;

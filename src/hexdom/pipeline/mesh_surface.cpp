@@ -164,7 +164,82 @@ bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double referen
   return better(b, a, reference, options);
 }
 
+namespace {
+
+// The overlay path on `surface` into r (everything in r replaced).
+void run_overlay(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
+  r = MeshSurfaceRun{};
+  r.method = Method::Overlay;
+  r.stage = "overlay";
+  overlay::OverlayOptions oo = opt.overlay;
+  oo.size = opt.size;
+  oo.align = opt.align;
+  oo.log = opt.verbose ? opt.log : LogCallback();
+  r.overlay = overlay::overlay_mesh(surface, oo);
+  r.mesh = std::move(r.overlay.mesh);
+  r.overlay.mesh = mesh::Mesh{};
+  r.quality = r.overlay.quality;
+  r.frame = r.overlay.frame;
+  r.seconds[3] = r.overlay.seconds;
+  r.stage = "done";
+  if (opt.log) opt.log(0, overlay::to_text(r.overlay));
+}
+
+MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress);
+
+}  // namespace
+
+std::string method_name(Method m) { return m == Method::Auto ? "auto" : m == Method::Polycube ? "polycube" : "overlay"; }
+
+Method method_from_name(const std::string& name) {
+  for (Method m : {Method::Auto, Method::Polycube, Method::Overlay})
+    if (method_name(m) == name) return m;
+  throw InputError("unknown meshing method '" + name + "': auto, polycube or overlay");
+}
+
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
+  MeshSurfaceRun local;
+  MeshSurfaceRun& r = progress ? *progress : local;
+  if (opt.method == Method::Overlay) {
+    run_overlay(surface, opt, r);
+    return r;
+  }
+  if (opt.method == Method::Polycube) return mesh_polycube(surface, opt, &r);
+  const double reference = mesh::enclosed_volume(surface.V, surface.F);
+  std::string note;
+  bool have = false;
+  try {
+    mesh_polycube(surface, opt, &r);
+    have = true;
+    if (meets_targets(r, reference, opt)) return r;
+    note = "the polycube mesh " + run_summary(r, reference);
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    note = "the polycube path failed at stage " + r.stage + ": " + what.substr(0, what.find('\n'));
+  }
+  if (opt.log) opt.log(0, note + "; meshing with the overlay grid too");
+  MeshSurfaceRun other;
+  try {
+    run_overlay(surface, opt, other);
+  } catch (const Error& e) {
+    if (!have) throw;
+    if (opt.log) opt.log(0, std::string("overlay: ") + e.what() + "; keeping the polycube mesh");
+    r.polycube_note = note;
+    return r;
+  }
+  if (!have || better(other, r, reference, opt)) {
+    if (have && opt.log) opt.log(0, "kept the overlay mesh: it is better (" + run_summary(other, reference) + ")");
+    r = std::move(other);
+  } else if (opt.log) {
+    opt.log(0, "kept the polycube mesh: the overlay mesh is no better (" + run_summary(other, reference) + ")");
+  }
+  r.polycube_note = note;
+  return r;
+}
+
+namespace {
+
+MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceOptions o = opt;
   segmentation::CubeFrame frame;
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
@@ -195,8 +270,6 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   r.frame = frame;
   return r;
 }
-
-namespace {
 
 /// "worst hex SJ 0.307, prism 0.306, tet 0.118, 0 inverted": the types present only (a mesh with
 /// tet and prism blocks may have no hex, whose minimum is then NaN).
@@ -312,6 +385,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
 }  // namespace
 
 std::string to_text(const MeshSurfaceRun& r) {
+  if (r.method == Method::Overlay) return overlay::to_text(r.overlay) + "\nkept          " + choice_text(r) + "\n";
   std::string s;
   s += fmt("segment       %8.2f s\n", r.seconds[0]);
   s += fmt("autopolycube  %8.2f s  %5.0f charts, %5.0f blocks, h = %g\n", r.seconds[1], r.polycube.charts, r.polycube.blocks,
@@ -323,6 +397,8 @@ std::string to_text(const MeshSurfaceRun& r) {
 }
 
 std::string choice_text(const MeshSurfaceRun& r) {
+  if (r.method == Method::Overlay)
+    return fmt("overlay grid, spacing %g", r.overlay.spacing) + (r.frame.turned() ? ", frame: the axes " + frame_text(r.frame) : "");
   std::string s = fmt("level %.0f, lambda %g, ", r.level, r.edge_weight) +
                   (r.keep_widths ? "widths of holes kept" : "least-squares plane offsets");
   if (r.polycube.apexes > 0) s += r.collapse_apexes ? ", tet blocks at apexes" : ", hex blocks under the caps";

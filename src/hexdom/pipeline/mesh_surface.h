@@ -9,13 +9,27 @@
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
+#include "hexdom/overlay/overlay.h"
 #include "hexdom/quality/report.h"
 #include "hexdom/segmentation/cube_frame.h"
 #include "hexdom/segmentation/segment_cvt.h"
 
 namespace hexdom::pipeline {
 
+/// Which meshing path runs: the polycube (segment -> autopolycube -> generate -> improve), the
+/// overlay grid (overlay::overlay_mesh), or the polycube and, when it fails or its mesh misses a
+/// target (an inverted cell, a worst SJ below target_sj, a volume off by more than target_volume),
+/// the overlay grid too, the better kept by better_run.
+enum class Method { Auto, Polycube, Overlay };
+
+/// "auto", "polycube", "overlay"; and back (throws InputError naming the word for another one).
+std::string method_name(Method m);
+Method method_from_name(const std::string& name);
+
 struct MeshSurfaceOptions {
+  Method method = Method::Auto;
+  /// The overlay path's options; its size, alignment and log are taken from here.
+  overlay::OverlayOptions overlay;
   double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30
   int level = 1;    ///< subdivision level s: blocks are grid cells of h = H * 2^s, 2^s cells per block edge
   segmentation::CvtOptions segment;   ///< segmentation (its log is replaced by `log` when `verbose`)
@@ -62,6 +76,11 @@ struct MeshSurfaceOptions {
 };
 
 struct MeshSurfaceRun {
+  Method method = Method::Polycube;   ///< the path that made `mesh` (Polycube or Overlay)
+  overlay::OverlayResult overlay;     ///< the overlay path's figures when it made `mesh` (its mesh moved out)
+  /// In auto mode: the first line of the polycube path's error when it gave no mesh, or what its mesh
+  /// missed when the overlay was tried too; empty otherwise.
+  std::string polycube_note;
   mesh::SurfaceMesh labels;   ///< the segmentation (label 1..6 per triangle of the input)
   autopolycube::AutoPolycube polycube;      ///< structure, patch surface, repaired labels, polycube surface
   mesh::Mesh generated;       ///< the mesh as generated
@@ -82,7 +101,7 @@ struct MeshSurfaceRun {
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
 };
 
-/// Runs segment -> autopolycube -> generate -> improve on `surface` (closed, oriented outward; its
+/// Runs the path options.method names (see Method); for the polycube, segment -> autopolycube -> generate -> improve on `surface` (closed, oriented outward; its
 /// patch ids are CAD faces when there are several, see CvtOptions::respect_faces). When `progress`
 /// is given it holds, also when this throws, what the finished stages produced. Inverted cells that
 /// remain are reported in `quality`, not thrown. Throws what the stages throw.

@@ -84,6 +84,7 @@ TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
   const double reference = test::enclosed_volume(s);
   pipeline::MeshSurfaceOptions o = tilted_hole_options();
   o.target_sj = 2.0;  // no mesh meets it
+  o.method = pipeline::Method::Polycube;  // the polycube's own candidates, without the overlay grid
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
   const auto r = pipeline::mesh_surface(s, o);
@@ -107,6 +108,7 @@ TEST(MeshSurface, NoSecondCandidateWhenKeepingTheWidthsChangedNothing) {
   o.size = 0.5;
   o.level = 1;
   o.target_sj = 2.0;  // no mesh meets it
+  o.method = pipeline::Method::Polycube;  // the polycube's own candidates, without the overlay grid
   o.refine_when_inverted = false;
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
@@ -127,6 +129,7 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
   auto s = tilted_hole_bar();
   pipeline::MeshSurfaceOptions o = tilted_hole_options();
   o.target_sj = 2.0;  // no mesh meets it: both candidates are meshed
+  o.method = pipeline::Method::Polycube;  // the polycube's own candidates, without the overlay grid
   o.verbose = true;
   std::string log;
   int repairs = 0, handed = 0;
@@ -149,6 +152,7 @@ TEST(MeshSurface, TheKeptCandidatesOptionsAreReportedAndRebuildItsMesh) {
   const auto s = tilted_hole_bar();
   pipeline::MeshSurfaceOptions o = tilted_hole_options();
   o.target_sj = 2.0;  // no mesh meets it: both candidates are measured
+  o.method = pipeline::Method::Polycube;  // the polycube's own candidates, without the overlay grid
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
   const auto r = pipeline::mesh_surface(s, o);

@@ -1,0 +1,201 @@
+#include "hexdom/overlay/buffer.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <tuple>
+#include <unordered_map>
+
+namespace hexdom::overlay {
+
+mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer) {
+  const std::vector<mesh::BoundaryFace> faces = mesh::boundary_faces(core);
+  const int n0 = core.num_nodes();
+  std::vector<int> copy(n0, -1);
+  int added = 0;
+  for (const auto& f : faces)
+    for (int i = 0; i < f.n; ++i)
+      if (copy[f.v[i]] < 0) copy[f.v[i]] = n0 + added++;
+  Eigen::MatrixXd V(n0 + added, 3);
+  V.topRows(n0) = core.V;
+  for (int v = 0; v < n0; ++v)
+    if (copy[v] >= 0) V.row(copy[v]) = core.V.row(v);
+  mesh::MeshBuilder b;
+  for (int c = 0; c < core.num_cells(); ++c) b.add(core.type(c), core.cells.row(c).data(), core.region(c));
+  outer->clear();
+  for (const auto& f : faces) {
+    // The quad's right-hand normal points out of the core, towards the new face: VTK's bottom face.
+    const int hex[8] = {f.v[0], f.v[1], f.v[2], f.v[3], copy[f.v[0]], copy[f.v[1]], copy[f.v[2]], copy[f.v[3]]};
+    b.add(mesh::CellType::Hex, hex, 2);
+    outer->push_back({copy[f.v[0]], copy[f.v[1]], copy[f.v[2]], copy[f.v[3]]});
+  }
+  return b.finish(V);
+}
+
+namespace {
+
+int64_t edge_key(int a, int b) { return a < b ? (int64_t(a) << 32) | uint32_t(b) : (int64_t(b) << 32) | uint32_t(a); }
+
+// Region per outer quad: the one nearest its centroid, then a few passes in which a quad whose
+// edge neighbours mostly (3 or 4 of them) took one other region takes it.
+std::vector<int> quad_regions(const mesh::Mesh& m, const std::vector<std::array<int, 4>>& quads, const SurfaceFeatures& feat,
+                              const std::vector<std::array<int, 4>>& nbr) {
+  std::vector<int> r(quads.size());
+  for (size_t q = 0; q < quads.size(); ++q) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v : quads[q]) c += m.V.row(v).transpose() / 4;
+    feat.project(c, &r[q]);
+  }
+  for (int pass = 0; pass < 3; ++pass) {
+    bool changed = false;
+    for (size_t q = 0; q < quads.size(); ++q) {
+      std::map<int, int> count;
+      for (int n : nbr[q])
+        if (n >= 0) ++count[r[n]];
+      for (const auto& [reg, k] : count)
+        if (reg != r[q] && k >= 3) {
+          r[q] = reg;
+          changed = true;
+        }
+    }
+    if (!changed) break;
+  }
+  return r;
+}
+
+// Whether node v is on the curve between regions a < b: a curve node of that pair, or a corner on both.
+bool on_the_curve(const Placement& p, const SurfaceFeatures& feat, int v, int a, int b) {
+  if (p.kind[v] == optimize::Curve) return p.a[v] == a && p.b[v] == b;
+  if (p.kind[v] != optimize::Corner) return false;
+  const auto& rc = feat.corner_regions()[p.a[v]];
+  return std::binary_search(rc.begin(), rc.end(), a) && std::binary_search(rc.begin(), rc.end(), b);
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& quads,
+                                               const SurfaceFeatures& feat) {
+  std::vector<std::vector<int>> out(p.kind.size());
+  for (const auto& q : quads)
+    for (int i = 0; i < 4; ++i) {
+      const int v = q[i], u = q[(i + 1) % 4];
+      for (auto [x, y] : {std::pair<int, int>{v, u}, std::pair<int, int>{u, v}})
+        if (p.kind[x] == optimize::Curve && on_the_curve(p, feat, y, p.a[x], p.b[x]) &&
+            std::find(out[x].begin(), out[x].end(), y) == out[x].end())
+          out[x].push_back(y);
+    }
+  return out;
+}
+
+Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& quads, const SurfaceFeatures& feat,
+                            double reach) {
+  const int nn = m.num_nodes();
+  Placement p;
+  p.kind.assign(nn, optimize::Interior);
+  p.a.assign(nn, -1);
+  p.b.assign(nn, -1);
+  // Start: every outer node at its closest point.
+  std::vector<char> is_outer(nn, 0);
+  for (const auto& q : quads)
+    for (int v : q) is_outer[v] = 1;
+  for (int v = 0; v < nn; ++v)
+    if (is_outer[v]) m.V.row(v) = feat.project(m.V.row(v).transpose()).transpose();
+  std::unordered_map<int64_t, std::vector<int>> by_edge;
+  for (size_t q = 0; q < quads.size(); ++q)
+    for (int i = 0; i < 4; ++i) by_edge[edge_key(quads[q][i], quads[q][(i + 1) % 4])].push_back(static_cast<int>(q));
+  std::vector<std::array<int, 4>> nbr(quads.size());
+  for (size_t q = 0; q < quads.size(); ++q)
+    for (int i = 0; i < 4; ++i) {
+      nbr[q][i] = -1;
+      for (int o : by_edge[edge_key(quads[q][i], quads[q][(i + 1) % 4])])
+        if (o != static_cast<int>(q)) nbr[q][i] = o;
+    }
+  const std::vector<int> region = quad_regions(m, quads, feat, nbr);
+  // Regions around each outer node, with the number of its quads in each.
+  std::vector<std::map<int, int>> around(nn);
+  for (size_t q = 0; q < quads.size(); ++q)
+    for (int v : quads[q]) ++around[v][region[q]];
+  auto majority = [&](int v) {
+    int best = -1, most = -1;
+    for (const auto& [reg, k] : around[v])
+      if (k > most) best = reg, most = k;
+    return best;
+  };
+  for (int v = 0; v < nn; ++v) {
+    if (!is_outer[v]) continue;
+    p.kind[v] = optimize::Surface;
+    p.a[v] = majority(v);
+    if (around[v].size() < 2) continue;
+    // On two or more regions: the curve of the pair with the most quads.
+    int best = -1;
+    for (auto i = around[v].begin(); i != around[v].end(); ++i)
+      for (auto j = std::next(i); j != around[v].end(); ++j)
+        if (feat.has_curve(i->first, j->first) && i->second + j->second > best) {
+          best = i->second + j->second;
+          p.kind[v] = optimize::Curve;
+          p.a[v] = i->first;
+          p.b[v] = j->first;
+        }
+  }
+  // Corners: the nearest node on two of a corner's regions, nearest pairs first.
+  std::vector<std::tuple<double, int, int>> pairs;  // distance, corner, node
+  const auto& corners = feat.corners();
+  for (size_t c = 0; c < corners.size(); ++c) {
+    const Eigen::Vector3d X = feat.corner_position(static_cast<int>(c));
+    const auto& rc = feat.corner_regions()[c];
+    for (int v = 0; v < nn; ++v) {
+      if (!is_outer[v] || around[v].size() < 2) continue;
+      int shared = 0;
+      for (const auto& e : around[v]) shared += std::binary_search(rc.begin(), rc.end(), e.first);
+      if (shared < 2) continue;
+      const double d = (m.V.row(v).transpose() - X).norm();
+      if (d <= reach) pairs.emplace_back(d, static_cast<int>(c), v);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> corner_done(corners.size(), 0), node_done(nn, 0);
+  for (const auto& [d, c, v] : pairs) {
+    if (corner_done[c] || node_done[v]) continue;
+    corner_done[c] = node_done[v] = 1;
+    p.kind[v] = optimize::Corner;
+    p.a[v] = c;
+    p.b[v] = -1;
+  }
+  for (char done : corner_done) p.corners_missed += !done;
+  // Staircases: a quad with three consecutive nodes on one curve lets the middle one go.
+  auto on_curve = [&](int v, int a, int b) { return on_the_curve(p, feat, v, a, b); };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t q = 0; q < quads.size(); ++q)
+      for (int i = 0; i < 4; ++i) {
+        const int a = quads[q][(i + 3) % 4], v = quads[q][i], c = quads[q][(i + 1) % 4];
+        if (p.kind[v] != optimize::Curve) continue;
+        if (!on_curve(a, p.a[v], p.b[v]) || !on_curve(c, p.a[v], p.b[v])) continue;
+        p.kind[v] = optimize::Surface;
+        p.a[v] = region[q] == p.a[v] ? p.b[v] : p.a[v];
+        p.b[v] = -1;
+        ++p.demoted;
+        changed = true;
+      }
+  }
+  for (int v = 0; v < nn; ++v)
+    if (is_outer[v]) m.V.row(v) = place(p, feat, v, m.V.row(v).transpose()).transpose();
+  for (int v = 0; v < nn; ++v) {
+    if (!is_outer[v]) continue;
+    p.surface += p.kind[v] == optimize::Surface;
+    p.curve += p.kind[v] == optimize::Curve;
+    p.corner += p.kind[v] == optimize::Corner;
+  }
+  return p;
+}
+
+Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& feat, int v, const Eigen::Vector3d& x) {
+  switch (p.kind[v]) {
+    case optimize::Surface: return feat.project_region(p.a[v], x);
+    case optimize::Curve: return feat.project_curve(p.a[v], p.b[v], x);
+    case optimize::Corner: return feat.corner_position(p.a[v]);
+    default: return x;
+  }
+}
+
+}  // namespace hexdom::overlay

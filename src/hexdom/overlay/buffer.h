@@ -1,0 +1,48 @@
+// The overlay path's buffer layer: one hexahedron over every boundary quad of the core, its outer
+// face on the surface, and the outer nodes put on the surface's regions, curves and corners.
+#pragma once
+
+#include <vector>
+
+#include "hexdom/mesh/cell_faces.h"
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/node_kinds.h"
+#include "hexdom/overlay/features.h"
+
+namespace hexdom::overlay {
+
+/// What each node of the meshed part was put on: kind Interior (core nodes), Surface (`a` the
+/// region), Curve (the curve between regions `a` < `b`) or Corner (`a` the feature corner's index
+/// in SurfaceFeatures::corners()).
+struct Placement {
+  std::vector<optimize::NodeKind> kind;
+  std::vector<int> a, b;
+  int surface = 0, curve = 0, corner = 0;
+  int demoted = 0;     ///< curve nodes let off their curve where a quad would have three on it
+  int corners_missed = 0;  ///< feature corners no outer node came near
+};
+
+/// The core (hexahedra, boundary a 2-manifold) with one more hexahedron on each boundary quad: its
+/// inner face the quad, its outer face a copy of it whose nodes are new. `outer` receives the outer
+/// quads (outward, as mesh::boundary_faces orients them, their nodes the new ones).
+mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer);
+
+/// Puts the outer nodes of `m` (those of `outer`) on the surface. Each outer quad takes the region
+/// nearest its centroid (then a quad whose neighbours mostly took another region takes theirs); a
+/// node on quads of one region goes onto that region, on two regions that share a curve onto the
+/// curve, and each feature corner gets the nearest node among those on two of its regions (within
+/// `reach`). Where a quad would have three consecutive nodes on one curve (a staircase of the grid
+/// along a curve, which flattens the quad's corner), the middle one leaves the curve for the region
+/// across it, so the quad follows the curve along its diagonal.
+Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const SurfaceFeatures& features,
+                            double reach);
+
+/// Per node: its neighbours along the outer quads' edges that lie on the same curve (curve nodes of
+/// the same pair of regions, corners on both); empty for other nodes.
+std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& outer,
+                                               const SurfaceFeatures& features);
+
+/// Where node v of a placement goes for a candidate position x (its region, curve or corner).
+Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& features, int v, const Eigen::Vector3d& x);
+
+}  // namespace hexdom::overlay

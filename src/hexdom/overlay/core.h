@@ -1,0 +1,33 @@
+// The overlay path's core: the grid cells well inside the solid, made into a volume whose boundary
+// is a 2-manifold quad surface, as a hex mesh.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/overlay/grid.h"
+
+namespace hexdom::overlay {
+
+struct Core {
+  std::vector<char> keep;   ///< per grid cell
+  int cells = 0;            ///< cells kept
+  int dropped = 0;          ///< cells dropped to make the boundary manifold
+  int components = 0;       ///< face-connected pieces of the cells inside; only the largest is kept
+  int apart = 0;            ///< cells of the other pieces, dropped
+};
+
+/// The cells whose eight corners are inside and at least `margin` from the surface (field from
+/// classify_nodes with a band >= margin), less the cells that would make the boundary of their
+/// union other than a 2-manifold: at every grid node, the kept and the empty cells around it must
+/// each be face-connected among themselves; where they are not, the kept cell nearest the surface
+/// there is dropped, and its corners checked again (each drop removes a cell, so this ends). Of the
+/// face-connected pieces left, only the largest is kept.
+Core core_cells(const Grid& grid, const NodeField& field, double margin);
+
+/// The kept cells as hexahedra (VTK order, region 1) over their own nodes; `grid_node` receives
+/// each mesh node's grid node index.
+mesh::Mesh core_mesh(const Grid& grid, const Core& core, std::vector<int64_t>* grid_node = nullptr);
+
+}  // namespace hexdom::overlay

@@ -1,0 +1,60 @@
+// The feature structure of a closed triangle surface that the overlay path's boundary must capture:
+// smooth regions, the sharp curves between them and the corners where curves meet, with
+// projections onto each.
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "hexdom/mesh/closest_point.h"
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::overlay {
+
+struct FeatureOptions {
+  /// An edge between triangles of different patches (CAD faces) is sharp when their normals differ
+  /// by more than this many degrees; tangent CAD faces (fillets) are joined into one region.
+  double angle_across = 30;
+  /// An edge inside one patch is sharp above this angle (triangle input without CAD faces).
+  double angle_within = 50;
+};
+
+/// Regions, curves and corners of a surface. A region is a set of triangles joined across edges
+/// that are not sharp; a curve is the set of sharp edges between one pair of regions; a corner is
+/// a vertex on three or more regions, or where sharp edges end or branch.
+class SurfaceFeatures {
+ public:
+  SurfaceFeatures(const mesh::SurfaceMesh& surface, const FeatureOptions& options = {});
+
+  int regions() const { return regions_; }
+  /// Region of each triangle (0-based).
+  const std::vector<int>& region() const { return region_; }
+  /// Corner vertices and the regions around each (sorted).
+  const std::vector<int>& corners() const { return corners_; }
+  const std::vector<std::vector<int>>& corner_regions() const { return corner_regions_; }
+  /// Position of corner c (an index into corners()).
+  Eigen::Vector3d corner_position(int c) const { return corner_position_[c]; }
+  /// Whether regions a and b share a curve.
+  bool has_curve(int a, int b) const;
+
+  /// Closest point on the whole surface; `region` receives the region there when given.
+  Eigen::Vector3d project(const Eigen::Vector3d& p, int* region = nullptr) const;
+  /// Closest point on region r.
+  Eigen::Vector3d project_region(int r, const Eigen::Vector3d& p) const;
+  /// Closest point on the curve between regions a and b (has_curve(a, b) must hold).
+  Eigen::Vector3d project_curve(int a, int b, const Eigen::Vector3d& p) const;
+
+ private:
+  int regions_ = 0;
+  std::vector<int> region_, corners_;
+  std::vector<std::vector<int>> corner_regions_;
+  std::vector<Eigen::Vector3d> corner_position_;
+  mesh::TriangleProjector all_;
+  std::vector<std::unique_ptr<mesh::TriangleProjector>> by_region_;
+  std::map<std::pair<int, int>, std::unique_ptr<mesh::TriangleProjector>> curves_;
+};
+
+}  // namespace hexdom::overlay

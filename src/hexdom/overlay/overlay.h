@@ -1,0 +1,76 @@
+// The overlay path: a hex mesh of any closed surface from a grid laid over it, in the manner of the
+// overlay-grid all-hex methods (Schneiders 1996; Sandia's Sculpt; Marechal 2009). It does not need a
+// polycube, so it meshes what the polycube path cannot, at the cost of alignment with the part.
+//
+// Method: the surface is turned into the frame its faces fit (segmentation::cube_frame); a grid of
+// cubes of the element size is laid over it (grid.h); the cells well inside are the core (core.h),
+// its boundary a 2-manifold; one buffer hexahedron on each boundary quad of the core reaches the
+// surface, its outer nodes put on the surface's smooth regions, sharp curves and corners (buffer.h);
+// then the shared optimiser untangles and smooths every node, the outer ones kept on what they were
+// put on. Where the core falls apart (a part thinner than the grid's cells) or cells stay inverted,
+// the grid is made again with half the spacing, a bounded number of times.
+#pragma once
+
+#include <string>
+
+#include "hexdom/common/error.h"
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/overlay/features.h"
+#include "hexdom/quality/report.h"
+#include "hexdom/segmentation/cube_frame.h"
+
+namespace hexdom::overlay {
+
+struct OverlayOptions {
+  double size = 0;      ///< grid spacing (element size); 0: the frame's bounding-box diagonal / 30
+  /// Along an axis the part is thin in (a plate, a rod), the spacing is made smaller so that its
+  /// extent spans at least this many cells, and no cell is longer than max_cell_ratio times its
+  /// shortest side (overlay::grid_spacing).
+  double across = 3;
+  double max_cell_ratio = 5;
+  /// The core keeps the cells whose corners are at least this many spacings inside the surface,
+  /// so that the buffer layer is that thick at least.
+  double margin = 0.4;
+  bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
+  segmentation::CubeFrameOptions frame_options;
+  FeatureOptions features;
+  /// The optimiser's recommended sequence without pillowing (optimize::improve): worst-cell rounds
+  /// until the worst stops improving, at most this many, then passes raising the mean.
+  int max_rounds = 40;
+  int mean_passes = 8;
+  /// Halvings of the spacing allowed when the core falls apart or is empty (a part thinner than the
+  /// cells), and, of those, how many when cells stay inverted or the volume is off by more than
+  /// target_volume (each costs 8 times the cells); the better mesh is kept.
+  int refinements = 3;
+  int refinements_for_quality = 2;
+  double target_volume = 0.01;
+  /// A grid whose mesh is off the volume by more than this has lost part of the solid (features
+  /// thinner than its cells): any mesh of a finer grid that keeps the part is preferred to it, even
+  /// one with inverted cells. Between meshes on the same side of it: fewer inverted cells, then the
+  /// volume, then the worst scaled Jacobian.
+  double lost_volume = 0.05;
+  double max_grid_cells = 1e6;  ///< no grid beyond this many cells is made (a bound on time and memory)
+  LogCallback log;
+};
+
+struct OverlayResult {
+  mesh::Mesh mesh;                   ///< in the input's coordinates; region 1 core, 2 buffer layer
+  quality::QualityReport quality;
+  double spacing = 0, thinnest = 0;  ///< the grid spacing of the result: largest and smallest over the axes
+  int core_cells = 0, buffer_cells = 0, dropped = 0;
+  int curve_nodes = 0, corner_nodes = 0, corners_missed = 0, demoted = 0;
+  int grids = 0;                     ///< grids made
+  segmentation::CubeFrame frame;
+  double seconds = 0;
+};
+
+/// A hex mesh of `surface` (closed, 2-manifold, oriented outward; its patch ids CAD faces, or
+/// anything for triangle input). Its boundary nodes lie on the surface. Inverted cells that remain
+/// are reported in `quality`, not thrown. Throws GeometryError when no grid within
+/// max_grid_cells gives a core (the part is too thin for it).
+OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOptions& options = {});
+
+/// "overlay: grid 2.5, 1234 core + 567 buffer cells, ..." on one line.
+std::string to_text(const OverlayResult& r);
+
+}  // namespace hexdom::overlay

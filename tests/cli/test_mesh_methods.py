@@ -1,0 +1,70 @@
+"""`hexdom mesh --method auto|polycube|overlay` on the shipped bracket (examples/data/bracket.step,
+made by examples/make_bracket_step.py): each path gives a valid mesh of the part (VTK's Verdict), the
+log says which path made it, and `auto` keeps the polycube mesh where it meets every target. A method
+that does not exist is refused before anything is read or written."""
+
+import subprocess
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+
+import hexdom_oracles as oracles
+
+REPO = Path(__file__).resolve().parents[2]
+STEP = REPO / "examples" / "data" / "bracket.step"
+VTK_TYPE = {"hexahedron": oracles.HEX, "wedge": oracles.WEDGE, "tetra": oracles.TET}
+
+
+def _mesh(hexdom_bin, tmp_path, method):
+    out = tmp_path / f"bracket_{method}.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--method", method],
+                         capture_output=True, text=True)
+    return run, out
+
+
+def _verdict(path):
+    m = meshio.read(path)
+    cells, types = [], []
+    for block in m.cells:
+        for row in block.data:
+            cells.append(list(row) + [-1] * (8 - len(row)))
+            types.append(VTK_TYPE[block.type])
+    g = oracles.vtk_grid(m.points, np.array(cells, np.int64), np.array(types))
+    sj, _ = oracles.verdict_metrics(g)
+    return sj, float(np.sum(oracles.signed_volumes(g)))
+
+
+@pytest.fixture(scope="module")
+def runs(hexdom_bin, tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("methods")
+    return {m: _mesh(hexdom_bin, tmp, m) for m in ("auto", "polycube", "overlay")}
+
+
+@pytest.mark.parametrize("method", ["polycube", "overlay"])
+def test_each_path_meshes_the_bracket(runs, method):
+    run, out = runs[method]
+    assert run.returncode == 0, run.stderr
+    assert f"kept: {method} path" in run.stderr
+    sj, volume = _verdict(out)
+    assert np.all(sj > 0), f"{int(np.sum(sj <= 0))} inverted cells"
+    assert "B-rep volume" in run.stdout
+    brep = float(run.stdout.split("B-rep volume")[1].split()[0])
+    assert volume == pytest.approx(brep, rel=0.01), (volume, brep)
+
+
+def test_auto_keeps_the_polycube_on_the_bracket(runs):
+    auto, out = runs["auto"]
+    polycube, polycube_out = runs["polycube"]
+    assert auto.returncode == 0, auto.stderr
+    assert "kept: polycube path" in auto.stderr
+    assert "overlay" not in auto.stderr  # the polycube met every target: the grid was not tried
+    assert meshio.read(out).points.shape == meshio.read(polycube_out).points.shape
+
+
+def test_an_unknown_method_is_refused_with_nothing_written(hexdom_bin, tmp_path):
+    run, out = _mesh(hexdom_bin, tmp_path, "octree")
+    assert run.returncode != 0
+    assert "--method" in run.stderr and "octree" in run.stderr
+    assert not out.exists()

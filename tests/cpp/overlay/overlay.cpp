@@ -1,0 +1,164 @@
+// The overlay path: its grid classification, its manifold core, and whole meshes of closed surfaces
+// (valid cells, boundary on the surface, volume).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "autopolycube/auto_test_util.h"
+#include "hexdom/mesh/cell_faces.h"
+#include "hexdom/mesh/closest_point.h"
+#include "hexdom/overlay/core.h"
+#include "hexdom/overlay/grid.h"
+#include "hexdom/overlay/overlay.h"
+#include "hexdom/quality/report.h"
+
+using namespace hexdom;
+
+namespace {
+
+// An icosahedron subdivided `levels` times, its vertices on the sphere of radius r.
+mesh::SurfaceMesh sphere_surface(double r, int levels) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Eigen::Vector3d> V = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<int, 3>> F = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                       {3, 8, 9},  {4, 9, 5},   {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto middle = [&](int a, int b) {
+      auto key = std::minmax(a, b);
+      auto [it, fresh] = mid.emplace(key, static_cast<int>(V.size()));
+      if (fresh) V.push_back((V[a] + V[b]) / 2);
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& f : F) {
+      const int a = middle(f[0], f[1]), b = middle(f[1], f[2]), c = middle(f[2], f[0]);
+      next.push_back({f[0], a, c});
+      next.push_back({f[1], b, a});
+      next.push_back({f[2], c, b});
+      next.push_back({a, b, c});
+    }
+    F = next;
+  }
+  mesh::SurfaceMesh s;
+  s.V.resize(static_cast<int>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) s.V.row(static_cast<int>(i)) = V[i].normalized().transpose() * r;
+  s.F.resize(static_cast<int>(F.size()), 3);
+  for (size_t i = 0; i < F.size(); ++i) s.F.row(static_cast<int>(i)) << F[i][0], F[i][1], F[i][2];
+  s.patch = Eigen::VectorXi::Ones(s.F.rows());
+  return s;
+}
+
+int inverted(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+
+// Largest distance of a boundary node of `m` to the surface.
+double boundary_distance(const mesh::Mesh& m, const mesh::SurfaceMesh& s) {
+  const mesh::TriangleProjector proj(s.V, s.F);
+  double worst = 0;
+  for (const auto& f : mesh::boundary_faces(m))
+    for (int i = 0; i < f.n; ++i) {
+      const Eigen::Vector3d p = m.V.row(f.v[i]).transpose();
+      worst = std::max(worst, (proj.project(p) - p).norm());
+    }
+  return worst;
+}
+
+double diagonal(const mesh::SurfaceMesh& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
+
+}  // namespace
+
+// Nodes strictly inside a box of cells are inside, the others outside; distances in the band are
+// the distances to the box.
+TEST(OverlayGrid, NodesOfABoxAreClassifiedByTheirSide) {
+  const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 1, 3.0);  // 6 x 6 x 3
+  const overlay::Grid g = overlay::grid_around(s.V, Eigen::Vector3d(0.7, 0.7, 0.7));
+  const overlay::NodeField f = overlay::classify_nodes(g, s, 1.0);
+  int wrong = 0, checked = 0;
+  for (int k = 0; k <= g.nz; ++k)
+    for (int j = 0; j <= g.ny; ++j)
+      for (int i = 0; i <= g.nx; ++i) {
+        const Eigen::Vector3d p = g.position(i, j, k);
+        const double d = std::min({p.x(), 6 - p.x(), p.y(), 6 - p.y(), p.z(), 3 - p.z()});
+        if (std::abs(d) < 1e-9) continue;
+        ++checked;
+        wrong += (d > 0) != static_cast<bool>(f.inside[g.node(i, j, k)]);
+        if (d > 0 && d < 0.9) EXPECT_NEAR(f.distance[g.node(i, j, k)], d, 1e-12);
+      }
+  EXPECT_GT(checked, 500);
+  EXPECT_EQ(wrong, 0);
+}
+
+// A plate gets flat cells and a rod long ones: enough cells across, none longer than the ratio.
+TEST(OverlayGrid, ThinPartsGetCellsAcrossWithoutNeedles) {
+  const Eigen::Vector3d plate = overlay::grid_spacing({100, 100, 0.5}, 4.7, 3, 5);
+  EXPECT_NEAR(plate.z(), 0.5 / 3, 1e-12);
+  EXPECT_NEAR(plate.x(), 5 * 0.5 / 3, 1e-12);
+  const Eigen::Vector3d rod = overlay::grid_spacing({1000, 1, 1}, 33, 3, 5);
+  EXPECT_NEAR(rod.y(), 1.0 / 3, 1e-12);
+  EXPECT_NEAR(rod.x(), 5.0 / 3, 1e-12);
+  const Eigen::Vector3d block = overlay::grid_spacing({60, 40, 20}, 2.5, 3, 5);
+  EXPECT_EQ(block, Eigen::Vector3d(2.5, 2.5, 2.5));
+}
+
+// Two cells that share only an edge would give a boundary that is not a manifold: one is dropped.
+TEST(OverlayCore, CellsMeetingAlongAnEdgeOnlyLoseOne) {
+  overlay::Grid g;
+  g.nx = g.ny = g.nz = 4;
+  overlay::NodeField f;
+  f.inside.assign(g.num_nodes(), 0);
+  f.distance.assign(g.num_nodes(), 1.0);
+  for (const auto& c : {std::array<int, 3>{1, 1, 1}, std::array<int, 3>{2, 2, 1}})
+    for (int64_t n : g.corners(c[0], c[1], c[2])) f.inside[n] = 1;
+  const overlay::Core core = overlay::core_cells(g, f, 0.5);
+  EXPECT_EQ(core.cells, 1);
+  EXPECT_EQ(core.dropped, 1);
+  const mesh::Mesh m = overlay::core_mesh(g, core);
+  EXPECT_EQ(m.num_cells(), 1);
+  EXPECT_EQ(m.num_nodes(), 8);
+}
+
+// A box: hexahedra only, none inverted, the volume exact, every corner of the box a node.
+TEST(Overlay, ABoxIsMeshedExactly) {
+  const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);  // 30 x 20 x 10
+  overlay::OverlayOptions o;
+  o.size = 2.0;
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GT(r.quality.hex.sj_min, 0.5);
+  EXPECT_NEAR(r.quality.total_volume, 6000.0, 1e-6);
+  EXPECT_EQ(r.corner_nodes, 8);
+  EXPECT_LT(boundary_distance(r.mesh, s), 1e-9);
+  EXPECT_EQ(r.mesh.count(mesh::CellType::Hex), r.mesh.num_cells());
+}
+
+// A sphere (no feature at all): valid, on the surface, the volume within 1%.
+TEST(Overlay, ASphereIsValidOnItsSurfaceWithItsVolume) {
+  const auto s = sphere_surface(20.0, 4);
+  const overlay::OverlayResult r = overlay::overlay_mesh(s);
+  const double volume = mesh::enclosed_volume(s.V, s.F);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GT(r.quality.hex.sj_min, 0.3);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
+  EXPECT_EQ(r.corner_nodes, 0);
+  EXPECT_EQ(r.curve_nodes, 0);
+}
+
+// A cylinder: its two rims are captured as curves, cells valid, the volume within 1%.
+TEST(Overlay, ACylindersRimsAreCurves) {
+  const auto s = test::cylinder_surface(10.0, 30.0, 48, 12, 6);
+  const overlay::OverlayResult r = overlay::overlay_mesh(s);
+  const double volume = mesh::enclosed_volume(s.V, s.F);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
+  EXPECT_GT(r.curve_nodes, 20);
+}
+
+// An empty surface has no mesh: a clear error, not a crash.
+TEST(Overlay, AnEmptySurfaceIsAnError) {
+  EXPECT_THROW(overlay::overlay_mesh(mesh::SurfaceMesh{}), GeometryError);
+}
