@@ -11,7 +11,9 @@ Two kinds of parts:
     counterbores and drilled holes; flanges and shafts (revolved, grooves, shoulders, keyseats);
     thin-walled boxes and shells; lofts and sweeps; parts placed at an angle; and hard ones (tangent
     cylinders and planes, acute wedges, small features beside large ones, cones). Part k goes to
-    family k mod 20 (so a small --count still spans the families), as <family>_<index:03d>.
+    family k mod 20 (so a small --count still spans the families), as <family>_<index:03d>;
+    in a family with sub-kinds (loft: rect_circle, twisted, ...), part i is of sub-kind i mod their
+    number, so that 10 parts per family show every sub-kind.
 
 Reproducible: each parametric part draws its dimensions (mm) from random.Random seeded with the
 string "hexdom-corpus:<seed>:<family>:<index>", so a name is the same part for a given --seed
@@ -111,9 +113,18 @@ class Draw:
     """The random draws of one part: dimensions rounded as a designer would, each recorded by name
     (the manifest's params) so that a failing part can be rebuilt by hand."""
 
-    def __init__(self, rng):
+    def __init__(self, rng, index=0, cycle=True):
         self.r = rng
         self.params = {}
+        self.index = index
+        self.cycle = cycle
+
+    def kind(self, name, options):
+        """The sub-kind of a family: part `index` takes options[index mod len(options)], so that
+        every kind appears once the family has as many parts; a random one after failed draws."""
+        if self.cycle:
+            return self._keep(name, options[self.index % len(options)])
+        return self.pick(name, options)
 
     def _keep(self, name, v):
         if name:
@@ -426,7 +437,7 @@ def boss_plate(d):
 
 
 def ribbed(d):
-    kind = d.pick("kind", ["gusset", "plate_ribs", "waffle"])
+    kind = d.kind("kind", ["gusset", "plate_ribs", "waffle"])
     if kind == "gusset":
         A, B, W = d.mm("A", 40, 140), d.mm("B", 40, 140), d.mm("W", 30, 120)
         t = d.mm("t", 4, min(14, 0.15 * min(A, B)))
@@ -595,7 +606,7 @@ def box_thin(d):
 
 
 def shell_revolved(d):
-    kind = d.pick("kind", ["cup", "dome", "funnel", "thickness"])
+    kind = d.kind("kind", ["cup", "dome", "funnel", "thickness"])
     t = d.mm("wall", 1, 5, 0.25)
     if kind == "cup":
         R, H = d.mm("R", 15, 100), d.mm("H", 15, 150)
@@ -636,7 +647,7 @@ def shell_revolved(d):
 
 
 def loft(d):
-    kind = d.pick("kind", ["rect_circle", "twisted", "eccentric", "three", "duct"])
+    kind = d.kind("kind", ["rect_circle", "twisted", "eccentric", "three", "duct"])
     H = d.mm("H", 20, 160)
     if kind == "rect_circle" or kind == "duct":
         a, b = d.mm("a", 20, 120), d.mm("b", 15, 100)
@@ -667,7 +678,7 @@ def loft(d):
 
 
 def sweep(d):
-    kind = d.pick("kind", ["elbow", "s_bend", "helix", "tube_elbow", "rect_elbow"])
+    kind = d.kind("kind", ["elbow", "s_bend", "helix", "tube_elbow", "rect_elbow"])
     if kind == "helix":
         R = d.mm("R", 8, 60)
         r = d.mm("wire_d", 2, min(16, 0.6 * R)) / 2
@@ -715,7 +726,7 @@ ANGLED_BASES = ["plate_holes", "bracket_l", "bracket_u", "boss_plate", "counterb
 
 
 def angled(d):
-    base = d.pick("base", ANGLED_BASES)
+    base = d.kind("base", ANGLED_BASES)
     s = FAMILIES[base](d)
     axis = [d.real(f"axis_{c}", -1, 1) for c in "xyz"]
     if sum(a * a for a in axis) < 0.05:
@@ -731,7 +742,7 @@ def angled(d):
 
 def tangent(d):
     """Cylinders tangent to planes or to each other: smooth joins the feature-edge logic does not see."""
-    kind = d.pick("kind", ["link", "tee", "stadium_bar", "boss_flush"])
+    kind = d.kind("kind", ["link", "tee", "stadium_bar", "boss_flush"])
     if kind == "link":  # two bosses joined by a web tangent to both: a connecting rod / lever
         R1, R2 = d.mm("R1", 8, 40), d.mm("R2", 5, 35)
         D = d.mm("centres", R1 + R2 + 10, R1 + R2 + 160)
@@ -771,7 +782,7 @@ def tangent(d):
 
 
 def acute_wedge(d):
-    kind = d.pick("kind", ["triangle", "blade", "wedge", "dovetail"])
+    kind = d.kind("kind", ["triangle", "blade", "wedge", "dovetail"])
     if kind == "triangle":
         L, W = d.mm("L", 20, 150), d.mm("W", 10, 100)
         a = d.mm("apex_deg", 5, 35, 1)
@@ -827,7 +838,7 @@ def small_features(d):
 
 
 def cone(d):
-    kind = d.pick("kind", ["full", "frustum", "pin", "bicone", "nozzle", "hollow_frustum"])
+    kind = d.kind("kind", ["full", "frustum", "pin", "bicone", "nozzle", "hollow_frustum"])
     if kind == "full":
         return Part.makeCone(d.mm("R", 5, 80), 0, d.mm("H", 5, 150))
     if kind == "frustum":
@@ -918,7 +929,7 @@ def build(family, index, seed, attempts, tmp):
     rng = random.Random(f"hexdom-corpus:{seed}:{family}:{index}")
     errors = []
     for k in range(1, attempts + 1):
-        d = Draw(rng)
+        d = Draw(rng, index, cycle=k <= attempts // 2)
         try:
             s = single_solid(FAMILIES[family](d))
             reloads(s, os.path.join(tmp, "check.step"))
