@@ -334,6 +334,7 @@ def main(argv=None):
         groups["corpus+extra"] = runs
     all_totals = {g: {m: totals([r for r in rs if r["method"] == m]) for m in methods}
                   for g, rs in groups.items() if rs}
+    save(all_totals)
     print_totals(all_totals, methods)
     misses = [r for r in runs if not r["targets"]["all"]]
     print(f"\n{len(misses)} of {len(runs)} runs miss a target:")
@@ -342,7 +343,6 @@ def main(argv=None):
     slowest = sorted(runs, key=lambda r: -r["time"])[:10]
     print("\nslowest runs: " + ", ".join(f"{r['part']} ({r['method']}) {r['time']:.1f} s" for r in slowest))
     print(f"total wall time {time.perf_counter() - t_all:.0f} s")
-    save(all_totals)
     return 0
 
 
