@@ -22,8 +22,9 @@ closed shell, volume > 0) whose STEP file reloads with the same volume (relative
 fails to build or to pass these checks is replaced by the next draw of the same generator (at most
 --attempts draws, then the script stops with an error: no part is silently dropped).
 
-Writes OUT_DIR/<name>.step and OUT_DIR/manifest.json: {"seed", "count", "parts": {name: {family,
-volume (FreeCAD's shape.Volume, mm^3), diagonal (bounding box, mm), faces, seed, draws, params}}}.
+Writes OUT_DIR/<name>.step and OUT_DIR/manifest.json: {"seed", "count", "families", "parts": {name:
+{family, volume (FreeCAD's shape.Volume, mm^3), diagonal (bounding box, mm), both to 12 significant
+digits, faces, seed, draws, params}}}.
 
 Run: /usr/bin/python3 bench/make_corpus.py OUT_DIR [--seed 19] [--count 200] [--families a,b]
                                                    [--no-fixed] [--attempts 40]
@@ -914,9 +915,15 @@ def reloads(solid, path):
         raise ValueError(f"STEP reload volume {back.Volume} != {solid.Volume}")
 
 
+def sig(x, digits=12):
+    """x to `digits` significant digits: OpenCASCADE's offsets (makeThickness) may give volumes
+    that differ in the last bits from one run to the next; the manifest must not."""
+    return float(f"{x:.{digits}g}")
+
+
 def entry(solid, family, seed, draws=1, params=None):
     bb = solid.BoundBox
-    out = {"family": family, "volume": solid.Volume, "diagonal": bb.DiagonalLength,
+    out = {"family": family, "volume": sig(solid.Volume), "diagonal": sig(bb.DiagonalLength),
            "faces": len(solid.Faces), "seed": seed, "draws": draws}
     if params is not None:
         out["params"] = params
