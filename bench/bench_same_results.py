@@ -7,6 +7,9 @@ per run: cells per type, worst and mean scaled Jacobian per type, the total volu
 fingerprints of the written mesh (sum of the node coordinates, and a hash of the connectivity) that
 change when any node moves or any cell changes.
 
+The 17 corpus parts compared so far are make_corpus.py's fixed ones: `make_corpus.py D --count 0`
+writes only them (without --count 0, D also holds 200 seeded parts, and --corpus runs them all).
+
 Run:   HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_same_results.py [--save F] [--compare F] [--corpus D] [names]
 --save writes the figures as JSON; --compare reads such a file (e.g. made before the change) and prints
 every figure that differs by more than 1e-9, per run. Prints, never asserts.
