@@ -120,9 +120,7 @@ std::string stem_of(const std::string& path) {
   return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? path : path.substr(0, dot);
 }
 
-void add_mesh(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "mesh",
+const char* const kMeshHelp =
       "Hex mesh of a closed surface or a CAD part with no manual step, by one of two paths (--method): the\n"
       "polycube (segment -> autopolycube -> generate -> improve; aligned with the part, the coarsest mesh) or\n"
       "the overlay grid (cells of the element size laid over the part, the ones well inside kept, one layer\n"
@@ -143,7 +141,10 @@ void add_mesh(CLI::App& app) {
       "half the spacing), the better kept by the same order.\n"
       "A part lying at an angle (its faces fit axes turned from the model's by more than the model's own\n"
       "fit them) is segmented and given its polycube in that turned frame; the mesh is in the model's\n"
-      "coordinates (--no-align: the model's axes).");
+      "coordinates (--no-align: the model's axes).";
+
+void add_mesh(CLI::App& app) {
+  auto* cmd = app.add_subcommand("mesh", kMeshHelp);
   struct Args {
     std::string in, out, report;
     bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;

@@ -403,7 +403,7 @@ def test_core_mesh_surface_reports_the_candidate_hexdom_mesh_kept(core, paper_me
     raw, _, report, stderr = paper_mesh("mount1")
     run = core.mesh_surface(core.read_surface(raw))
     kept = [line for line in stderr.splitlines() if line.startswith("hexdom: kept: ")]
-    assert kept == ["hexdom: kept: " + run.choice]
+    assert kept == ["hexdom: kept: polycube path, " + run.choice]
     assert run.edge_weight == pytest.approx(1.0) and run.level == 1
     assert run.keep_widths and run.collapse_apexes
     assert run.choice == "level 1, lambda 1, widths of holes kept"

@@ -12,8 +12,9 @@ namespace hexdom::pipeline {
 namespace {
 int inverted_cells(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
 
-// mesh_surface of r.surface, then the snap onto the B-rep (r.run's mesh and quality replaced).
-void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, MeshCadRun& r) {
+// mesh_surface of r.surface with one path, then the snap onto the B-rep (r.run's mesh and quality
+// replaced).
+void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, MeshCadRun& r) {
   pipeline::mesh_surface(r.surface, mo, &r.run);
   if (!opt.snap) return;
   const auto t0 = std::chrono::steady_clock::now();
@@ -25,6 +26,50 @@ void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const 
   r.snapped = true;
   r.snap_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// mesh_path_and_snap with mo's method. Auto: the polycube path; when it fails or its snapped mesh
+// misses a target, the overlay path too, the better snapped mesh kept (pipeline::better_run against
+// `reference`, the B-rep's volume). The polycube's error is thrown when the overlay fails as well.
+void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, double reference,
+                   MeshCadRun& r) {
+  if (mo.method != Method::Auto) return mesh_path_and_snap(shape, mo, opt, r);
+  MeshSurfaceOptions path = mo;
+  path.method = Method::Polycube;
+  std::string note;
+  bool have = false;
+  try {
+    mesh_path_and_snap(shape, path, opt, r);
+    have = true;
+    if (meets_targets(r.run, reference, mo)) return;
+    note = "the polycube mesh misses a target (" + run_summary(r.run, reference) + ")";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    note = "the polycube path failed at stage " + r.run.stage + ": " + what.substr(0, what.find('\n'));
+  }
+  if (opt.mesh.log) opt.mesh.log(0, note + "; meshing with the overlay grid too");
+  MeshCadRun other;
+  other.surface = r.surface;
+  other.stats = r.stats;
+  other.tessellation_factor = r.tessellation_factor;
+  path.method = Method::Overlay;
+  try {
+    mesh_path_and_snap(shape, path, opt, other);
+  } catch (const Error& e) {
+    if (!have) throw;
+    if (opt.mesh.log) opt.mesh.log(0, std::string("overlay: ") + e.what() + "; keeping the polycube mesh");
+    r.run.polycube_note = note;
+    return;
+  }
+  if (!have || better_run(other.run, r.run, reference, mo)) {
+    if (opt.mesh.log) opt.mesh.log(0, "kept the overlay mesh (" + run_summary(other.run, reference) + ")");
+    const int tessellations = r.tessellations;
+    r = std::move(other);
+    r.tessellations = tessellations;
+  } else if (opt.mesh.log) {
+    opt.mesh.log(0, "kept the polycube mesh: the overlay mesh is no better (" + run_summary(other.run, reference) + ")");
+  }
+  r.run.polycube_note = note;
+}
 }  // namespace
 
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
@@ -32,6 +77,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  double reference = 0;  // the B-rep's volume, once tessellated
   // mesh_and_snap of `run`, true when it gave a mesh; what defeated it (a labelling the repair
   // cannot use, a failed cut) is said when `why` is given, or kept in `error`.
   auto attempt = [&](const MeshSurfaceOptions& mo, MeshCadRun& run, std::exception_ptr* error) {
@@ -42,7 +88,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       return false;
     };
     try {
-      mesh_and_snap(shape, mo, opt, run);
+      mesh_and_snap(shape, mo, opt, reference, run);
       return true;
     } catch (const GeometryError& e) {
       return defeated(e);
@@ -53,12 +99,13 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   r.surface = cad::tessellate(shape, opt.tessellation, &r.stats);
   r.tessellations = 1;
   say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
-  const double reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
+  reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
   std::exception_ptr first_error;
   bool meshed = attempt(opt.mesh, r, &first_error);
   if (meshed && inverted_cells(r.run.quality) == 0) return r;
-  // The overlay grid hardly depends on the triangles: another tessellation would give the same mesh.
-  if (meshed && r.run.method == Method::Overlay) return r;
+  // The overlay grid hardly depends on the triangles: with the overlay path alone another
+  // tessellation would give the same mesh. (In auto mode another one may give a polycube.)
+  if (meshed && opt.mesh.method == Method::Overlay) return r;
   // Later tessellations: the same grid (the element size the first run took, in its frame), other
   // triangles.
   MeshSurfaceOptions mo = opt.mesh;
@@ -67,8 +114,14 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   const std::string why = meshed ? fmt(r.snapped ? "%.0f inverted cells after the snap" : "%.0f inverted cells remain",
                                        inverted_cells(r.run.quality))
                                  : "the automatic polycube failed at stage " + r.run.stage;
-  const size_t tries = meshed ? std::min(opt.retessellate.size(), static_cast<size_t>(std::max(0, opt.retessellate_inverted)))
-                               : opt.retessellate.size();
+  // In auto mode an overlay mesh kept with inverted cells means the polycube failed on this
+  // tessellation: the others are tried as if nothing had meshed, with the polycube path only (the
+  // overlay grid would give the same mesh again), and the better kept.
+  const bool polycube_failed = meshed && r.run.method == Method::Overlay;
+  if (polycube_failed) mo.method = Method::Polycube;
+  const size_t tries = meshed && !polycube_failed
+                           ? std::min(opt.retessellate.size(), static_cast<size_t>(std::max(0, opt.retessellate_inverted)))
+                           : opt.retessellate.size();
   for (size_t k = 0; k < tries; ++k) {
     const double f = opt.retessellate[k];
     say(why + ": tessellating again with triangles of " + fmt("%.2f", f) + " x the size (" + fmt("%g", f * first_size) +

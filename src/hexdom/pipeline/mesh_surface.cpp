@@ -33,9 +33,6 @@ double volume_error(const MeshSurfaceRun& r, double reference) {
   return reference != 0 ? std::abs(r.quality.total_volume - reference) / std::abs(reference) : 0.0;
 }
 
-bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& opt) {
-  return inverted_cells(r.quality) == 0 && worst_sj(r.quality) >= opt.target_sj && volume_error(r, reference) <= opt.target_volume;
-}
 
 // Whether run b is better than run a: fewer inverted cells; then the one whose worst SJ meets the
 // target; then the one whose volume does; then the higher worst SJ.
@@ -58,12 +55,6 @@ void add_costs(MeshSurfaceRun& kept, const MeshSurfaceRun& other) {
 // segment -> autopolycube -> generate -> improve at one level, one polycube option set.
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
 
-// "level 1: worst SJ 0.190, 0 inverted, volume -1.18%" of a run, for the lines that say why another
-// candidate is tried.
-std::string run_summary(const MeshSurfaceRun& r, double reference) {
-  return fmt("level %.0f: worst SJ %.3f, %.0f inverted, volume %+.2f%%", r.level, worst_sj(r.quality), inverted_cells(r.quality),
-             100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0));
-}
 
 // Meshes `surface` once more with `other` (set to r's repaired labelling and lambda here) and keeps
 // the better of that and `r` in `r` (see `better`), saying which with `kept_other` / `kept_r`; when
@@ -159,6 +150,16 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
 }
 
 }  // namespace
+
+bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& opt) {
+  return inverted_cells(r.quality) == 0 && worst_sj(r.quality) >= opt.target_sj && volume_error(r, reference) <= opt.target_volume;
+}
+
+std::string run_summary(const MeshSurfaceRun& r, double reference) {
+  return (r.method == Method::Overlay ? std::string("overlay") : fmt("level %.0f", r.level)) +
+         fmt(": worst SJ %.3f, %.0f inverted, volume %+.2f%%", worst_sj(r.quality), inverted_cells(r.quality),
+             100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0));
+}
 
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options) {
   return better(b, a, reference, options);

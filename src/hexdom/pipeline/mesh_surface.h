@@ -113,6 +113,14 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
 /// then the higher worst SJ.
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options);
 
+/// Whether a run meets every target: no inverted cell, worst SJ >= target_sj, volume within
+/// target_volume of `reference`.
+bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& options);
+
+/// "level 1: worst SJ 0.190, 0 inverted, volume -1.18%" (the overlay's: "overlay: ..."), for the
+/// lines that say why another candidate is tried.
+std::string run_summary(const MeshSurfaceRun& r, double reference);
+
 /// "segment: 12 charts in 0.21 s"-style summary of a run, one line per finished stage, then the
 /// kept candidate's options (choice_text).
 std::string to_text(const MeshSurfaceRun& run);
