@@ -234,6 +234,30 @@ TEST(TessellateRepair, FaceThatCannotBeTriangulatedIsNamedWithTheReason) {
   }
 }
 
+TEST(TessellateRepair, WiresWhoseEdgesDoNotMeetAreNamed) {
+  // Every edge's range cut to [0.1, 0.9] of its curve: the edges no longer reach their vertices.
+  // Before: "OpenCASCADE failed while tessellating: Standard_OutOfRange ...".
+  TopoDS_Shape s = test::make_box_with_hole();
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(s, TopAbs_EDGE, edges);
+  BRep_Builder b;
+  for (int i = 1; i <= edges.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(edges(i));
+    b.SameRange(e, false);
+    b.SameParameter(e, false);
+    b.Range(e, 0.1, 0.9, true);
+  }
+  cad::Shape shape = cad::read_shape(write_part(s, "trimmed_edges"));
+  try {
+    cad::tessellate(shape);
+    FAIL() << "no error";
+  } catch (const MeshingError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("cannot be triangulated: a wire's 4 edges do not join into one loop"), std::string::npos) << m;
+    EXPECT_NE(m.find(": Face"), std::string::npos) << m;
+  }
+}
+
 TEST(TessellateRepair, OwnTriangulationOfEveryFaceMeetsTheSameChecks) {
   // brepmesh_faces = false: every face goes the way a face that BRepMesh fails on goes. After the
   // remeshing the surface meets every check the BRepMesh start meets (test_cad's tessellate.cpp).
