@@ -39,6 +39,7 @@ struct Layout {
   double tolerance = 1e-7;
   double u_period = 0, v_period = 0;  ///< 0 when not periodic
   double off_limit = 0;  ///< farthest a node's (u, v) point may lie from the node
+  bool project_all = false;  ///< (u, v) of every node by projection, none from the pcurves
   Eigen::Vector3d at(const V2& uv) const { return vec(surface->Value(uv.x(), uv.y())); }
   [[noreturn]] void fail(const std::string& why) const {
     throw MeshingError(w.source + ": " + w.face_name(fi) + " cannot be triangulated: " + why);
@@ -136,7 +137,7 @@ void add_edge(const Layout& L, const TopoDS_Edge& E, const Sizes& z, Merged& out
   }
   if (reversed) std::reverse(nodes.begin(), nodes.end());
   std::vector<V2> uv(nodes.size());
-  bool on_surface = !pc.IsNull();
+  bool on_surface = !pc.IsNull() && (!L.project_all || BRep_Tool::Degenerated(E));
   for (size_t k = 0; k < nodes.size() && on_surface; ++k) {
     const gp_Pnt2d q = pc->Value(nodes[k].second);
     uv[k] = {q.X(), q.Y()};
@@ -178,6 +179,24 @@ std::vector<std::vector<LoopNode>> face_loops(const Layout& L, const Sizes& z, M
     loops.push_back(std::move(loop));
   }
   return loops;
+}
+
+/// The loops that go once around a periodic surface (they end a period from where they start); any
+/// other gap (a pcurve's end within tolerance of the next one's start) is closed by the last segment.
+std::vector<int> open_loops(const Layout& L, const std::vector<V2>& gaps) {
+  std::vector<int> open;
+  for (size_t i = 0; i < gaps.size(); ++i)
+    if ((L.u_period > 0 && std::abs(gaps[i].x()) > 0.5 * L.u_period) ||
+        (L.v_period > 0 && std::abs(gaps[i].y()) > 0.5 * L.v_period))
+      open.push_back(static_cast<int>(i));
+  return open;
+}
+
+bool loops_cross(const std::vector<std::vector<LoopNode>>& loops) {
+  std::vector<std::vector<V2>> uv(loops.size());
+  for (size_t i = 0; i < loops.size(); ++i)
+    for (const LoopNode& n : loops[i]) uv[i].push_back(n.uv);
+  return mesh::loops_intersect(uv);
 }
 
 /// A periodic face bounded by two closed wires and no seam (a cylinder's side as two circles): a
@@ -364,22 +383,26 @@ Layout make_layout(const WorkShape& w, int fi, const Sizes& z) {
 }  // namespace
 
 void triangulate_face(const WorkShape& w, int fi, const Sizes& z, Merged& out) {
-  const Layout L = make_layout(w, fi, z);
+  Layout L = make_layout(w, fi, z);
   const size_t vertices_before = out.V.size();
   std::vector<V2> gaps;
   std::vector<std::vector<LoopNode>> loops = face_loops(L, z, out, gaps);
+  std::vector<int> open = open_loops(L, gaps);
+  if (open.empty() && loops_cross(loops) && !L.project_all) {
+    // pcurves that stay near their edges yet cross each other: the projected nodes instead (the
+    // edges have their nodes by now, so this makes no new vertices).
+    L.project_all = true;
+    gaps.clear();
+    loops = face_loops(L, z, out, gaps);
+    open = open_loops(L, gaps);
+  }
   if (loops.empty()) L.fail("it has no wire that encloses anything");
-  double extent = 0;
-  for (const auto& l : loops)
-    for (const LoopNode& n : l) extent = std::max(extent, (n.uv - loops[0][0].uv).norm());
-  std::vector<int> open;
-  for (size_t i = 0; i < loops.size(); ++i)
-    if (gaps[i].norm() > 1e-6 * std::max(extent, 1e-12)) open.push_back(static_cast<int>(i));
-  if (open.size() == 2 && (L.u_period > 0 || L.v_period > 0)) {
+  if (open.size() == 2) {
     loops[open[0]] = join_by_seam(L, z, loops[open[0]], loops[open[1]], gaps[open[0]], gaps[open[1]], out);
     loops.erase(loops.begin() + open[1]);
   } else if (!open.empty()) {
-    L.fail(fmt("a wire does not close in the surface's parameters (its ends lie %g apart)", gaps[open[0]].norm()));
+    L.fail(fmt("%.0f of its wires go once around the periodic surface without a seam (two can be joined by one)",
+               static_cast<double>(open.size())));
   }
   Patch P;
   std::vector<std::vector<V2>> uv_loops;

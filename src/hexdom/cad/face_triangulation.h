@@ -18,7 +18,8 @@ namespace hexdom::cad {
 /// Triangulates face `fi` (0-based in w.faces) and appends its triangles (counter-clockwise seen
 /// from outside, as the face's orientation in the solid says) and its new vertices to `out`.
 /// Throws MeshingError "source: FaceN cannot be triangulated: <reason>" when its boundary cannot be
-/// laid out in its parameters (a wire off its surface, wires that cross, a wire that does not close).
+/// laid out in its parameters (a wire off its surface, wires that cross, a wire whose edges do not
+/// join, wires around a periodic surface without a seam that cannot be paired).
 void triangulate_face(const WorkShape& w, int fi, const Sizes& z, Merged& out);
 
 }  // namespace hexdom::cad

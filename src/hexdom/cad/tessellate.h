@@ -67,8 +67,9 @@ struct TessellateStats {
 /// triangles are missing or unusable are triangulated by hexdom, faces turned against their shell
 /// are turned back (both logged as warnings). Throws GeometryError for an empty shape or one that is
 /// not a closed solid; MeshingError "source: FaceN cannot be triangulated: <reason>" when neither
-/// BRepMesh nor hexdom can triangulate a face (its wire lies off its surface, its wires cross or do
-/// not close in its parameters), and MeshingError naming a face when the result would not be closed.
+/// BRepMesh nor hexdom can triangulate a face (a wire off its surface, wires that cross in its
+/// parameters, a wire whose edges do not join), and MeshingError naming a face when the result would
+/// not be closed.
 mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& options = {},
                              TessellateStats* stats = nullptr);
 
