@@ -118,20 +118,23 @@ std::string map_edge_nodes(const WorkShape& w, const TopoDS_Edge& E, FaceNodes& 
 }
 
 /// "" when `tris` (one face's triangles in merged vertices) form a proper patch: no directed edge
-/// twice, and the edges with one triangle are exactly the face's edge segments (a seam's have two).
+/// twice, every edge with one triangle is one of the face's edge segments, and every segment has a
+/// triangle (a seam's, or a slit's inside the face, have one on each side).
 std::string patch_problem(const std::vector<std::array<int, 3>>& tris, const FaceNodes& f) {
   std::unordered_map<EdgeKey, int> directed;
   for (const auto& t : tris)
     for (int k = 0; k < 3; ++k)
       if (++directed[directed_key(t[k], t[(k + 1) % 3])] > 1) return "its triangles overlap (an edge is used twice in one direction)";
-  size_t border = 0;
   for (const auto& [key, n] : directed) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffff);
-    if (directed.count(directed_key(b, a))) continue;
-    if (!f.segments.count(undirected_key(a, b))) return "its triangles leave a gap inside the face";
-    ++border;
+    if (!directed.count(directed_key(b, a)) && !f.segments.count(undirected_key(a, b)))
+      return "its triangles leave a gap inside the face";
   }
-  if (border != f.segments.size()) return "its triangles do not reach all of its edges";
+  for (EdgeKey key : f.segments) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffff);
+    if (!directed.count(directed_key(a, b)) && !directed.count(directed_key(b, a)))
+      return "its triangles do not reach all of its edges";
+  }
   return "";
 }
 

@@ -4,12 +4,17 @@
 // face that cannot be triangulated at all.
 #ifdef HEXDOM_WITH_CAD
 #include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
+#include <ShapeFix_Shell.hxx>
+#include <ShapeFix_Solid.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 #include <Geom2dAPI_Interpolate.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Line.hxx>
@@ -111,6 +116,44 @@ TopoDS_Shape cylinder_without_seam(bool same_way = false) {
   b.MakeSolid(solid);
   b.Add(solid, shell);
   return solid;
+}
+
+/// Box 10 x 8 x 6 whose top face has a slit from (5, 0, 6) to (5, 4, 6): one edge that the top
+/// face uses twice, once each way, and no other face.
+TopoDS_Shape box_with_slit() {
+  std::map<char, TopoDS_Vertex> v;
+  const std::map<char, gp_Pnt> at = {{'a', {0, 0, 0}}, {'b', {10, 0, 0}}, {'c', {10, 8, 0}}, {'d', {0, 8, 0}},
+                                     {'A', {0, 0, 6}}, {'B', {10, 0, 6}}, {'C', {10, 8, 6}}, {'D', {0, 8, 6}},
+                                     {'M', {5, 0, 6}}, {'T', {5, 4, 6}}};
+  for (const auto& [n, p] : at) v[n] = BRepBuilderAPI_MakeVertex(p);
+  std::map<std::string, TopoDS_Edge> e;
+  for (std::string n : {"ab", "bc", "cd", "da", "AM", "MB", "BC", "CD", "DA", "aA", "bB", "cC", "dD", "MT"})
+    e[n] = BRepBuilderAPI_MakeEdge(v[n[0]], v[n[1]]);
+  BRep_Builder b;
+  auto face = [&](const std::vector<TopoDS_Edge>& es, const gp_Pln* plane = nullptr) {
+    TopoDS_Wire w;
+    b.MakeWire(w);
+    for (const auto& x : es) b.Add(w, x);
+    w.Closed(true);
+    return plane ? BRepBuilderAPI_MakeFace(*plane, w, true).Face() : BRepBuilderAPI_MakeFace(w, true).Face();
+  };
+  const gp_Pln top(gp_Pnt(0, 0, 6), gp::DZ());
+  TopoDS_Shell shell;
+  b.MakeShell(shell);
+  b.Add(shell, face({e["ab"], e["bc"], e["cd"], e["da"]}));
+  b.Add(shell, face({e["AM"], e["MT"], TopoDS::Edge(e["MT"].Reversed()), e["MB"], e["BC"], e["CD"], e["DA"]}, &top));
+  b.Add(shell, face({e["ab"], e["bB"], e["MB"], e["AM"], e["aA"]}));
+  b.Add(shell, face({e["bc"], e["cC"], e["BC"], e["bB"]}));
+  b.Add(shell, face({e["cd"], e["dD"], e["CD"], e["cC"]}));
+  b.Add(shell, face({e["da"], e["aA"], e["DA"], e["dD"]}));
+  ShapeFix_Shell fix(shell);
+  fix.FixFaceOrientation(shell);
+  TopoDS_Solid solid;
+  b.MakeSolid(solid);
+  b.Add(solid, fix.Shell());
+  ShapeFix_Solid orient(solid);
+  orient.Perform();
+  return orient.Solid();
 }
 
 struct Outcome {
@@ -295,6 +338,15 @@ TEST(TessellateRepair, OwnTriangulationOfTheSharedStepParts) {
     std::cout << "[ figures  ] " << name << " (own triangulation of every face): " << st.triangles
               << " triangles, min angle planar " << r.min_angle_planar << ", volume error " << 100 * r.volume_error << "%\n";
   }
+}
+
+TEST(TessellateRepair, SlitFaceKeepsBrepMeshTriangles) {
+  // The slit's segments have a triangle on each side within the face: a proper patch, not repaired.
+  cad::Shape shape = cad::read_shape(write_part(box_with_slit(), "slit"));
+  const Outcome o = tessellate_logged(shape, 1.0);
+  expect_good_surface(shape, o.surface, 480.0, 6, 1.0);
+  EXPECT_FALSE(logged(o, "triangulated by hexdom"));
+  EXPECT_FALSE(logged(o, "turned over"));
 }
 
 TEST(TessellateRepair, PartsThatTessellatedBeforeAreNotRepaired) {
