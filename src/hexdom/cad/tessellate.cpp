@@ -15,8 +15,6 @@
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <IMeshTools_Parameters.hxx>
-#include <Poly_PolygonOnTriangulation.hxx>
-#include <Poly_Triangulation.hxx>
 #include <ShapeAnalysis_Surface.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -26,10 +24,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
-#include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/cad/shape_impl.h"
+#include "hexdom/cad/tessellate_merge.h"
+#include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/common/format.h"
 #include "hexdom/segmentation/cube_frame.h"
 
@@ -261,28 +259,6 @@ class OcctGeometry : public mesh::remesh::RemeshGeometry {
   double max_size_, deflection_, angle_, min_size_;
 };
 
-using EdgeKey = long long;
-EdgeKey directed_key(int a, int b) { return (static_cast<EdgeKey>(a) << 32) | static_cast<unsigned>(b); }
-
-/// "" when every edge is used by exactly two triangles in opposite directions, else a description.
-std::string closed_manifold_problem(const Eigen::MatrixXi& F) {
-  std::unordered_map<EdgeKey, int> directed;
-  directed.reserve(3 * F.rows());
-  for (int t = 0; t < F.rows(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(t, k), b = F(t, (k + 1) % 3);
-      if (a == b) return "triangle " + std::to_string(t + 1) + " is degenerate";
-      if (++directed[directed_key(a, b)] > 1)
-        return "edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ") is used twice in one direction";
-    }
-  for (const auto& [k, n] : directed) {
-    const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
-    if (!directed.count(directed_key(b, a)))
-      return "edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ") has one triangle (open)";
-  }
-  return "";
-}
-
 double tri_min_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   auto angle = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
   return std::min({angle(b - a, c - a), angle(a - b, c - b), angle(a - c, b - c)}) * 180.0 / kPi;
@@ -342,12 +318,6 @@ mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& option
 
 namespace {
 
-/// The sizes a tessellation works with: the options' with their defaults filled in.
-struct Sizes {
-  double size = 0, deflection = 0, min_size = 0;
-  double angle = 0;  ///< radians
-};
-
 /// The options' sizes, the defaults taken from the solid's bounding box. Throws GeometryError for a
 /// solid without extent, InputError for a size that would give more than 20 million triangles.
 Sizes resolve_sizes(const Shape& shape, const TessellateOptions& options) {
@@ -371,17 +341,11 @@ Sizes resolve_sizes(const Shape& shape, const TessellateOptions& options) {
   return z;
 }
 
-/// The copy of the solid that BRepMesh triangulates, with its faces, edges and vertices numbered.
-struct WorkShape {
-  TopoDS_Shape shape;
-  TopTools_IndexedMapOfShape faces, edges, vertices;
-  std::vector<int> original_face;  ///< per face of the copy (0-based): the original's id (FreeCAD's FaceN)
-};
-
 /// A copy without triangulations, so the caller's shape is left untouched.
 WorkShape copy_without_triangulations(const Shape::Impl& impl) {
   const std::string& source = impl.source;
   WorkShape w;
+  w.source = source;
   BRepBuilderAPI_Copy copier(impl.shape, true, false);
   w.shape = copier.Shape();
   BRepTools::Clean(w.shape);
@@ -410,164 +374,6 @@ void run_brepmesh(const WorkShape& w, const Sizes& z, const std::string& source)
   mp.MinSize = 0.25 * z.min_size;
   BRepMesh_IncrementalMesh mesher(w.shape, mp);
   if (!mesher.IsDone()) throw MeshingError(source + ": BRepMesh failed");
-}
-
-/// The face triangulations merged into one surface for the remesher.
-struct Merged {
-  std::vector<RVertex> V;
-  std::vector<std::vector<int>> edge_nodes;     ///< per edge: its vertices in V, first to last
-  std::vector<std::vector<double>> edge_params;  ///< per edge: their parameters on the first polygon read
-  std::vector<std::array<int, 3>> F;
-  std::vector<int> face_of;  ///< per triangle: its face of the copy (0-based)
-  int dropped = 0;           ///< degenerate triangles left out
-};
-
-/// One face's triangulation and the map of its nodes into the merged vertices.
-struct FaceNodes {
-  const TopoDS_Face& face;
-  int fi;                  ///< the face (0-based)
-  std::string name;        ///< "FaceN", for messages
-  const Handle(Poly_Triangulation)& T;
-  const TopLoc_Location& loc;
-  std::vector<int> g;      ///< per node of T (1-based): its vertex in Merged::V, -1 while unset
-  Eigen::Vector3d node(int i) const { return vec(T->Node(i).Transformed(loc.Transformation())); }
-};
-
-/// Maps the nodes of edge E's polygon on face `f` into the merged vertices: a degenerated edge's
-/// onto its vertex; an edge met for the first time gets its nodes (its end vertices, then new
-/// curve vertices, or face vertices on a seam); an edge met before reuses them, reversed when the
-/// polygon runs the other way.
-void map_edge_nodes(const WorkShape& w, const TopoDS_Edge& E, FaceNodes& f, Merged& out, const std::string& source) {
-  const int ei = w.edges.FindIndex(E) - 1;
-  const Handle(Poly_PolygonOnTriangulation)& poly = BRep_Tool::PolygonOnTriangulation(E, f.T, f.loc);
-  if (poly.IsNull())
-    throw MeshingError(source + ": BRepMesh left Edge" + std::to_string(ei + 1) + " of " + f.name + " without nodes");
-  const TColStd_Array1OfInteger& nodes = poly->Nodes();
-  const int n = nodes.Length(), lo = nodes.Lower();
-  if (BRep_Tool::Degenerated(E)) {
-    const int vi = w.vertices.FindIndex(TopExp::FirstVertex(E)) - 1;
-    for (int k = 0; k < n; ++k) f.g[nodes(lo + k)] = vi;
-    return;
-  }
-  const bool seam = BRep_Tool::IsClosed(E, f.face);
-  const Handle(TColStd_HArray1OfReal)& params = poly->Parameters();
-  auto param = [&](int k) { return params.IsNull() ? static_cast<double>(k) : params->Value(params->Lower() + k); };
-  std::vector<int>& en = out.edge_nodes[ei];
-  bool reversed = false;
-  if (en.empty()) {
-    if (n < 2) throw MeshingError(source + ": BRepMesh gave Edge" + std::to_string(ei + 1) + " fewer than 2 nodes");
-    en.assign(n, -1);
-    std::vector<double>& ep = out.edge_params[ei];
-    for (int k = 0; k < n; ++k) ep.push_back(param(k));
-    TopoDS_Vertex v1, v2;
-    TopExp::Vertices(E, v1, v2);
-    const int i1 = w.vertices.FindIndex(v1) - 1, i2 = w.vertices.FindIndex(v2) - 1;
-    const Eigen::Vector3d p0 = f.node(nodes(lo));
-    const bool first_is_v1 = (p0 - out.V[i1].p).norm() <= (p0 - out.V[i2].p).norm();
-    en[0] = first_is_v1 ? i1 : i2;
-    en[n - 1] = first_is_v1 ? i2 : i1;
-    for (int k = 1; k < n - 1; ++k) {
-      RVertex v;
-      v.p = f.node(nodes(lo + k));
-      if (seam) {
-        v.kind = Kind::Face;
-        v.owner = f.fi;
-        if (f.T->HasUVNodes()) {
-          const gp_Pnt2d uv = f.T->UVNode(nodes(lo + k));
-          v.uv = {uv.X(), uv.Y()};
-          v.has_uv = true;
-        }
-      } else {
-        v.kind = Kind::Curve;
-        v.owner = ei;
-        v.t = param(k);
-      }
-      en[k] = static_cast<int>(out.V.size());
-      out.V.push_back(v);
-    }
-  } else {
-    const std::vector<double>& ep = out.edge_params[ei];
-    if (static_cast<int>(en.size()) != n)
-      throw MeshingError(source + ": BRepMesh discretised Edge" + std::to_string(ei + 1) +
-                         " differently in its two faces");
-    if (!params.IsNull() && n > 1 && std::abs(param(0) - ep[0]) > std::abs(param(0) - ep[n - 1])) reversed = true;
-  }
-  for (int k = 0; k < n; ++k) {
-    int& slot = f.g[nodes(lo + k)];
-    if (slot < 0) slot = en[reversed ? n - 1 - k : k];
-  }
-}
-
-/// Adds one face's triangulation: its edges' nodes through map_edge_nodes, its inner nodes as new
-/// face vertices, its triangles (turned for a reversed face, degenerate ones dropped).
-void merge_face(const WorkShape& w, const TopoDS_Face& face, int fi, Merged& out, const std::string& source) {
-  const std::string face_name = "Face" + std::to_string(fi + 1);
-  TopLoc_Location loc;
-  const Handle(Poly_Triangulation)& T = BRep_Tool::Triangulation(face, loc);
-  if (T.IsNull() || T->NbTriangles() == 0)
-    throw MeshingError(source + ": BRepMesh could not triangulate " + face_name);
-  FaceNodes f{face, fi, face_name, T, loc, std::vector<int>(T->NbNodes() + 1, -1)};
-  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) map_edge_nodes(w, TopoDS::Edge(ex.Current()), f, out, source);
-  std::vector<int>& g = f.g;
-  for (int i = 1; i <= T->NbNodes(); ++i) {
-    if (g[i] >= 0) continue;
-    RVertex v;
-    v.p = f.node(i);
-    v.kind = Kind::Face;
-    v.owner = fi;
-    if (T->HasUVNodes()) {
-      const gp_Pnt2d uv = T->UVNode(i);
-      v.uv = {uv.X(), uv.Y()};
-      v.has_uv = true;
-    }
-    g[i] = static_cast<int>(out.V.size());
-    out.V.push_back(v);
-  }
-  const bool flip = face.Orientation() == TopAbs_REVERSED;
-  for (int i = 1; i <= T->NbTriangles(); ++i) {
-    int n1, n2, n3;
-    T->Triangle(i).Get(n1, n2, n3);
-    if (flip) std::swap(n2, n3);
-    const std::array<int, 3> tri{g[n1], g[n2], g[n3]};
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      ++out.dropped;
-      continue;
-    }
-    out.F.push_back(tri);
-    out.face_of.push_back(fi);
-  }
-}
-
-// Merge the face triangulations through the topology: CAD vertices first, then the nodes of
-// each edge once (a seam's two polygons and an edge's polygon in each of its faces map to the
-// same vertices), then each face's inner nodes. Throws MeshingError when the result is not closed.
-Merged merge_triangulations(const WorkShape& w, const TessellateOptions& options, const std::string& source) {
-  Merged out;
-  out.V.resize(w.vertices.Extent());
-  for (int i = 0; i < w.vertices.Extent(); ++i) {
-    out.V[i].p = vec(BRep_Tool::Pnt(TopoDS::Vertex(w.vertices(i + 1))));
-    out.V[i].kind = Kind::Corner;
-    out.V[i].owner = i;
-  }
-  out.edge_nodes.resize(w.edges.Extent());
-  out.edge_params.resize(w.edges.Extent());
-  std::vector<char> seen(w.faces.Extent(), 0);
-  for (TopExp_Explorer fx(w.shape, TopAbs_FACE); fx.More(); fx.Next()) {
-    const TopoDS_Face face = TopoDS::Face(fx.Current());
-    const int fi = w.faces.FindIndex(face) - 1;
-    if (seen[fi]) continue;
-    seen[fi] = 1;
-    merge_face(w, face, fi, out, source);
-  }
-  Eigen::MatrixXi F0(out.F.size(), 3);
-  for (size_t t = 0; t < out.F.size(); ++t) F0.row(t) << out.F[t][0], out.F[t][1], out.F[t][2];
-  const std::string problem = closed_manifold_problem(F0);
-  if (!problem.empty())
-    throw MeshingError(source + ": the B-rep's initial triangulation is not closed: " + problem);
-  if (options.log)
-    options.log(0, "BRepMesh start: " + std::to_string(out.F.size()) + " triangles, " + std::to_string(out.V.size()) +
-                       " vertices (" + std::to_string(out.dropped) + " degenerate dropped)");
-  return out;
 }
 
 /// The merged triangles remeshed on the B-rep (OcctGeometry), each triangle's patch its face in the
@@ -604,9 +410,12 @@ mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& o
     const Sizes z = resolve_sizes(shape, options);
     const WorkShape w = copy_without_triangulations(impl);
     run_brepmesh(w, z, source);
-    mesh::SurfaceMesh out = remesh_on_brep(w, merge_triangulations(w, options, source), z, options);
-    const std::string problem = closed_manifold_problem(out.F);
-    if (!problem.empty()) throw MeshingError(source + ": the tessellation is not closed: " + problem);
+    mesh::SurfaceMesh out = remesh_on_brep(w, merge_triangulations(w, z, options), z, options);
+    int at = -1;
+    const std::string problem = closed_manifold_problem(out.F, &at);
+    if (!problem.empty())
+      throw MeshingError(source + ": the tessellation is not closed" +
+                         (at >= 0 ? " at Face" + std::to_string(out.patch(at)) : std::string()) + ": " + problem);
     if (mesh::enclosed_volume(out.V, out.F) < 0) {
       out.F.col(1).swap(out.F.col(2));
       if (options.log) options.log(1, source + ": the solid's faces point inward; turned the triangles over");

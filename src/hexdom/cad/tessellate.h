@@ -10,6 +10,14 @@
 // edge slide along its 3D curve and CAD vertices stay fixed, so CAD edges stay mesh edges and the
 // surface stays closed. Target edge lengths come from `size`, reduced where the curvature needs it
 // (`deflection`, `angle`) and near short edges and thin faces, then graded.
+//
+// Repairs instead of refusals (cad/tessellate_merge.h): a face that BRepMesh leaves without
+// triangles, or with triangles that do not fit its edges' nodes (an edge without nodes, an edge
+// discretised differently in its two faces, folded triangles), is triangulated by hexdom in the
+// face's (u, v) parameters from the nodes of its edges (cad/face_triangulation.h: a bad pcurve is
+// replaced by projecting the edge's nodes, a periodic face without a seam edge gets one); faces that
+// the B-rep's shell turns against their neighbours are turned back. Each repair is logged as a
+// warning naming the face.
 #pragma once
 
 #include "hexdom/cad/shape.h"
@@ -33,6 +41,10 @@ struct TessellateOptions {
   double min_size = 0;
   /// Remeshing sweeps (split, collapse, flip, relax); 0 keeps BRepMesh's triangles as they are.
   int iterations = 10;
+  /// Start from BRepMesh's triangles of each face where they are usable (the default); false
+  /// triangulates every face by hexdom's own triangulation, as for the faces BRepMesh fails on
+  /// (for tests and comparisons).
+  bool brepmesh_faces = true;
   LogCallback log;
 };
 
@@ -51,9 +63,13 @@ struct TessellateStats {
 
 /// Triangulates the boundary of `shape` (a solid). The result is closed, 2-manifold and oriented
 /// outward (counter-clockwise seen from outside); every vertex lies on the B-rep; patch(i) is the
-/// 1-based id of the CAD face triangle i lies on (FreeCAD's Face{patch}). Throws GeometryError for
-/// an empty shape or one that is not a closed solid, MeshingError when BRepMesh fails on a face or
-/// the result would not be closed.
+/// 1-based id of the CAD face triangle i lies on (FreeCAD's Face{patch}). Faces whose BRepMesh
+/// triangles are missing or unusable are triangulated by hexdom, faces turned against their shell
+/// are turned back (both logged as warnings). Throws GeometryError for an empty shape or one that is
+/// not a closed solid; MeshingError "source: FaceN cannot be triangulated: <reason>" when neither
+/// BRepMesh nor hexdom can triangulate a face (a wire off its surface, wires that cross in its
+/// parameters, a wire whose edges do not join), and MeshingError naming a face when the result would
+/// not be closed.
 mesh::SurfaceMesh tessellate(const Shape& shape, const TessellateOptions& options = {},
                              TessellateStats* stats = nullptr);
 
