@@ -73,6 +73,58 @@ bool on_the_curve(const Placement& p, const SurfaceFeatures& feat, int v, int a,
 
 }  // namespace
 
+// Laplacian passes over the outer quads for the crowded nodes (an outer edge shorter than `crowded`):
+// each moves to the mean of its neighbours on what it is on (a surface node: the nodes on its region,
+// its curves and corners included; a curve node: the nodes on its curve), then back onto that.
+// Closest points crowd where the surface turns away from the core (a reflex curve takes every node
+// whose nearest point it is); this spreads them, leaving the others where they are.
+void spread(mesh::Mesh& m, const std::vector<std::array<int, 4>>& quads, const Placement& p, const SurfaceFeatures& feat,
+            int passes, double crowded) {
+  const int nn = m.num_nodes();
+  std::vector<std::vector<int>> nbrs(nn);
+  for (const auto& q : quads)
+    for (int i = 0; i < 4; ++i) {
+      nbrs[q[i]].push_back(q[(i + 1) % 4]);
+      nbrs[q[(i + 1) % 4]].push_back(q[i]);
+    }
+  for (auto& n : nbrs) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  auto on = [&](int u, int a) {
+    if (p.kind[u] == optimize::Surface) return p.a[u] == a;
+    if (p.kind[u] == optimize::Curve) return p.a[u] == a || p.b[u] == a;
+    if (p.kind[u] != optimize::Corner) return false;
+    const auto& rc = feat.corner_regions()[p.a[u]];
+    return std::binary_search(rc.begin(), rc.end(), a);
+  };
+  auto follows = [&](int v, int u) {
+    if (p.kind[v] == optimize::Surface) return on(u, p.a[v]);
+    return p.kind[u] != optimize::Surface && on(u, p.a[v]) && on(u, p.b[v]);
+  };
+  std::vector<char> moving(nn, 0);
+  for (int v = 0; v < nn; ++v) {
+    if (nbrs[v].empty() || p.kind[v] == optimize::Corner) continue;
+    for (int u : nbrs[v])
+      if ((m.V.row(u) - m.V.row(v)).norm() < crowded) moving[v] = 1;
+  }
+  for (int pass = 0; pass < passes; ++pass) {
+    Eigen::MatrixXd next = m.V;
+    for (int v = 0; v < nn; ++v) {
+      if (!moving[v]) continue;
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      int k = 0;
+      for (int u : nbrs[v])
+        if (follows(v, u)) {
+          c += m.V.row(u).transpose();
+          ++k;
+        }
+      if (k > 0) next.row(v) = place(p, feat, v, c / k).transpose();
+    }
+    m.V = std::move(next);
+  }
+}
+
 std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& quads,
                                                const SurfaceFeatures& feat) {
   std::vector<std::vector<int>> out(p.kind.size());

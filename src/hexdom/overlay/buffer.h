@@ -37,6 +37,12 @@ mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 
 Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const SurfaceFeatures& features,
                             double reach);
 
+/// Laplacian passes over the outer nodes with an outer edge shorter than `crowded` (the closest
+/// points crowd them onto a reflex curve): each moves to the mean of its neighbours on its region
+/// or curve and back onto it; corners stay.
+void spread(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const Placement& p, const SurfaceFeatures& features,
+            int passes, double crowded);
+
 /// Per node: its neighbours along the outer quads' edges that lie on the same curve (curve nodes of
 /// the same pair of regions, corners on both); empty for other nodes.
 std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& outer,

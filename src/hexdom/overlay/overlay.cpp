@@ -40,6 +40,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   mesh::Mesh m = add_buffer_layer(core_mesh(grid, core), &outer);
   r.buffer_cells = static_cast<int>(outer.size());
   const Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
+  spread(m, outer, place_of, feat, opt.spread_passes, 0.25 * grid.h.minCoeff());
   r.curve_nodes = place_of.curve;
   r.corner_nodes = place_of.corner;
   r.corners_missed = place_of.corners_missed;

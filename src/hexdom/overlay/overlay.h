@@ -34,6 +34,9 @@ struct OverlayOptions {
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;
   FeatureOptions features;
+  /// Laplacian passes over the outer nodes the closest points crowded (an outer edge under a
+  /// quarter of the spacing: near reflex curves), before the optimiser (overlay::spread).
+  int spread_passes = 10;
   /// The optimiser's recommended sequence without pillowing (optimize::improve): worst-cell rounds
   /// until the worst stops improving, at most this many, then passes raising the mean.
   int max_rounds = 40;
