@@ -387,8 +387,10 @@ class _MeshPart(CommandManager):
         mesh = objs["mesh"]
         FreeCAD.Console.PrintMessage(
             "HexDom: {}: {} hex, {} prism, {} tet; worst hex SJ {:.3f}, mean {:.3f}; "
-            "volume {:.6g}\n".format(mesh.Label, mesh.HexCount, mesh.PrismCount, mesh.TetCount,
-                                      mesh.MinHexSJ, mesh.MeanHexSJ, mesh.MeshVolume))
+            "volume {:.6g}; made by the {} path{}\n".format(
+                mesh.Label, mesh.HexCount, mesh.PrismCount, mesh.TetCount, mesh.MinHexSJ,
+                mesh.MeanHexSJ, mesh.MeshVolume, getattr(mesh, "MeshingPath", "") or "polycube",
+                " ({})".format(mesh.PolycubeNote) if getattr(mesh, "PolycubeNote", "") else ""))
         return objs
 
 
