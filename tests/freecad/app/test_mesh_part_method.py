@@ -35,7 +35,6 @@ _here = os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(os.path.dirname(
 sys.path.insert(0, os.path.join(_here, "app"))
 sys.path.insert(0, os.path.join(_here, "..", "python"))
 import hexdom_oracles as oracles  # noqa: E402  (VTK's Verdict)
-from test_mesh_part_prisms import _verdict_of  # noqa: E402  (FemMesh -> VTK grid, SMDS orders)
 
 BRACKET = fc_testdata.example_path("bracket.step")
 TORUS_SIZE = 8.0
@@ -76,6 +75,29 @@ def _run_counts(run):
 
 def _valid(obj):
     return "Invalid" not in obj.State and "Error" not in obj.State and "Touched" not in obj.State
+
+
+def _verdict_of(obj):
+    """Verdict's scaled Jacobian per cell, the VTK cell types and the VTK grid of the FEM mesh
+    FreeCAD holds, read through FemMesh's API as test_mesh_part_prisms reads it (SMDS node orders:
+    hexa VTK = smds[0,3,2,1,4,7,6,5], penta = VTK, tetra VTK = smds[0,2,1,3]), with FemMesh.Nodes
+    read once (each read builds the whole dict)."""
+    fm = obj.FemMesh
+    nodes = fm.Nodes
+    order = sorted(nodes)
+    ids = {nid: i for i, nid in enumerate(order)}
+    P = np.array([[nodes[n].x, nodes[n].y, nodes[n].z] for n in order])
+    perms = {8: ([0, 3, 2, 1, 4, 7, 6, 5], oracles.HEX), 6: (list(range(6)), oracles.WEDGE),
+             4: ([0, 2, 1, 3], oracles.TET)}
+    cells, types = [], []
+    for e in fm.Volumes:
+        element = fm.getElementNodes(e)
+        perm, t = perms[len(element)]
+        cells.append([ids[element[i]] for i in perm] + [-1] * (8 - len(perm)))
+        types.append(t)
+    g = oracles.vtk_grid(P, np.array(cells, np.int64), np.array(types))
+    sj, _ = oracles.verdict_metrics(g)
+    return sj, np.array(types), g
 
 
 def _check_fem_mesh(mesh, shape, rel=0.01):
