@@ -159,10 +159,10 @@ def choose_mesh_part(objs, run=None):
         label = (poly if poly is not None else mesh if mesh is not None else surface_obj).Label
         with Progress("Choosing the mesh of " + surface_obj.Label, 1) as bar:
             if whole:
-                chosen = (run or bar.run)("choose the polycube", core.mesh_part,
+                chosen = (run or bar.run)("choose the mesh", core.mesh_part,
                                           shape.exportBrepToString(), **options)
             else:
-                chosen = (run or bar.run)("choose the polycube", core.mesh_surface, surface,
+                chosen = (run or bar.run)("choose the mesh", core.mesh_surface, surface,
                                           **options)
             bar.step(chosen.method + ": " + chosen.choice)
     except Cancelled as e:  # the recompute then marks the next stage cancelled, keeping the objects
@@ -181,6 +181,12 @@ def choose_mesh_part(objs, run=None):
         if mesh is not None:
             use_overlay(objs)
         return chosen
+    if mesh is not None and poly is not None and getattr(mesh, "Polycube", poly) is None:
+        mesh.Polycube = poly  # chosen again after the overlay was kept: the polycube's once more
+        try:
+            mesh.setExpression("Level", poly.Name + ".Level")
+        except (AttributeError, RuntimeError, ValueError):
+            pass
     factor = getattr(chosen, "tessellation_factor", 1.0)
     if factor != 1.0:  # the mesh is the one of another tessellation: the Surface makes that one
         surface_obj.Size = factor * float(surface_obj.Size.Value)

@@ -327,7 +327,9 @@ class _MeshPart(CommandManager):
                "(generated and improved), all kept and editable; element size = bounding-box "
                "diagonal / 30, level 1 or 0 and the polycube's options chosen as `hexdom mesh` "
                "chooses them (change Size, Level, KeepWidths, TetApexes on the Polycube and "
-               "recompute)")
+               "recompute); where the polycube fails or misses a target the overlay grid's mesh "
+               "may be kept instead (the Mesh's MeshingPath and PolycubeNote say so, its Method "
+               "forces a path)")
     is_active = "with_part"
 
     def Activated(self):
