@@ -426,7 +426,10 @@ class MeshRun:
     (see autopolycube): segment(edge_weight=edge_weight) then autopolycube(level=level,
     keep_widths=..., collapse_apexes=..., both with frame=frame["rotation"]) rebuild its polycube;
     ``frame`` is the cube_frame dict of the axes the labels refer to; ``choice`` says it in words.
-    ``snap`` holds snap_to_brep's report for mesh_part (None otherwise)."""
+    ``snap`` holds snap_to_brep's report for mesh_part (None otherwise). ``method`` names the path
+    that made the mesh: "polycube" or "overlay" (a grid laid over the part; its run has no labels
+    nor polycube, and level, edge_weight and the polycube options mean nothing then);
+    ``polycube_note`` says why the overlay was tried in auto mode (empty otherwise)."""
 
     mesh: Mesh
     generated: Mesh
@@ -445,6 +448,8 @@ class MeshRun:
     surface: Surface = None  # mesh_part: the tessellation meshed
     tessellations: int = 1   # mesh_part: tessellations made (see cad::MeshCadOptions::retessellate)
     tessellation_factor: float = 1.0  # mesh_part: the kept one's triangle size over the first's
+    method: str = "polycube"  # the path that made the mesh: "polycube" or "overlay"
+    polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
 
     @property
     def inverted(self):
@@ -457,21 +462,38 @@ def _mesh_run(r):
                    _auto_polycube(r["polycube"]), r["quality"], r["generated_quality"],
                    dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
                    keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
-                   choice=str(r["choice"]), frame=dict(r["frame"]))
+                   choice=str(r["choice"]), frame=dict(r["frame"]),
+                   method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")))
+
+
+MESH_METHODS = ("auto", "polycube", "overlay")
+
+
+def _method_args(method):
+    """The method= keyword for _hexdom (none for "auto", so that a build without it still runs)."""
+    if method not in MESH_METHODS:
+        raise InputError("unknown meshing method '{}': auto, polycube or overlay".format(method))
+    if method == "auto":
+        return {}
+    return {"method": method}
 
 
 def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
-                 improve=True, allow_inverted=False, align=True, frame=None):
+                 improve=True, allow_inverted=False, align=True, frame=None, method="auto"):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
     (cube_frame; a part lying at an angle), False: in the model's axes; frame: in the frame of this
-    3 x 3 rotation (x_frame = frame @ x) instead. Raises MeshingError when inverted cells remain,
+    3 x 3 rotation (x_frame = frame @ x) instead. method: "polycube" (the path above), "overlay"
+    (a grid laid over the part: any closed surface; size and align only) or "auto" (the polycube,
+    and the overlay too when the polycube fails or misses a target, the better kept: MeshRun.method,
+    .polycube_note). Raises MeshingError when inverted cells remain,
     unless allow_inverted (then MeshRun.inverted counts them). Returns a MeshRun."""
     r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
                              float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve),
                              bool(align),
-                             None if frame is None else np.asarray(frame, np.float64).reshape(3, 3))
+                             None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
+                             **_method_args(method))
     run = _mesh_run(r)
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
@@ -483,7 +505,7 @@ def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=Fals
     """The CAD part's mesh as `hexdom mesh` makes it: a .step/.stp, .iges/.igs or .brep/.brp path or
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
-    max_relabels, relax_sweeps, improve, align, frame go to it), and (``snap``) its boundary nodes
+    max_relabels, relax_sweeps, improve, align, frame, method go to it), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
     or cells stay inverted, the B-rep is tessellated again with slightly smaller or larger triangles
     (``tessellations``, ``tessellation_factor`` of the MeshRun). Needs _hexdom built with
@@ -492,11 +514,13 @@ def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=Fals
     ``surface`` the tessellation meshed."""
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
-    unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame"}
+    unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
+                             "method"}
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
     frame = kwargs.pop("frame", None)
+    kwargs.update(_method_args(kwargs.pop("method", "auto")))
     r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap), level=int(level),
                          frame=None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
                          **kwargs)

@@ -327,7 +327,9 @@ class _MeshPart(CommandManager):
                "(generated and improved), all kept and editable; element size = bounding-box "
                "diagonal / 30, level 1 or 0 and the polycube's options chosen as `hexdom mesh` "
                "chooses them (change Size, Level, KeepWidths, TetApexes on the Polycube and "
-               "recompute)")
+               "recompute); where the polycube fails or misses a target the overlay grid's mesh "
+               "may be kept instead (the Mesh's MeshingPath and PolycubeNote say so, its Method "
+               "forces a path)")
     is_active = "with_part"
 
     def Activated(self):
@@ -387,8 +389,10 @@ class _MeshPart(CommandManager):
         mesh = objs["mesh"]
         FreeCAD.Console.PrintMessage(
             "HexDom: {}: {} hex, {} prism, {} tet; worst hex SJ {:.3f}, mean {:.3f}; "
-            "volume {:.6g}\n".format(mesh.Label, mesh.HexCount, mesh.PrismCount, mesh.TetCount,
-                                      mesh.MinHexSJ, mesh.MeanHexSJ, mesh.MeshVolume))
+            "volume {:.6g}; made by the {} path{}\n".format(
+                mesh.Label, mesh.HexCount, mesh.PrismCount, mesh.TetCount, mesh.MinHexSJ,
+                mesh.MeanHexSJ, mesh.MeshVolume, getattr(mesh, "MeshingPath", "") or "polycube",
+                " ({})".format(mesh.PolycubeNote) if getattr(mesh, "PolycubeNote", "") else ""))
         return objs
 
 

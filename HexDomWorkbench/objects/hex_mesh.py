@@ -12,6 +12,13 @@ that ``execute`` stores:
 - when the Segmentation's Surface tessellates a Part and the core has snap_to_brep (SnapToCAD
   true), the final boundary nodes are moved onto the CAD faces, so that FEM constraints on those
   faces find them (BrepDistance reports the largest distance left);
+- Method chooses the path: "polycube" the above; "overlay" a grid laid over the Segmentation's
+  Surface (core.mesh_surface(method="overlay"): no polycube needed; the Polycube's Size, else the
+  Surface's, as element size), snapped as above; "auto" (the default) the polycube when a Polycube
+  is linked, else the overlay when the last run made the mesh with it (MeshingPath: Mesh Part's
+  choice unlinks the Polycube when it keeps the overlay mesh), else the polycube (which then asks
+  for the missing link). MeshingPath says which path made the mesh, PolycubeNote why the core's
+  automatic choice tried the overlay (set by Mesh Part);
 - with BaseMesh linked (another FEM mesh): a copy of it, improved when Improve is true;
 - with no input (an imported mesh): None, the stored mesh stays.
 """
@@ -28,6 +35,7 @@ from . import polycube, segmentation, tessellation
 from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Mesh"
+METHODS = ["auto", "polycube", "overlay"]
 
 # (property, type, group, tooltip); quality figures are read-only.
 _QUALITY = [
@@ -88,13 +96,32 @@ class HexMesh(BaseHexDomObject):
                             "Largest distance of a boundary node from the CAD faces after "
                             "snapping; -1 when the nodes were not snapped")
             obj.BrepDistance = -1.0
+        if not hasattr(obj, "Method"):
+            obj.addProperty("App::PropertyEnumeration", "Method", "HexDom",
+                            "Meshing path: polycube (Segmentation and Polycube: generate, improve), "
+                            "overlay (a grid laid over the Segmentation's Surface, no polycube "
+                            "needed) or auto (the polycube when a Polycube is linked, else the path "
+                            "that made the mesh last: Mesh Part unlinks the Polycube when the "
+                            "core's choice keeps the overlay mesh)")
+            obj.Method = METHODS
+            obj.Method = "auto"
+        if not hasattr(obj, "MeshingPath"):
+            obj.addProperty("App::PropertyString", "MeshingPath", "HexDom",
+                            "The path that made the mesh: polycube or overlay (empty: imported or "
+                            "copied)")
+        if not hasattr(obj, "PolycubeNote"):
+            obj.addProperty("App::PropertyString", "PolycubeNote", "HexDom",
+                            "Why the core's automatic choice (Mesh Part, Method auto) tried the "
+                            "overlay grid: the polycube path failed or its mesh missed a target; "
+                            "empty when it did not")
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
         for name, prop_type, doc in _QUALITY:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Quality", doc)
-        set_read_only(obj, ["SourceFile", "BrepDistance"] + QUALITY_PROPERTIES)
+        set_read_only(obj, ["SourceFile", "BrepDistance", "MeshingPath", "PolycubeNote"]
+                      + QUALITY_PROPERTIES)
         obj.setEditorMode("Region", 2)  # hidden: one entry per cell
 
     def generate(self, obj):
@@ -113,9 +140,17 @@ class HexMesh(BaseHexDomObject):
                     mesh = bar.run("improve", core.improve, mesh)
                     bar.step("improved")
             return mesh
+        self.path = meshing_path(obj)
+        if self.path == "overlay":
+            return self.overlay(obj)
         if seg is None or poly is None:
-            raise ValueError("{}: link both a Segmentation and a Polycube (or neither)".format(
-                obj.Label))
+            hint = ""
+            if seg is not None and poly is None:
+                found = polycubes_of(seg)
+                if found:
+                    hint = " ({} goes with {})".format(found[0].Label, seg.Label)
+            raise ValueError("{}: link both a Segmentation and a Polycube (or neither){}".format(
+                obj.Label, hint))
         surface = polycube.get_patch_surface(poly)
         if surface is None:
             surface = segmentation.get_surface(seg)
@@ -137,15 +172,64 @@ class HexMesh(BaseHexDomObject):
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
         return mesh
 
+    def overlay(self, obj):
+        """The overlay path: core.mesh_surface(method="overlay") on the Segmentation's Surface,
+        then snapped onto the CAD faces as the polycube path's mesh is."""
+        seg = getattr(obj, "Segmentation", None)
+        surface_obj = getattr(seg, "Surface", None)
+        if seg is None or surface_obj is None:
+            raise ValueError("{}: Method overlay meshes the Surface of a Segmentation: link "
+                             "one".format(obj.Label))
+        surface = tessellation.get_surface(surface_obj)
+        poly = getattr(obj, "Polycube", None)
+        size = float(poly.Size.Value) if poly is not None else float(surface_obj.Size.Value)
+        # Laid in the frame the faces fit when the Segmentation has one (as Mesh Part's choice).
+        align = segmentation.frame_matrix(seg) is not None
+        snap = snap_source(obj)
+        with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap)) as bar:
+            run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
+                          align=align, improve=bool(obj.Improve), allow_inverted=True)
+            mesh = run.mesh
+            bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
+            if snap:
+                brep, cad_surface = snap
+                mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface)
+                self.brep_distance = float(info["max_distance"])
+                bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
+        return mesh
+
     def execute(self, obj):
         self.brep_distance = -1.0
+        self.path = None
         mesh = self.generate(obj)
         if mesh is not None:
             store_mesh(obj, mesh)
             if hasattr(obj, "BrepDistance") and obj.BrepDistance != self.brep_distance:
                 obj.BrepDistance = self.brep_distance
+            if self.path is not None and hasattr(obj, "MeshingPath"):
+                if obj.MeshingPath != self.path:
+                    obj.MeshingPath = self.path
+                # The note is the automatic choice's: a forced path has none.
+                if getattr(obj, "Method", "auto") != "auto" and obj.PolycubeNote:
+                    obj.PolycubeNote = ""
         else:
             update_quality(obj)
+
+
+def meshing_path(obj):
+    """The path recomputing HexDom Mesh ``obj`` takes: "polycube" or "overlay" (see Method)."""
+    method = getattr(obj, "Method", "auto")
+    if method in ("polycube", "overlay"):
+        return method
+    if getattr(obj, "Polycube", None) is None and getattr(obj, "MeshingPath", "") == "overlay":
+        return "overlay"
+    return "polycube"
+
+
+def polycubes_of(seg):
+    """The HexDom Polycubes built on Segmentation ``seg`` (their Segmentation links it)."""
+    return [o for o in getattr(seg, "InList", []) if polycube.is_polycube(o)
+            and getattr(o, "Segmentation", None) == seg]
 
 
 def snap_source(obj):
@@ -167,9 +251,11 @@ def is_hex_mesh(obj):
 
 
 def has_inputs(obj):
-    """True if the HexDom Mesh is generated from a Segmentation and a Polycube."""
-    return (getattr(obj, "Segmentation", None) is not None
-            and getattr(obj, "Polycube", None) is not None)
+    """True if the HexDom Mesh is generated from a Segmentation and a Polycube, or from a
+    Segmentation's Surface by the overlay grid."""
+    if getattr(obj, "Segmentation", None) is None:
+        return False
+    return getattr(obj, "Polycube", None) is not None or meshing_path(obj) == "overlay"
 
 
 def get_mesh(obj):

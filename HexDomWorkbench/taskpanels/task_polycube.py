@@ -57,12 +57,16 @@ def segmentations(doc):
 
 
 def find_segmentation(obj):
-    """The Segmentation a Polycube goes with: the one a HexDom Mesh meshes it with, else the only
-    one in the document, else None."""
+    """The Segmentation a Polycube goes with: the one a HexDom Mesh meshes it with, else its own
+    (an automatic Polycube's, also when the Mesh no longer uses it: Mesh Part kept the overlay
+    grid's mesh), else the only one in the document, else None."""
     for user in obj.InList:
         seg = getattr(user, "Segmentation", None)
         if seg is not None and getattr(user, "Polycube", None) == obj:
             return seg
+    own = getattr(obj, "Segmentation", None)
+    if own is not None and segmentation.is_segmentation(own):
+        return own
     found = segmentations(obj.Document)
     return found[0] if len(found) == 1 else None
 

@@ -5,7 +5,8 @@
 #   HEXDOM_BUILD_DIR=/abs/build tests/freecad/run.sh        (make test-freecad does this)
 #
 # Extra pytest arguments for the App tests: HEXDOM_FC_PYTEST_ARGS="-k fem -x".
-# Only some GUI scripts: HEXDOM_FC_GUI="gui_test_build_polycube" (a glob); HEXDOM_FC_SKIP_APP=1 skips the App tests.
+# Only some GUI scripts: HEXDOM_FC_GUI="gui_test_build_polycube" (a glob); HEXDOM_FC_SKIP_APP=1 skips the App tests,
+# HEXDOM_FC_SKIP_GUI=1 the GUI tests.
 # Screenshots and logs go to tests/freecad/artifacts/ (ignored by git).
 set -e
 
@@ -60,7 +61,10 @@ fi
 shopt -s nullglob
 GUI_SCRIPTS=("$HERE"/gui/${HEXDOM_FC_GUI:-gui_test_*}.py)
 shopt -u nullglob
-if [ ${#GUI_SCRIPTS[@]} -eq 0 ]; then
+if [ -n "${HEXDOM_FC_SKIP_GUI:-}" ]; then
+  GUI_SCRIPTS=()
+  record "GUI tests" "skipped (HEXDOM_FC_SKIP_GUI)"
+elif [ ${#GUI_SCRIPTS[@]} -eq 0 ]; then
   record "GUI tests" "FAILED (no tests/freecad/gui/gui_test_*.py found)"
 fi
 for script in "${GUI_SCRIPTS[@]}"; do

@@ -386,6 +386,27 @@ def test_core_mesh_surface_runs_every_stage(core):
     assert sj.min() == pytest.approx(run.quality["hex"]["sj_min"], abs=1e-9)
 
 
+def test_core_mesh_surface_takes_the_method(core):
+    """HexDomWorkbench.core passes method= through and reports the path: the rockerarm with no label
+    repair defeats the polycube ("polycube" raises), "auto" gives the overlay grid's mesh with the
+    polycube path's error as polycube_note, "overlay" the same mesh with no note; an unknown method
+    is refused before anything runs."""
+    s = core.read_surface(_raw("rockerarm"))
+    with pytest.raises(core.GeometryError, match="problems of the labelling remain"):
+        core.mesh_surface(s, max_relabels=0, method="polycube", allow_inverted=True)
+    run = core.mesh_surface(s, max_relabels=0, allow_inverted=True)
+    assert run.method == "overlay"
+    assert run.polycube_note.startswith("the polycube path failed at stage autopolycube")
+    assert run.choice.startswith("overlay grid")
+    forced = core.mesh_surface(s, max_relabels=0, method="overlay", allow_inverted=True)
+    assert forced.method == "overlay" and forced.polycube_note == ""
+    assert forced.mesh.count(core.HEX) == run.mesh.count(core.HEX) > 1000
+    V, F, _ = _k_surface(_raw("rockerarm"))
+    assert run.quality["total_volume"] == pytest.approx(abs(_enclosed(V, F)), rel=0.01)
+    with pytest.raises(core.InputError, match="unknown meshing method 'grid'"):
+        core.mesh_surface(s, method="grid")
+
+
 def test_core_mesh_part_tessellates_first(core):
     if not core._hexdom.has_opencascade():
         pytest.skip("_hexdom built without OpenCASCADE")

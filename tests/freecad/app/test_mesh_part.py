@@ -194,8 +194,9 @@ def test_a_file_structure_clears_the_patch_surface(doc):
 
 
 def test_failure_names_the_stage_and_keeps_the_objects(doc):
-    """A part the automatic polycube cannot take: the error names the stage and the core's
-    reason, the Surface and Segmentation stay valid, nothing is removed."""
+    """A part the automatic polycube cannot take, with Method polycube (auto meshes it with the
+    overlay grid: test_mesh_part_method.py): the error names the stage and the core's reason,
+    the Surface and Segmentation stay valid, nothing is removed."""
     # A tetrahedron: no face is near an axis plane, every corner joins three slanted faces.
     pts = [FreeCAD.Vector(*p) for p in ((0, 0, 0), (10, 1, 2), (3, 9, 1), (4, 3, 11))]
     faces = [Part.Face(Part.makePolygon([pts[a], pts[b], pts[c], pts[a]]))
@@ -203,7 +204,7 @@ def test_failure_names_the_stage_and_keeps_the_objects(doc):
     part = _part(doc, Part.makeSolid(Part.makeShell(faces)), "Tet")
     before = len(doc.Objects)
     with pytest.raises(api.MeshPartError) as info:
-        hexdom.mesh_part(doc, part, size=20.0, level=2)
+        hexdom.mesh_part(doc, part, size=20.0, level=2, method="polycube")
     e = info.value
     FreeCAD.Console.PrintMessage("mesh_part on a tetrahedron: {}\n".format(e))
     assert len(doc.Objects) == before + 4

@@ -187,13 +187,17 @@ def test_mesh_part_takes_the_tessellation_hexdom_mesh_takes(doc):
     (cad::mesh_cad_part); Mesh Part makes the same choice and sets the Surface's Size and Deflection
     to the tessellation kept. Measured on i10o_simp through FreeCAD at size 6.3: the first three
     tessellations' labellings defeat the repair, the one at 0.94 x the size meshes (2,192 hexes,
-    worst 0.468); the Polycube keeps the element size 6.3."""
+    worst 0.468); the Polycube keeps the element size 6.3. With Method polycube (`hexdom mesh
+    --method polycube`): under auto the core keeps the overlay grid's mesh of the first tessellation
+    instead (48,489 hex), without trying the others."""
     part = doc.addObject("Part::Feature", "i10o")
     part.Shape = Part.read(I10O)
     doc.recompute()
-    objs = hexdom.mesh_part(doc, part, size=6.3)
+    objs = hexdom.mesh_part(doc, part, size=6.3, method="polycube")
     surface, poly, mesh = objs["surface"], objs["polycube"], objs["mesh"]
-    run = core.mesh_part(part.Shape.exportBrepToString(), size=6.3, allow_inverted=True)
+    run = core.mesh_part(part.Shape.exportBrepToString(), size=6.3, allow_inverted=True,
+                         method="polycube")
+    assert run.method == "polycube" and mesh.MeshingPath == "polycube"
     FreeCAD.Console.PrintMessage("i10o at 6.3: {} tessellations, kept {:.2f} x; Mesh Part {} hex, "
                                  "worst {:.4f}\n".format(
         run.tessellations, run.tessellation_factor, mesh.HexCount, mesh.MinHexSJ))

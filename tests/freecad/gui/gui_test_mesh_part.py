@@ -15,6 +15,11 @@
 3. Cancel during HexDom_GenerateMesh: the command's transaction is aborted, nothing is added.
 4. Mesh Part on a 15 degree knife edge: the automatic Polycube has prism blocks; Build Polycube opens
    on it with no problem and OK keeps them (hex, prism, tet counts and corner positions).
+5. Mesh Part (the command) on a torus at element size 8, where the core's automatic choice keeps the
+   overlay grid's mesh: no message box, the Mesh says "overlay" (MeshingPath) and why (PolycubeNote),
+   the Segmentation and the Polycube are kept, the Mesh no longer uses the Polycube; Edit Patches
+   opens on the Segmentation, Build Polycube on the Polycube (against its own Segmentation) with no
+   problem and OK keeps its blocks, the overlay mesh stays valid.
 Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
 """
 
@@ -285,6 +290,43 @@ def run():
               poly.HexBlocks, poly.PrismBlocks, mesh.HexCount, mesh.PrismCount, mesh.InvertedCount))
     edit_automatic_polycube(poly, mesh)
     check(not errors, "no message box on the knife edge: {}".format(errors))
+    FreeCAD.closeDocument(doc.Name)
+
+    # 5. A torus at size 8: the overlay grid's mesh is kept; the polycube objects stay editable.
+    from HexDomWorkbench.commands import commands
+    from HexDomWorkbench.taskpanels import task_polycube, task_segmentation
+    doc = FreeCAD.newDocument("MeshPartTorus")
+    torus = doc.addObject("Part::Feature", "Torus")
+    torus.Shape = Part.makeTorus(30, 10)
+    doc.recompute()
+    errors.clear()
+    objs = commands._MeshPart().mesh_part(torus, size=8.0)
+    check(objs is not None and set(objs) == {"surface", "segmentation", "polycube", "mesh"},
+          "Mesh part on the torus keeps the four objects: {}".format(sorted(objs or {})))
+    if not objs or len(objs) != 4:
+        return
+    seg, poly, mesh = objs["segmentation"], objs["polycube"], objs["mesh"]
+    print("  torus: {} hex, path {} ({})".format(mesh.HexCount, mesh.MeshingPath, mesh.PolycubeNote))
+    check(not errors, "no message box on the torus: {}".format(errors))
+    check(mesh.MeshingPath == "overlay" and "volume" in mesh.PolycubeNote
+          and mesh.HexCount > 0 and mesh.InvertedCount == 0 and "Invalid" not in mesh.State,
+          "the Mesh says the overlay grid made it, and why")
+    check(mesh.Polycube is None and "Invalid" not in poly.State and poly.HexBlocks > 0,
+          "the Polycube is kept, valid, unused by the Mesh")
+    FreeCADGui.ActiveDocument.setEdit(seg.Name, 0)
+    g.process_events()
+    panel = task_segmentation.active_panel()
+    check(panel is not None, "Edit Patches opens on the torus's Segmentation")
+    if panel is not None:
+        panel.reject()
+        g.process_events()
+    check(task_polycube.find_segmentation(poly) == seg,
+          "the unused Polycube goes with its own Segmentation")
+    counts = (mesh.HexCount, mesh.PrismCount, mesh.TetCount)
+    edit_automatic_polycube(poly, mesh)
+    check(mesh.MeshingPath == "overlay" and (mesh.HexCount, mesh.PrismCount, mesh.TetCount) == counts,
+          "editing the Polycube leaves the overlay mesh as it was")
+    check(not errors, "no message box while editing: {}".format(errors))
     FreeCAD.closeDocument(doc.Name)
 
 
