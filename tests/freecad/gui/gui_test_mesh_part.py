@@ -15,7 +15,7 @@
 3. Cancel during HexDom_GenerateMesh: the command's transaction is aborted, nothing is added.
 4. Mesh Part on a 15 degree knife edge: the automatic Polycube has prism blocks; Build Polycube opens
    on it with no problem and OK keeps them (hex, prism, tet counts and corner positions).
-5. Mesh Part (the command) on a torus at element size 8, where the core's automatic choice keeps the
+5. Mesh Part (the command) on a torus at element size 10, where the core's automatic choice keeps the
    overlay grid's mesh: no message box, the Mesh says "overlay" (MeshingPath) and why (PolycubeNote),
    the Segmentation and the Polycube are kept, the Mesh no longer uses the Polycube; Edit Patches
    opens on the Segmentation, Build Polycube on the Polycube (against its own Segmentation) with no
@@ -292,7 +292,7 @@ def run():
     check(not errors, "no message box on the knife edge: {}".format(errors))
     FreeCAD.closeDocument(doc.Name)
 
-    # 5. A torus at size 8: the overlay grid's mesh is kept; the polycube objects stay editable.
+    # 5. A torus at size 10: the overlay grid's mesh is kept; the polycube objects stay editable.
     from HexDomWorkbench.commands import commands
     from HexDomWorkbench.taskpanels import task_polycube, task_segmentation
     doc = FreeCAD.newDocument("MeshPartTorus")
@@ -300,7 +300,7 @@ def run():
     torus.Shape = Part.makeTorus(30, 10)
     doc.recompute()
     errors.clear()
-    objs = commands._MeshPart().mesh_part(torus, size=8.0)
+    objs = commands._MeshPart().mesh_part(torus, size=10.0)
     check(objs is not None and set(objs) == {"surface", "segmentation", "polycube", "mesh"},
           "Mesh part on the torus keeps the four objects: {}".format(sorted(objs or {})))
     if not objs or len(objs) != 4:
