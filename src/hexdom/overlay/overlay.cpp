@@ -93,12 +93,14 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       continue;
     }
     // The better: a mesh of the whole part first (a grid too coarse for a thin part drops it:
-    // volume off by more than lost_volume); then fewer inverted cells; then, when either misses the
-    // volume target, the smaller volume error; then the higher worst SJ.
+    // volume off by more than lost_volume), and of two that both lost part of it the one that lost
+    // less; then fewer inverted cells; then, when either misses the volume target, the smaller
+    // volume error; then the higher worst SJ.
     auto error = [&](const OverlayResult& x) { return std::abs(x.quality.total_volume - reference); };
     auto lost = [&](const OverlayResult& x) { return reference != 0 && error(x) > opt.lost_volume * std::abs(reference); };
     const bool better =
         !have || (lost(r) != lost(best) ? lost(best)
+                  : lost(r) ? error(r) < error(best)
                   : inverted(r.quality) != inverted(best.quality)
                       ? inverted(r.quality) < inverted(best.quality)
                       : (volume_off(best) || volume_off(r) ? error(r) < error(best)

@@ -36,7 +36,7 @@ struct OverlayOptions {
   FeatureOptions features;
   /// Laplacian passes over the outer nodes the closest points crowded (an outer edge under a
   /// quarter of the spacing: near reflex curves), before the optimiser (overlay::spread).
-  int spread_passes = 10;
+  int spread_passes = 0;
   /// The optimiser's recommended sequence without pillowing (optimize::improve): worst-cell rounds
   /// until the worst stops improving, at most this many, then passes raising the mean.
   int max_rounds = 40;
@@ -49,8 +49,8 @@ struct OverlayOptions {
   double target_volume = 0.01;
   /// A grid whose mesh is off the volume by more than this has lost part of the solid (features
   /// thinner than its cells): any mesh of a finer grid that keeps the part is preferred to it, even
-  /// one with inverted cells. Between meshes on the same side of it: fewer inverted cells, then the
-  /// volume, then the worst scaled Jacobian.
+  /// one with inverted cells, and of two that both lost part of it the one that lost less. Between
+  /// meshes within it: fewer inverted cells, then the volume, then the worst scaled Jacobian.
   double lost_volume = 0.05;
   double max_grid_cells = 1e6;  ///< no grid beyond this many cells is made (a bound on time and memory)
   LogCallback log;
