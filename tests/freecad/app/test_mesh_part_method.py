@@ -12,8 +12,8 @@ cells read through FemMesh's API, OpenCASCADE's volume.
 Measured: a torus (Part.makeTorus(30, 10)) at element size 10: the overlay grid's mesh (47,425 hex,
 volume -0.17%, after the snap) is kept by the automatic choice over the polycube's. The tetrahedron
 of test_mesh_part.py at size 20, level 2: the automatic polycube fails ("chart 1 ... has no
-neighbour with another label to join"), the overlay grid meshes it with 5 cells just inverted (worst
-hex SJ -0.016), which Mesh Part reports."""
+neighbour with another label to join"), the overlay grid meshes it (with the spreading of crowded
+nodes on, OverlayOptions::spread_passes, it kept 5 cells just inverted)."""
 
 import os
 import sys
@@ -217,19 +217,20 @@ def test_torus_auto_gives_the_overlay_mesh_and_says_so(doc, tmp_path):
 
 @needs_cad
 def test_a_part_the_polycube_fails_on_gets_the_overlay_mesh(doc):
-    """The tetrahedron the automatic polycube cannot take: with Method auto Mesh Part makes the
-    overlay grid's mesh and says why (the polycube path's error). The overlay leaves 5 cells just
-    inverted at the tetrahedron's sharp corners (docs/overlay.md), so Mesh Part reports them as a
-    failure of the Mesh, naming the overlay; the objects stay. With Method polycube the failure names
-    its stage, as before."""
+    """The tetrahedron the automatic polycube cannot take: with Method auto Mesh Part gives the
+    overlay grid's mesh and says why (the polycube path's error); the Segmentation stays valid, the
+    failing Polycube stays in the document (its error names the charts) without holding the Mesh
+    back. With Method polycube the failure names its stage, as before."""
     part = _part(doc, _tetrahedron(), "Tet")
-    with pytest.raises(api.MeshPartError, match="inverted cells remain in the overlay grid's mesh") as info:
-        hexdom.mesh_part(doc, part, size=20.0, level=2)
-    mesh = info.value.objects["mesh"]
+    objs = hexdom.mesh_part(doc, part, size=20.0, level=2)
+    mesh, poly = objs["mesh"], objs["polycube"]
     FreeCAD.Console.PrintMessage("tetrahedron: {} ({})\n".format(_counts(mesh), mesh.PolycubeNote))
     assert mesh.MeshingPath == "overlay" and mesh.Method == "auto"
     assert "polycube path failed" in mesh.PolycubeNote and "chart" in mesh.PolycubeNote
-    assert mesh.InvertedCount > 0 and mesh.HexCount > 0
+    assert _valid(mesh) and _valid(objs["segmentation"]) and mesh.InvertedCount == 0
+    assert mesh.Polycube is None and poly.Document == doc
+    assert "Invalid" in poly.State and "chart" in poly.getStatusString()
+    _check_fem_mesh(mesh, part.Shape)
     with pytest.raises(api.MeshPartError) as info:
         hexdom.mesh_part(doc, part, size=20.0, level=2, method="polycube")
     assert info.value.stage == "automatic polycube"
