@@ -63,12 +63,23 @@ std::vector<int> quad_regions(const mesh::Mesh& m, const std::vector<std::array<
   return r;
 }
 
+// Whether node v lies on region a: a surface node of a, a curve node of a curve of a, a corner of a.
+bool on_region(const Placement& p, const SurfaceFeatures& feat, int v, int a) {
+  switch (p.kind[v]) {
+    case optimize::Surface: return p.a[v] == a;
+    case optimize::Curve: return p.a[v] == a || p.b[v] == a;
+    case optimize::Corner: {
+      const auto& rc = feat.corner_regions()[p.a[v]];
+      return std::binary_search(rc.begin(), rc.end(), a);
+    }
+    default: return false;
+  }
+}
+
 // Whether node v is on the curve between regions a < b: a curve node of that pair, or a corner on both.
 bool on_the_curve(const Placement& p, const SurfaceFeatures& feat, int v, int a, int b) {
   if (p.kind[v] == optimize::Curve) return p.a[v] == a && p.b[v] == b;
-  if (p.kind[v] != optimize::Corner) return false;
-  const auto& rc = feat.corner_regions()[p.a[v]];
-  return std::binary_search(rc.begin(), rc.end(), a) && std::binary_search(rc.begin(), rc.end(), b);
+  return p.kind[v] == optimize::Corner && on_region(p, feat, v, a) && on_region(p, feat, v, b);
 }
 
 }  // namespace
@@ -91,13 +102,7 @@ void spread(mesh::Mesh& m, const std::vector<std::array<int, 4>>& quads, const P
     std::sort(n.begin(), n.end());
     n.erase(std::unique(n.begin(), n.end()), n.end());
   }
-  auto on = [&](int u, int a) {
-    if (p.kind[u] == optimize::Surface) return p.a[u] == a;
-    if (p.kind[u] == optimize::Curve) return p.a[u] == a || p.b[u] == a;
-    if (p.kind[u] != optimize::Corner) return false;
-    const auto& rc = feat.corner_regions()[p.a[u]];
-    return std::binary_search(rc.begin(), rc.end(), a);
-  };
+  auto on = [&](int u, int a) { return on_region(p, feat, u, a); };
   auto follows = [&](int v, int u) {
     if (p.kind[v] == optimize::Surface) return on(u, p.a[v]);
     return p.kind[u] != optimize::Surface && on(u, p.a[v]) && on(u, p.b[v]);

@@ -14,7 +14,7 @@ namespace hexdom::overlay {
 
 namespace {
 
-int inverted(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+int inverted(const quality::QualityReport& q) { return quality::inverted_cells(q); }
 
 // One grid of spacing h over `s` (in the frame): core, buffer layer, placement, optimiser. Throws
 // GeometryError when the core is empty or in pieces.

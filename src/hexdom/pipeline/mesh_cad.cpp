@@ -10,7 +10,7 @@
 namespace hexdom::pipeline {
 
 namespace {
-int inverted_cells(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+using quality::inverted_cells;
 
 // mesh_surface of r.surface with one path, then the snap onto the B-rep (r.run's mesh and quality
 // replaced).

@@ -11,6 +11,7 @@
 namespace hexdom::pipeline {
 
 namespace {
+using quality::inverted_cells;
 // "turned by 45.0 degrees about (0, 0, 1)"
 std::string frame_text(const segmentation::CubeFrame& f) {
   return fmt("turned by %.1f degrees about ", f.angle_degrees) + fmt("(%.3f, %.3f, %.3f)", f.axis.x(), f.axis.y(), f.axis.z());
@@ -19,7 +20,6 @@ std::string frame_text(const segmentation::CubeFrame& f) {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-int inverted_cells(const quality::QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
 
 double worst_sj(const quality::QualityReport& q) {
   double w = 1;

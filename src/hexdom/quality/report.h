@@ -26,6 +26,8 @@ struct QualityReport {
 };
 
 QualityReport quality_report(const mesh::Mesh& mesh);
+/// Inverted cells of every type.
+inline int inverted_cells(const QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
 /// Same, from metrics already computed for `mesh`.
 QualityReport quality_report(const mesh::Mesh& mesh, const CellMetrics& metrics);
 
