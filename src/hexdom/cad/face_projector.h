@@ -40,7 +40,7 @@ inline EdgeCurve edge_curve(const TopoDS_Edge& edge) {
 }
 
 /// Nearest point of one trimmed face: the nearest of the surface's extrema that lie inside the
-/// face and of the nearest points of its boundary edges.
+/// face and of the nearest points of its boundary edges. One projector serves one thread.
 class FaceProjector {
  public:
   explicit FaceProjector(const TopoDS_Face& face) : face_(face) {
@@ -51,6 +51,8 @@ class FaceProjector {
     classifier_ = std::make_unique<BRepTopAdaptor_FClass2d>(face, tol_);
     for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) edges_.push_back(edge_curve(TopoDS::Edge(ex.Current())));
     BRepBndLib::Add(face, box_);
+    // The extremum search samples the surface once here, not on every query.
+    proj_.Init(surface_, u0_, u1_, v0_, v1_);
   }
 
   /// Lower bound of the distance from p to the face.
@@ -58,8 +60,8 @@ class FaceProjector {
 
   void nearest(const gp_Pnt& p, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
     best_d = std::numeric_limits<double>::infinity();
-    GeomAPI_ProjectPointOnSurf proj;
-    proj.Init(p, surface_, u0_, u1_, v0_, v1_);
+    GeomAPI_ProjectPointOnSurf& proj = proj_;
+    proj.Perform(p);
     for (int i = 1; i <= proj.NbPoints(); ++i) {
       double u, v;
       proj.Parameters(i, u, v);
@@ -76,6 +78,19 @@ class FaceProjector {
     if (on_edge) best_uv = analysis_->ValueOfUV(best, tol_);
   }
 
+  /// nearest() for a point near one whose nearest point had parameters `start` (a node sliding on
+  /// the face): a local search from there, kept when it ends inside the face; otherwise nearest().
+  void nearest_from(const gp_Pnt& p, const gp_Pnt2d& start, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
+    const gp_Pnt2d uv = analysis_->NextValueOfUV(start, p, tol_);
+    if (classifier_->Perform(uv) == TopAbs_IN) {
+      best = surface_->Value(uv.X(), uv.Y());
+      best_d = best.Distance(p);
+      best_uv = uv;
+      return;
+    }
+    nearest(p, best, best_d, best_uv);
+  }
+
  private:
   TopoDS_Face face_;
   Handle(Geom_Surface) surface_;
@@ -83,6 +98,7 @@ class FaceProjector {
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier_;
   std::vector<EdgeCurve> edges_;
   Bnd_Box box_;
+  mutable GeomAPI_ProjectPointOnSurf proj_;  // not for use from two threads at once
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, tol_ = 1e-7;
 };
 

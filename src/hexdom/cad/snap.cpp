@@ -321,8 +321,10 @@ class Restoration {
     const int id = r_.entity[v];
     if (r_.kind[v] == SnapKind::Face) {
       if (!faces_[id]) faces_[id] = std::make_unique<FaceProjector>(TopoDS::Face(s_.faces(id)));
-      gp_Pnt2d uv;
-      faces_[id]->nearest(p, q, d, uv);
+      // From the node's last place on the face: the optimiser's candidates lie near it.
+      auto [last, fresh] = uv_.try_emplace(v);
+      if (fresh) faces_[id]->nearest(p, q, d, last->second);
+      else faces_[id]->nearest_from(p, last->second, q, d, last->second);
     } else if (r_.kind[v] == SnapKind::Edge) {
       if (!have_curve_[id]) curves_[id] = edge_curve(TopoDS::Edge(s_.edges(id))), have_curve_[id] = 1;
       double t;
@@ -339,6 +341,7 @@ class Restoration {
   const SnapResult& r_;
   const SnapOptions& opt_;
   std::vector<std::unique_ptr<FaceProjector>> faces_;
+  std::unordered_map<int, gp_Pnt2d> uv_;  // face nodes: parameters of their last projection
   std::vector<EdgeCurve> curves_;
   std::vector<char> have_curve_;
 };

@@ -8,7 +8,7 @@
 
 namespace hexdom::overlay {
 
-mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer) {
+mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer, std::vector<int>* copy_out) {
   const std::vector<mesh::BoundaryFace> faces = mesh::boundary_faces(core);
   const int n0 = core.num_nodes();
   std::vector<int> copy(n0, -1);
@@ -29,7 +29,37 @@ mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 
     b.add(mesh::CellType::Hex, hex, 2);
     outer->push_back({copy[f.v[0]], copy[f.v[1]], copy[f.v[2]], copy[f.v[3]]});
   }
+  if (copy_out) *copy_out = copy;
   return b.finish(V);
+}
+
+int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const std::vector<int>& copy,
+                     const SurfaceFeatures& feat, double depth) {
+  std::vector<Eigen::Vector3d> normal(m.num_nodes(), Eigen::Vector3d::Zero());
+  for (const auto& q : outer) {
+    const Eigen::Vector3d d1 = m.V.row(q[2]) - m.V.row(q[0]), d2 = m.V.row(q[3]) - m.V.row(q[1]);
+    const Eigen::Vector3d n = d1.cross(d2);  // twice the quad's vector area, outward
+    for (int v : q) normal[v] += n;
+  }
+  int moved = 0;
+  for (size_t v = 0; v < copy.size(); ++v) {
+    const int o = copy[v];
+    if (o < 0 || normal[o].norm() == 0) continue;
+    const Eigen::Vector3d n = normal[o].normalized();
+    const Eigen::Vector3d xo = m.V.row(o).transpose();
+    double d = depth;
+    for (int halving = 0; halving < 4; ++halving, d *= 0.5) {
+      Eigen::Vector3d nc;
+      feat.project(xo - 1.5 * d * n, nullptr, &nc);
+      if (nc.dot(n) > 0) break;  // still nearest its own side
+    }
+    const Eigen::Vector3d x = m.V.row(static_cast<int>(v)).transpose();
+    const double short_by = d - (xo - x).dot(n);
+    if (short_by <= 0) continue;
+    m.V.row(static_cast<int>(v)) = (x - short_by * n).transpose();
+    ++moved;
+  }
+  return moved;
 }
 
 namespace {
@@ -244,6 +274,37 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
     p.corner += p.kind[v] == optimize::Corner;
   }
   return p;
+}
+
+int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& feat) {
+  std::vector<int> nodes;
+  for (int c : cells)
+    for (int i = 0; i < 8; ++i)
+      if (m.cells(c, i) >= 0) nodes.push_back(m.cells(c, i));
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  int freed = 0;
+  for (int v : nodes) {
+    if (p.kind[v] == optimize::Curve) {
+      p.kind[v] = optimize::Surface;
+      p.b[v] = -1;
+      --p.curve, ++p.surface;
+      ++freed;
+    } else if (p.kind[v] == optimize::Corner) {
+      const auto& rc = feat.corner_regions()[p.a[v]];
+      for (size_t i = 0; i < rc.size() && p.kind[v] == optimize::Corner; ++i)
+        for (size_t j = i + 1; j < rc.size(); ++j)
+          if (feat.has_curve(rc[i], rc[j])) {
+            p.kind[v] = optimize::Curve;
+            p.a[v] = rc[i];
+            p.b[v] = rc[j];
+            --p.corner, ++p.curve;
+            ++freed;
+            break;
+          }
+    }
+  }
+  return freed;
 }
 
 Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& feat, int v, const Eigen::Vector3d& x) {

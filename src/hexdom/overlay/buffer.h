@@ -24,8 +24,19 @@ struct Placement {
 
 /// The core (hexahedra, boundary a 2-manifold) with one more hexahedron on each boundary quad: its
 /// inner face the quad, its outer face a copy of it whose nodes are new. `outer` receives the outer
-/// quads (outward, as mesh::boundary_faces orients them, their nodes the new ones).
-mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer);
+/// quads (outward, as mesh::boundary_faces orients them, their nodes the new ones); `copy`, when
+/// given, each core node's outer copy (-1 for nodes inside the core).
+mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer,
+                            std::vector<int>* copy = nullptr);
+
+/// Moves each core node that has an outer copy (`copy`, from add_buffer_layer, after the outer
+/// nodes were put on the surface) along the outer quads' mean normal n at its copy, so that it
+/// lies at least `depth` inside its copy: x -= (depth - (x_copy - x).n) n when that is positive.
+/// Where the solid is thinner (the point 1.5 depth inside the copy is nearer the surface's other
+/// side, whose normal faces against n), the depth is halved, at most 4 times, so that the two
+/// sides' layers leave a third of the thickness between them. Returns the number of nodes moved.
+int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const std::vector<int>& copy,
+                     const SurfaceFeatures& features, double depth);
 
 /// Puts the outer nodes of `m` (those of `outer`) on the surface. Each outer quad takes the region
 /// nearest its centroid (then a quad whose neighbours mostly took another region takes theirs); a
@@ -47,6 +58,12 @@ void spread(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const P
 /// the same pair of regions, corners on both); empty for other nodes.
 std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& outer,
                                                const SurfaceFeatures& features);
+
+/// Lets the nodes of `cells` of m off one level of feature: a node on a curve goes onto the first
+/// of its two regions, a corner onto one of its curves (the first pair of its regions that shares
+/// one). For cells the optimiser could not make valid with their nodes held on sharp features.
+/// Returns the number of nodes let off.
+int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& features);
 
 /// Where node v of a placement goes for a candidate position x (its region, curve or corner).
 Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& features, int v, const Eigen::Vector3d& x);

@@ -36,9 +36,7 @@ struct ManifoldTable {
 }  // namespace
 
 Core core_cells(const Grid& g, const NodeField& f, double margin) {
-  static const ManifoldTable table;
-  Core c;
-  c.keep.assign(g.num_cells(), 0);
+  std::vector<char> keep(g.num_cells(), 0);
   std::vector<double> safety(g.num_cells(), 0);  // smallest corner distance of a kept cell
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
@@ -53,10 +51,32 @@ Core core_cells(const Grid& g, const NodeField& f, double margin) {
           least = std::min(least, f.distance[n]);
         }
         if (in) {
-          c.keep[g.cell(i, j, k)] = 1;
+          keep[g.cell(i, j, k)] = 1;
           safety[g.cell(i, j, k)] = least;
         }
       }
+  return manifold_core(g, std::move(keep), safety);
+}
+
+Core core_cells_by_centres(const Grid& g, const NodeField& centres, double margin) {
+  const Grid cg = cell_centres(g);
+  std::vector<char> keep(g.num_cells(), 0);
+  std::vector<double> safety(g.num_cells(), 0);
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const int64_t n = cg.node(i, j, k);
+        if (!centres.inside[n] || centres.distance[n] < margin) continue;
+        keep[g.cell(i, j, k)] = 1;
+        safety[g.cell(i, j, k)] = centres.distance[n];
+      }
+  return manifold_core(g, std::move(keep), safety);
+}
+
+Core manifold_core(const Grid& g, std::vector<char> keep, const std::vector<double>& safety) {
+  static const ManifoldTable table;
+  Core c;
+  c.keep = std::move(keep);
   // Nodes to check: every node at first, then the corners of each dropped cell.
   std::vector<std::array<int, 3>> work;
   for (int k = 1; k < g.nz; ++k)

@@ -19,12 +19,21 @@ struct Core {
 };
 
 /// The cells whose eight corners are inside and at least `margin` from the surface (field from
-/// classify_nodes with a band >= margin), less the cells that would make the boundary of their
-/// union other than a 2-manifold: at every grid node, the kept and the empty cells around it must
-/// each be face-connected among themselves; where they are not, the kept cell nearest the surface
-/// there is dropped, and its corners checked again (each drop removes a cell, so this ends). Of the
-/// face-connected pieces left, only the largest is kept.
+/// classify_nodes with a band >= margin), made manifold (manifold_core).
 Core core_cells(const Grid& grid, const NodeField& field, double margin);
+
+/// The cells whose centre is inside and at least `margin` from the surface (`centres`: the field of
+/// cell_centres(grid) from classify_nodes with a band >= margin), made manifold (manifold_core).
+/// Such a core reaches up to the surface, and out of it by up to half a cell's diagonal less the
+/// margin: its boundary nodes need moving in (pull_inner_nodes) before a buffer layer fits.
+Core core_cells_by_centres(const Grid& grid, const NodeField& centres, double margin);
+
+/// The cells flagged in `keep`, less the cells that would make the boundary of their union other
+/// than a 2-manifold: at every grid node, the kept and the empty cells around it must each be
+/// face-connected among themselves; where they are not, the kept cell of least `safety` (its
+/// distance inside the surface) there is dropped, and its corners checked again (each drop removes
+/// a cell, so this ends). Of the face-connected pieces left, only the largest is kept.
+Core manifold_core(const Grid& grid, std::vector<char> keep, const std::vector<double>& safety);
 
 /// The kept cells as hexahedra (VTK order, region 1) over their own nodes; `grid_node` receives
 /// each mesh node's grid node index.

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <numeric>
 #include <set>
+#include <string>
 
+#include "hexdom/common/error.h"
 #include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::overlay {
@@ -18,6 +20,7 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
     const Eigen::Vector3d A = s.V.row(s.F(f, 0)), B = s.V.row(s.F(f, 1)), C = s.V.row(s.F(f, 2));
     normal[f] = (B - A).cross(C - A).normalized();
   }
+  normal_ = normal;
   const double cos_across = std::cos(opt.angle_across * M_PI / 180), cos_within = std::cos(opt.angle_within * M_PI / 180);
   std::vector<int> up(nf);
   std::iota(up.begin(), up.end(), 0);
@@ -25,6 +28,9 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
     while (up[f] != f) f = up[f] = up[up[f]];
     return f;
   };
+  const bool given = !opt.regions.empty();
+  if (given && static_cast<int>(opt.regions.size()) != nf)
+    throw GeometryError("features: " + std::to_string(opt.regions.size()) + " regions given for " + std::to_string(nf) + " triangles");
   std::vector<std::array<int, 4>> sharp;  // vertex a, vertex b, triangle f, triangle g
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
@@ -32,7 +38,7 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
       if (g <= f) continue;
       const bool same_patch = s.patch.size() == nf && s.patch(f) == s.patch(g);
       const double c = normal[f].dot(normal[g]);
-      if (c < (same_patch ? cos_within : cos_across))
+      if (given ? opt.regions[f] != opt.regions[g] : c < (same_patch ? cos_within : cos_across))
         sharp.push_back({s.F(f, k), s.F(f, (k + 1) % 3), f, g});
       else
         up[root(f)] = root(g);
@@ -83,10 +89,11 @@ bool SurfaceFeatures::has_curve(int a, int b) const {
   return curves_.count({a, b}) > 0;
 }
 
-Eigen::Vector3d SurfaceFeatures::project(const Eigen::Vector3d& p, int* region) const {
+Eigen::Vector3d SurfaceFeatures::project(const Eigen::Vector3d& p, int* region, Eigen::Vector3d* normal) const {
   int t = -1;
   const Eigen::Vector3d q = all_.project(p, &t);
   if (region) *region = t >= 0 ? region_[t] : -1;
+  if (normal) *normal = t >= 0 ? normal_[t] : Eigen::Vector3d::Zero();
   return q;
 }
 

@@ -20,6 +20,10 @@ struct FeatureOptions {
   double angle_across = 30;
   /// An edge inside one patch is sharp above this angle (triangle input without CAD faces).
   double angle_within = 50;
+  /// When given (one per triangle, 0-based, consecutive), these regions instead of the ones the
+  /// angles give; every edge between two of them is then a curve's. The overlay path uses it to
+  /// keep a surface's features when it meshes the surface scaled per axis.
+  std::vector<int> regions;
 };
 
 /// Regions, curves and corners of a surface. A region is a set of triangles joined across edges
@@ -40,8 +44,9 @@ class SurfaceFeatures {
   /// Whether regions a and b share a curve.
   bool has_curve(int a, int b) const;
 
-  /// Closest point on the whole surface; `region` receives the region there when given.
-  Eigen::Vector3d project(const Eigen::Vector3d& p, int* region = nullptr) const;
+  /// Closest point on the whole surface; `region` receives the region there and `normal` the unit
+  /// outward normal of the triangle it lies on, when given.
+  Eigen::Vector3d project(const Eigen::Vector3d& p, int* region = nullptr, Eigen::Vector3d* normal = nullptr) const;
   /// Closest point on region r.
   Eigen::Vector3d project_region(int r, const Eigen::Vector3d& p) const;
   /// Closest point on the curve between regions a and b (has_curve(a, b) must hold).
@@ -50,6 +55,7 @@ class SurfaceFeatures {
  private:
   int regions_ = 0;
   std::vector<int> region_, corners_;
+  std::vector<Eigen::Vector3d> normal_;  // per triangle
   std::vector<std::vector<int>> corner_regions_;
   std::vector<Eigen::Vector3d> corner_position_;
   mesh::TriangleProjector all_;

@@ -31,6 +31,15 @@ Grid grid_around(const Eigen::MatrixXd& V, const Eigen::Vector3d& h) {
   return g;
 }
 
+Grid cell_centres(const Grid& g) {
+  Grid c = g;
+  c.origin = g.origin + 0.5 * g.h;
+  c.nx = g.nx - 1;
+  c.ny = g.ny - 1;
+  c.nz = g.nz - 1;
+  return c;
+}
+
 Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double across, double ratio) {
   Eigen::Vector3d h;
   for (int a = 0; a < 3; ++a) h(a) = std::min(size, extent(a) / across);

@@ -34,6 +34,10 @@ struct Grid {
 /// frame) is half a cell from the nearest plane inside; the grid reaches 1.5 cells beyond the box.
 Grid grid_around(const Eigen::MatrixXd& V, const Eigen::Vector3d& h);
 
+/// The grid whose nodes are the centres of g's cells: node (i, j, k) of the result is the centre of
+/// cell (i, j, k) of g (g.nx - 1 by g.ny - 1 by g.nz - 1 cells, the same spacing).
+Grid cell_centres(const Grid& g);
+
 /// Spacing per axis for element size `size` over a bounding box of `extent`: `size` along every
 /// axis, less along an axis the box is thin in, so that it spans at least `across` cells; no cell
 /// longer than `ratio` times its shortest side (a plate gets flat cells, a rod long ones, neither

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/mesh.h"
@@ -9,6 +10,7 @@
 #include "hexdom/overlay/buffer.h"
 #include "hexdom/overlay/core.h"
 #include "hexdom/overlay/grid.h"
+#include "hexdom/quality/metrics.h"
 
 namespace hexdom::overlay {
 
@@ -16,10 +18,19 @@ namespace {
 
 int inverted(const quality::QualityReport& q) { return quality::inverted_cells(q); }
 
-// One grid of spacing h over `s` (in the frame): core, buffer layer, placement, optimiser. Throws
-// GeometryError when the core is empty or in pieces.
+// The real surface and its features when the grid is laid over a stretched copy (see overlay_mesh).
+struct Stretch {
+  Eigen::Vector3d factor;
+  const mesh::SurfaceMesh* surface;
+  const SurfaceFeatures* features;
+};
+
+// One grid of spacing h over `s` (in the frame): core, buffer layer, placement, optimiser. With
+// `stretch`, s and feat are the stretched copies: the mesh is optimised there, stretched back and
+// optimised again on the real surface, its nodes kept on the same regions, curves and corners.
+// Throws GeometryError when the core is empty or in pieces.
 OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& feat, const Eigen::Vector3d& h,
-                             const OverlayOptions& opt) {
+                             const OverlayOptions& opt, const Stretch* stretch) {
   OverlayResult r;
   const Grid grid = grid_around(s.V, h);
   r.spacing = grid.h.maxCoeff();
@@ -27,9 +38,11 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   if (double(grid.num_cells()) > opt.max_grid_cells)
     throw GeometryError(fmt("a grid of spacing %g would have %.0f cells, more than %.0f", h.maxCoeff(),
                             double(grid.num_cells()), opt.max_grid_cells));
-  const double margin = opt.margin * grid.h.minCoeff();
-  const NodeField field = classify_nodes(grid, s, margin * 1.001);
-  const Core core = core_cells(grid, field, margin);
+  const double hmin = grid.h.minCoeff();
+  const double margin = (opt.core_by_centres ? opt.centre_margin : opt.margin) * hmin;
+  const Core core = opt.core_by_centres
+                        ? core_cells_by_centres(grid, classify_nodes(cell_centres(grid), s, std::max(margin, hmin) * 1.001), margin)
+                        : core_cells(grid, classify_nodes(grid, s, margin * 1.001), margin);
   if (core.cells == 0) throw GeometryError(fmt("no grid cell of spacing %g lies inside with its margin", h.maxCoeff()));
   if (core.components > 1 && opt.log)
     opt.log(0, fmt("overlay: the cells of spacing %g inside fall into %.0f pieces; the largest kept, %.0f cells dropped",
@@ -37,9 +50,11 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   r.core_cells = core.cells;
   r.dropped = core.dropped;
   std::vector<std::array<int, 4>> outer;
-  mesh::Mesh m = add_buffer_layer(core_mesh(grid, core), &outer);
+  std::vector<int> copy;
+  mesh::Mesh m = add_buffer_layer(core_mesh(grid, core), &outer, &copy);
   r.buffer_cells = static_cast<int>(outer.size());
-  const Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
+  Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
+  if (opt.core_by_centres) pull_inner_nodes(m, outer, copy, feat, opt.buffer_depth * hmin);
   spread(m, outer, place_of, feat, opt.spread_passes, 0.25 * grid.h.minCoeff());
   r.curve_nodes = place_of.curve;
   r.corner_nodes = place_of.corner;
@@ -53,6 +68,36 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.curve_neighbours = curve_neighbours(place_of, outer, feat);
   io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, feat, v, x); };
   optimize::ImproveResult ir = optimize::improve(m, io);
+  // Cells the optimiser could not make valid with their nodes held on curves and corners: those
+  // nodes let off one level (loosen), the optimiser again, the better kept; twice at most.
+  for (int round = 0; round < 2 && inverted(ir.after) > 0; ++round) {
+    const quality::CellMetrics metrics = quality::compute_metrics(ir.mesh);
+    std::vector<int> bad;
+    for (int c = 0; c < ir.mesh.num_cells(); ++c)
+      if (!(metrics.scaled_jacobian(c) > 0)) bad.push_back(c);
+    const int freed = loosen(place_of, ir.mesh, bad, feat);
+    if (freed == 0) break;
+    io.kinds = place_of.kind;
+    io.curve_neighbours = curve_neighbours(place_of, outer, feat);
+    optimize::ImproveResult again = optimize::improve(ir.mesh, io);
+    if (opt.log)
+      opt.log(0, fmt("overlay: %.0f inverted cells: %.0f of their nodes let off their curves or corners, ", double(bad.size()),
+                     double(freed)) + fmt("%.0f inverted after", double(inverted(again.after))));
+    if (inverted(again.after) > inverted(ir.after)) break;
+    ir = std::move(again);
+  }
+  if (stretch) {
+    const SurfaceFeatures& real = *stretch->features;
+    ir.mesh.V = ir.mesh.V * stretch->factor.cwiseInverse().asDiagonal();
+    for (int v = 0; v < ir.mesh.num_nodes(); ++v)
+      if (place_of.kind[v] != optimize::Interior) ir.mesh.V.row(v) = place(place_of, real, v, ir.mesh.V.row(v).transpose()).transpose();
+    io.surface = *stretch->surface;
+    io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, real, v, x); };
+    optimize::ImproveResult again = optimize::improve(ir.mesh, io);
+    // Stretching back keeps every cell valid; the second run only raises the worst cell.
+    if (quality::inverted_cells(again.after) <= quality::inverted_cells(again.before)) ir = std::move(again);
+    else ir.after = again.before;
+  }
   r.mesh = std::move(ir.mesh);
   r.quality = ir.after;
   return r;
@@ -76,46 +121,103 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     return reference != 0 && std::abs(r.quality.total_volume - reference) > opt.target_volume * std::abs(reference);
   };
   const SurfaceFeatures feat(s, opt.features);
+  // A grid of unequal spacings (a plate, a rod) is laid as cubes over the surface stretched per
+  // axis by hmax / h: closest points, the buffer's depth and the optimiser then see the cells as
+  // cubes, and the mesh, stretched back, stays valid (the map is affine with a positive determinant).
+  const Eigen::Vector3d stretch = Eigen::Vector3d::Constant(h0.maxCoeff()).cwiseQuotient(h0);
+  const bool stretched = (stretch.array() != 1.0).any();
+  mesh::SurfaceMesh ss;
+  std::unique_ptr<SurfaceFeatures> sfeat;
+  if (stretched) {
+    ss = s;
+    ss.V = s.V * stretch.asDiagonal();
+    FeatureOptions fo = opt.features;
+    fo.regions = feat.region();
+    sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
+  }
+  // The better of two meshes: a mesh of the whole part first (a grid too coarse for a thin part
+  // drops it: volume off by more than lost_volume), and of two that both lost part of it the one
+  // that lost less; then fewer inverted cells; then, when either misses the volume target, the
+  // smaller volume error; then the higher worst SJ.
+  auto error = [&](const OverlayResult& x) { return std::abs(x.quality.total_volume - reference); };
+  auto lost = [&](const OverlayResult& x) { return reference != 0 && error(x) > opt.lost_volume * std::abs(reference); };
+  auto better = [&](const OverlayResult& r, const OverlayResult& b) {
+    return lost(r) != lost(b) ? lost(b)
+           : lost(r)          ? error(r) < error(b)
+           : inverted(r.quality) != inverted(b.quality)
+               ? inverted(r.quality) < inverted(b.quality)
+               : (volume_off(b) || volume_off(r) ? error(r) < error(b) : r.quality.hex.sj_min > b.quality.hex.sj_min);
+  };
+  int grids = 0;
+  // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ).
+  auto one_grid = [&](const Eigen::Vector3d& h, const OverlayOptions& o) {
+    ++grids;
+    if (!stretched) return mesh_with_grid(s, feat, h, o, nullptr);
+    const Stretch st{stretch, &s, &feat};
+    OverlayResult r = mesh_with_grid(ss, *sfeat, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st);
+    const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch);
+    r.spacing = spacing.maxCoeff();
+    r.thinnest = spacing.minCoeff();
+    return r;
+  };
+  auto summary = [&](const OverlayResult& r) {
+    return fmt("%.0f core + %.0f buffer cells, ", double(r.core_cells), double(r.buffer_cells)) +
+           fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), r.quality.hex.sj_min,
+               reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0);
+  };
   OverlayResult best;
   bool have = false;
   std::string why;
-  int grids = 0, finer_for_quality = 0;
+  int finer_for_quality = 0;
   for (int k = 0; k <= opt.refinements; ++k) {
     const Eigen::Vector3d h = h0 / std::pow(2.0, k);
     OverlayResult r;
     try {
-      ++grids;
-      r = mesh_with_grid(s, feat, h, opt);
+      r = one_grid(h, opt);
     } catch (const GeometryError& e) {
       why = e.what();
       say("overlay: " + why + (k < opt.refinements ? "; halving the spacing" : ""));
       if (why.find("more than") != std::string::npos) break;
       continue;
     }
-    // The better: a mesh of the whole part first (a grid too coarse for a thin part drops it:
-    // volume off by more than lost_volume), and of two that both lost part of it the one that lost
-    // less; then fewer inverted cells; then, when either misses the volume target, the smaller
-    // volume error; then the higher worst SJ.
-    auto error = [&](const OverlayResult& x) { return std::abs(x.quality.total_volume - reference); };
-    auto lost = [&](const OverlayResult& x) { return reference != 0 && error(x) > opt.lost_volume * std::abs(reference); };
-    const bool better =
-        !have || (lost(r) != lost(best) ? lost(best)
-                  : lost(r) ? error(r) < error(best)
-                  : inverted(r.quality) != inverted(best.quality)
-                      ? inverted(r.quality) < inverted(best.quality)
-                      : (volume_off(best) || volume_off(r) ? error(r) < error(best)
-                                                           : r.quality.hex.sj_min > best.quality.hex.sj_min));
-    say(fmt("overlay: spacing %g: %.0f core + %.0f buffer cells, ", h.maxCoeff(), double(r.core_cells), double(r.buffer_cells)) +
-        fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), r.quality.hex.sj_min,
-            reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0));
-    if (better) {
+    say(fmt("overlay: spacing %g: ", h.maxCoeff()) + summary(r));
+    // Cells left inverted by the core by centres: the same grid with the core by corners too (its
+    // buffer layer is thicker where the surface turns sharply), the better kept.
+    if (opt.core_by_centres && inverted(r.quality) > 0 && r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
+      OverlayOptions corners = opt;
+      corners.core_by_centres = false;
+      try {
+        OverlayResult r2 = one_grid(h, corners);
+        say(fmt("overlay: spacing %g, core by corners: ", h.maxCoeff()) + summary(r2));
+        if (better(r2, r)) r = std::move(r2);
+      } catch (const GeometryError& e) {
+        say(std::string("overlay: core by corners: ") + e.what());
+      }
+    }
+    const double cells = r.core_cells + r.buffer_cells;
+    const bool kept = !have || better(r, best);
+    if (kept) {
       best = std::move(r);
       have = true;
     }
-    const bool short_of = inverted(best.quality) > 0 || volume_off(best);
-    if (!short_of || ++finer_for_quality > opt.refinements_for_quality || k == opt.refinements) break;
+    const bool short_of = inverted(best.quality) > 0 || volume_off(best) || best.quality.hex.sj_min < opt.refine_below_sj;
+    if (!short_of || k == opt.refinements) break;
+    // A finer grid for quality alone (the part is whole) costs 8 times the cells: not beyond
+    // max_cells_for_quality, nor beyond max_cells_for_extra for the worst SJ alone.
+    // A grid halved for the SJ alone that did no better ends the halvings.
+    const double finer_cells = 8.0 * cells;
+    const bool for_sj = inverted(best.quality) == 0 && !volume_off(best);
+    const double cap = for_sj ? opt.max_cells_for_extra : opt.max_cells_for_quality;
+    if (for_sj && !kept) break;
+    if (!lost(best) && (++finer_for_quality > opt.refinements_for_quality || finer_cells > cap)) {
+      if (finer_for_quality <= opt.refinements_for_quality)
+        say(fmt("overlay: a finer grid would have about %.0f cells, more than %.0f; keeping this one", finer_cells, cap));
+      break;
+    }
     say(inverted(best.quality) > 0 ? "overlay: inverted cells remain; halving the spacing"
-                                   : "overlay: the volume is off by more than the target; halving the spacing");
+        : volume_off(best)         ? "overlay: the volume is off by more than the target; halving the spacing"
+                                   : fmt("overlay: worst SJ %.3f, below %.2f; halving the spacing", best.quality.hex.sj_min,
+                                         opt.refine_below_sj));
   }
   if (!have) throw GeometryError("overlay: " + why);
   best.grids = grids;

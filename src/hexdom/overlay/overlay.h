@@ -28,8 +28,15 @@ struct OverlayOptions {
   /// shortest side (overlay::grid_spacing).
   double across = 3;
   double max_cell_ratio = 5;
-  /// The core keeps the cells whose corners are at least this many spacings inside the surface,
-  /// so that the buffer layer is that thick at least.
+  /// Which cells make the core. By centres (core_cells_by_centres): the cells whose centre is at
+  /// least centre_margin spacings inside, so that a wall about one cell thick keeps its cells; the
+  /// core's boundary nodes are then moved buffer_depth spacings inside the surface
+  /// (pull_inner_nodes) to make room for the buffer layer. By corners (core_cells): the cells whose
+  /// corners are at least `margin` spacings inside, so that the buffer layer is that thick without
+  /// moving them; a wall needs about three cells across to keep a core.
+  bool core_by_centres = true;
+  double centre_margin = 0.1;
+  double buffer_depth = 0.5;
   double margin = 0.4;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;
@@ -42,11 +49,20 @@ struct OverlayOptions {
   int max_rounds = 40;
   int mean_passes = 8;
   /// Halvings of the spacing allowed when the core falls apart or is empty (a part thinner than the
-  /// cells), and, of those, how many when cells stay inverted or the volume is off by more than
-  /// target_volume (each costs 8 times the cells); the better mesh is kept.
+  /// cells), and, of those, how many when cells stay inverted, the volume is off by more than
+  /// target_volume or the worst hex SJ is below refine_below_sj (each costs 8 times the cells); the
+  /// better mesh is kept.
   int refinements = 3;
-  int refinements_for_quality = 2;
+  int refinements_for_quality = 3;
+  /// A finer grid for quality alone (cells inverted or the volume off while the part is whole) is
+  /// made only when it would have at most about this many cells (8 times the current mesh's).
+  double max_cells_for_quality = 2e5;
+  /// Extra meshes for quality are made only up to this many cells: a finer grid for a worst SJ
+  /// below refine_below_sj alone, and the core by corners on a grid whose core by centres left
+  /// inverted cells.
+  double max_cells_for_extra = 5e4;
   double target_volume = 0.01;
+  double refine_below_sj = 0.3;
   /// A grid whose mesh is off the volume by more than this has lost part of the solid (features
   /// thinner than its cells): any mesh of a finer grid that keeps the part is preferred to it, even
   /// one with inverted cells, and of two that both lost part of it the one that lost less. Between

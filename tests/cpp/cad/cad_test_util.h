@@ -4,6 +4,7 @@
 #pragma once
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -72,6 +73,22 @@ inline TopoDS_Shape make_cylinder() { return BRepPrimAPI_MakeCylinder(5.0, 12.0)
 inline TopoDS_Shape make_sphere() { return BRepPrimAPI_MakeSphere(5.0).Shape(); }
 inline TopoDS_Shape make_cone() { return BRepPrimAPI_MakeCone(5.0, 0.0, 10.0).Shape(); }
 inline TopoDS_Shape make_torus() { return BRepPrimAPI_MakeTorus(8.0, 3.0).Shape(); }
+
+/// A wedge 40 long and 20 high whose two long faces meet at an edge of `degrees`.
+inline TopoDS_Shape make_wedge(double degrees) {
+  const double t = std::tan(degrees * M_PI / 180.0);
+  BRepBuilderAPI_MakePolygon outline(gp_Pnt(0, 0, 0), gp_Pnt(40, 0, 0), gp_Pnt(40, 40 * t, 0), true);
+  const TopoDS_Face base = BRepBuilderAPI_MakeFace(outline.Wire());
+  return BRepPrimAPI_MakePrism(base, gp_Vec(0, 0, 20)).Shape();
+}
+
+/// A stadium: a box 20 x 10 x 8 with a cylinder of radius 5 at each end, tangent to its side faces.
+inline TopoDS_Shape make_stadium() {
+  TopoDS_Shape s = BRepPrimAPI_MakeBox(gp_Pnt(0, -5, 0), 20.0, 10.0, 8.0).Shape();
+  for (double x : {0.0, 20.0})
+    s = BRepAlgoAPI_Fuse(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, 0, 0), gp_Dir(0, 0, 1)), 5.0, 8.0).Shape()).Shape();
+  return s;
+}
 
 /// Writes `shape` as a .brep file in the test scratch folder and returns its path.
 inline std::string write_part(const TopoDS_Shape& shape, const std::string& name) {

@@ -120,6 +120,24 @@ TEST(OverlayCore, CellsMeetingAlongAnEdgeOnlyLoseOne) {
   EXPECT_EQ(m.num_nodes(), 8);
 }
 
+// By centres, a layer of cells one cell thick is a core (by corners it would need three).
+TEST(OverlayCore, ALayerOneCellThickKeepsItsCellsByCentres) {
+  overlay::Grid g;
+  g.nx = g.ny = g.nz = 6;
+  const overlay::Grid centres = overlay::cell_centres(g);
+  EXPECT_EQ(centres.nx, 5);
+  EXPECT_EQ(centres.position(0, 0, 0), Eigen::Vector3d(0.5, 0.5, 0.5));
+  overlay::NodeField f;
+  f.inside.assign(centres.num_nodes(), 0);
+  f.distance.assign(centres.num_nodes(), 0.5);
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 6; ++i) f.inside[centres.node(i, j, 2)] = 1;
+  const overlay::Core core = overlay::core_cells_by_centres(g, f, 0.1);
+  EXPECT_EQ(core.cells, 36);
+  EXPECT_EQ(core.dropped, 0);
+  EXPECT_EQ(overlay::core_cells_by_centres(g, f, 0.6).cells, 0);  // the centres are 0.5 inside
+}
+
 // A box: hexahedra only, none inverted, the volume exact, every corner of the box a node.
 TEST(Overlay, ABoxIsMeshedExactly) {
   const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);  // 30 x 20 x 10
@@ -156,6 +174,22 @@ TEST(Overlay, ACylindersRimsAreCurves) {
   EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
   EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
   EXPECT_GT(r.curve_nodes, 20);
+}
+
+// A plate 100 x 100 x 0.5 and a rod 1000 x 1 x 1 (the grid's cells flat or long, laid as cubes
+// over the stretched surface): valid, on the surface, the volume exact, at least two cells across.
+TEST(Overlay, APlateAndARodAreValidWithCellsAcross) {
+  for (const Eigen::Vector3d size : {Eigen::Vector3d(100, 100, 0.5), Eigen::Vector3d(1000, 1, 1)}) {
+    SCOPED_TRACE(size.transpose());
+    auto s = test::cell_surface({{0, 0, 0}}, 1, 1.0);
+    s.V = s.V * size.asDiagonal();
+    const overlay::OverlayResult r = overlay::overlay_mesh(s);
+    EXPECT_EQ(inverted(r.quality), 0);
+    EXPECT_NEAR(r.quality.total_volume, size.prod(), 1e-6 * size.prod());
+    EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
+    EXPECT_LE(r.thinnest, size.minCoeff() / 2);
+    EXPECT_EQ(r.corner_nodes, 8);
+  }
 }
 
 // An empty surface has no mesh: a clear error, not a crash.

@@ -20,12 +20,15 @@ pipeline::MeshCadRun mesh_part(const TopoDS_Shape& part, const std::string& name
 
 }  // namespace
 
-// The overlay path alone: no inverted cell, the boundary nodes on the B-rep, the volume within 1%;
+// The overlay path alone on a torus, a sphere, a cone's apex, a 10 degree wedge and a box with
+// cylinders tangent to its faces: no inverted cell, the boundary nodes on the B-rep, the volume within 1%;
 // the cone's within 2%: its base rim gets a node only where the grid's staircase meets it (36
 // nodes on a rim of 54 cells' length, measured -1.42%; the finer grids tried keep inverted cells).
-TEST(OverlayPath, MeshesATorusASphereAndAConeOnTheirBrep) {
+TEST(OverlayPath, MeshesCurvedAcuteAndTangentPartsOnTheirBrep) {
   const std::pair<const char*, TopoDS_Shape> parts[] = {
-      {"overlay_torus", test::make_torus()}, {"overlay_sphere", test::make_sphere()}, {"overlay_cone", test::make_cone()}};
+      {"overlay_torus", test::make_torus()},   {"overlay_sphere", test::make_sphere()},
+      {"overlay_cone", test::make_cone()},     {"overlay_wedge10", test::make_wedge(10.0)},
+      {"overlay_stadium", test::make_stadium()}};
   for (const auto& [name, shape] : parts) {
     const pipeline::MeshCadRun r = mesh_part(shape, name, pipeline::Method::Overlay);
     EXPECT_EQ(r.run.method, pipeline::Method::Overlay) << name;
