@@ -469,17 +469,20 @@ def _mesh_run(r):
 MESH_METHODS = ("auto", "polycube", "overlay")
 
 
-def _method_args(method):
-    """The method= keyword for _hexdom (none for "auto", so that a build without it still runs)."""
+def _method_args(method, polycube_seconds=None):
+    """The method= and polycube_seconds= keywords for _hexdom (none for "auto" and None, so that a
+    build without them still runs)."""
     if method not in MESH_METHODS:
         raise InputError("unknown meshing method '{}': auto, polycube or overlay".format(method))
-    if method == "auto":
-        return {}
-    return {"method": method}
+    args = {} if method == "auto" else {"method": method}
+    if polycube_seconds is not None:
+        args["polycube_seconds"] = float(polycube_seconds)
+    return args
 
 
 def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
-                 improve=True, allow_inverted=False, align=True, frame=None, method="auto"):
+                 improve=True, allow_inverted=False, align=True, frame=None, method="auto",
+                 polycube_seconds=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -487,13 +490,16 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
     3 x 3 rotation (x_frame = frame @ x) instead. method: "polycube" (the path above), "overlay"
     (a grid laid over the part: any closed surface; size and align only) or "auto" (the polycube,
     and the overlay too when the polycube fails or misses a target, the better kept: MeshRun.method,
-    .polycube_note). Raises MeshingError when inverted cells remain,
-    unless allow_inverted (then MeshRun.inverted counts them). Returns a MeshRun."""
+    .polycube_note). polycube_seconds: the polycube path's time budget (None: the core's default,
+    5 s under "auto", no limit under "polycube"; 0: no limit; see _hexdom.mesh_surface); with
+    "polycube", _hexdom.TimeoutError (an Error) when it passes before there is a mesh. Raises
+    MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
+    them). Returns a MeshRun."""
     r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
                              float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve),
                              bool(align),
                              None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
-                             **_method_args(method))
+                             **_method_args(method, polycube_seconds))
     run = _mesh_run(r)
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
@@ -505,7 +511,8 @@ def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=Fals
     """The CAD part's mesh as `hexdom mesh` makes it: a .step/.stp, .iges/.igs or .brep/.brp path or
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
-    max_relabels, relax_sweeps, improve, align, frame, method go to it), and (``snap``) its boundary nodes
+    max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds go to it; the time
+    budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
     or cells stay inverted, the B-rep is tessellated again with slightly smaller or larger triangles
     (``tessellations``, ``tessellation_factor`` of the MeshRun). Needs _hexdom built with
@@ -515,12 +522,12 @@ def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=Fals
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
-                             "method"}
+                             "method", "polycube_seconds"}
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
     frame = kwargs.pop("frame", None)
-    kwargs.update(_method_args(kwargs.pop("method", "auto")))
+    kwargs.update(_method_args(kwargs.pop("method", "auto"), kwargs.pop("polycube_seconds", None)))
     r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap), level=int(level),
                          frame=None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
                          **kwargs)

@@ -127,6 +127,10 @@ const char* const kMeshHelp =
       "of cells out to the surface with its curves and corners, then optimised; meshes any closed solid).\n"
       "auto (the default) runs the polycube and, when it fails or its mesh misses a target (an inverted cell,\n"
       "a worst scaled Jacobian below 0.3, a volume more than 1% off), the overlay grid too, the better kept.\n"
+      "Under auto the polycube path has a time budget (--polycube-seconds, 5 s; for CAD parts over all its\n"
+      "polycube attempts, from the end of the first tessellation): once it has passed the path stops (the\n"
+      "improvement ends its round, no further candidate or tessellation is tried) and, without a mesh that\n"
+      "meets the targets, the overlay grid runs.\n"
       "One progress line per stage, then the quality summary. The structure has hex blocks, and\n"
       "prism blocks along wedge-like features (knife edges; --sliver-ratio). CAD files (.step/.stp, .iges/.igs,\n"
       ".brep/.brp) are tessellated first (hexdom tessellate, CAD faces kept for the segmentation), and the\n"
@@ -161,6 +165,12 @@ void add_mesh(CLI::App& app) {
                   "solid), or auto: the polycube, and the overlay grid too when the polycube fails or misses a target, "
                   "the better kept")
       ->capture_default_str()->check(CLI::IsMember({"auto", "polycube", "overlay"}));
+  cmd->add_option("--polycube-seconds", a->opt.polycube_seconds,
+                  "time budget of the polycube path in seconds (0: no limit). auto: once it has passed the polycube "
+                  "path stops with the mesh it has, or fails, and the overlay grid runs (CAD parts: counted from the end of "
+                  "the first tessellation). polycube: no limit unless given, then counted from the start; when it passes "
+                  "before there is a mesh, an error (exit 5) and no output file")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--size", a->opt.size, "target element size H; 0: the bounding-box diagonal / 30")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("-s,--level", a->opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
@@ -183,12 +193,15 @@ void add_mesh(CLI::App& app) {
   cmd->add_option("--report", a->report, "also write the final quality report as JSON to this file");
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
   cmd->add_flag("-v,--verbose", a->opt.verbose, "also print the stages' own messages");
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     io::format_of(a->out);
     a->opt.log = print_log;
     a->opt.improve = !a->no_improve;
     a->opt.align = !a->no_align;
     a->opt.method = pipeline::method_from_name(a->method);
+    // --method polycube honours the budget only when it is given; it starts now, before reading.
+    if (a->opt.method == pipeline::Method::Polycube && cmd->count("--polycube-seconds") > 0)
+      a->opt.deadline = Deadline::in(a->opt.polycube_seconds);
     const std::string stem = stem_of(a->out);
     mesh::SurfaceMesh surface;
     cad::Shape shape;

@@ -1,5 +1,6 @@
 // hexdom: the command-line program. Exit codes: 0 success; 1 bad input or geometry; 2 usage;
-// 3 a meshing stage could not keep its contract; 4 internal error.
+// 3 a meshing stage could not keep its contract; 4 internal error; 5 a time budget passed before
+// there was a result (hexdom mesh --method polycube --polycube-seconds S).
 #include <iostream>
 
 #include "commands.h"
@@ -37,6 +38,9 @@ int main(int argc, char** argv) {
   } catch (const hexdom::MeshingError& e) {
     std::cerr << "hexdom: error: " << e.what() << std::endl;
     return 3;
+  } catch (const hexdom::TimeoutError& e) {
+    std::cerr << "hexdom: error: " << e.what() << std::endl;
+    return 5;
   } catch (const std::exception& e) {
     std::cerr << "hexdom: error: internal error: " << e.what() << std::endl;
     return 4;

@@ -58,9 +58,17 @@ const char* kMeshSurfaceDoc =
     "method: \"polycube\", \"overlay\" (a grid laid over the part, which meshes any closed surface) or \"auto\"\n"
     "(the polycube, and the overlay too when the polycube fails or misses a target; the better kept). The\n"
     "dict's method names the path that made the mesh, polycube_note why the overlay was tried (empty when it\n"
-    "was not). Inverted cells left are reported, not raised.";
+    "was not), budget_passed whether the polycube path's time budget cut it short. Inverted cells left are\n"
+    "reported, not raised.\n";
 
 }  // namespace
+
+const char* const kPolycubeSecondsDoc =
+    "polycube_seconds: the polycube path's time budget in seconds (0: no limit; None: the default, 5 s under\n"
+    "\"auto\", no limit under \"polycube\"). auto: once it has passed, the polycube path stops (the improvement\n"
+    "ends its round, no further candidate is tried) and, without a mesh that meets the targets, the overlay\n"
+    "runs; polycube_note then names the budget. polycube: given, it raises TimeoutError (an Error) when it\n"
+    "passes before there is a mesh.";
 
 py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   py::dict d;
@@ -78,15 +86,22 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["choice"] = pipeline::choice_text(r);
   d["method"] = pipeline::method_name(r.method);
   d["polycube_note"] = r.polycube_note;
+  d["budget_passed"] = r.budget_passed;
   d["frame"] = frame_dict(r.frame);
   return d;
 }
 
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
-                                                      const std::optional<Eigen::Matrix3d>& frame, const std::string& method) {
+                                                      const std::optional<Eigen::Matrix3d>& frame, const std::string& method,
+                                                      std::optional<double> polycube_seconds) {
   pipeline::MeshSurfaceOptions opt;
   opt.method = pipeline::method_from_name(method);
+  if (polycube_seconds) {
+    if (!(*polycube_seconds >= 0)) throw InputError("polycube_seconds must be 0 (no limit) or positive");
+    opt.polycube_seconds = *polycube_seconds;
+    if (opt.method == pipeline::Method::Polycube) opt.deadline = Deadline::in(*polycube_seconds);
+  }
   opt.align = align;
   if (frame) opt.segment.frame = opt.polycube.frame = checked_rotation(*frame);
   opt.size = size;
@@ -128,10 +143,11 @@ void bind_auto(py::module_& m) {
 
   m.def("mesh_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method) {
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
+           std::optional<double> polycube_seconds) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
-          const pipeline::MeshSurfaceOptions opt =
-              mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method);
+          const pipeline::MeshSurfaceOptions opt = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps,
+                                                                        improve, align, frame, method, polycube_seconds);
           pipeline::MeshSurfaceRun r;
           {
             py::gil_scoped_release nogil;
@@ -142,7 +158,7 @@ void bind_auto(py::module_& m) {
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
         py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), py::arg("method") = "auto",
-        kMeshSurfaceDoc);
+        py::arg("polycube_seconds") = py::none(), (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc).c_str());
 }
 
 }  // namespace hexdom::python

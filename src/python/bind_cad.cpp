@@ -95,6 +95,22 @@ const char* kSnapDoc =
     "worst_sj, seconds_project, seconds_restore, quality (as quality_report), kind (#V: 0 interior, 1 face,\n"
     "2 edge, 3 vertex) and entity (#V: 1-based face / edge / vertex id, 0 inside).";
 
+// mesh_cad's documentation, with polycube_seconds= as mesh_surface documents it.
+std::string mesh_cad_doc() {
+  return std::string(
+      "A CAD part (file path or BREP text) meshed as `hexdom mesh` does: tessellate, mesh_surface (`method`:\n"
+      "auto, polycube or overlay, as mesh_surface), snap onto\n"
+      "the B-rep; when the tessellation's labelling defeats the automatic polycube or cells stay inverted, the\n"
+      "B-rep is tessellated again with triangles of 0.97, 1.03, 0.94, 1.06 x the size (the first two for\n"
+      "inverted cells; the polycube grid kept)\n"
+      "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
+      "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
+      "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor. Raises the first\n"
+      "tessellation's error when none gives a mesh.\n") + kPolycubeSecondsDoc +
+      " The budget covers the polycube path on every tessellation of the call; once it has passed, no\n"
+      "further tessellation is tried for the polycube.";
+}
+
 }  // namespace
 
 void bind_cad(py::module_& m) {
@@ -212,11 +228,13 @@ void bind_cad(py::module_& m) {
 
   m.def("mesh_cad",
         [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method) {
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
+           std::optional<double> polycube_seconds) {
           pipeline::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
-          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method);
+          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
+                                          polycube_seconds);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           {
@@ -236,15 +254,8 @@ void bind_cad(py::module_& m) {
         py::arg("source"), py::arg("size") = 0.0, py::arg("solid") = 0, py::arg("snap") = true, py::arg("level") = 1,
         py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
         py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), py::arg("method") = "auto",
-        "A CAD part (file path or BREP text) meshed as `hexdom mesh` does: tessellate, mesh_surface (`method`:\n"
-        "auto, polycube or overlay, as mesh_surface), snap onto\n"
-        "the B-rep; when the tessellation's labelling defeats the automatic polycube or cells stay inverted, the\n"
-        "B-rep is tessellated again with triangles of 0.97, 1.03, 0.94, 1.06 x the size (the first two for\n"
-        "inverted cells; the polycube grid kept)\n"
-        "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
-        "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
-        "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor. Raises the first\n"
-        "tessellation's error when none gives a mesh.");
+        py::arg("polycube_seconds") = py::none(),
+        mesh_cad_doc().c_str());
 }
 
 }  // namespace hexdom::python

@@ -12,10 +12,15 @@ namespace hexdom::python {
 /// A MeshSurfaceRun as _hexdom.mesh_surface returns it (bind_auto.cpp); also mesh_cad's "run".
 pybind11::dict run_dict(const pipeline::MeshSurfaceRun& r);
 /// The MeshSurfaceOptions of mesh_surface's and mesh_cad's keyword arguments (bind_auto.cpp).
+/// polycube_seconds: None keeps the default budget (auto: MeshSurfaceOptions::polycube_seconds;
+/// polycube: none); a number sets it, and with method "polycube" the deadline from now.
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame,
-                                                  const std::string& method = "auto");
+                                                  const std::string& method = "auto",
+                                                  std::optional<double> polycube_seconds = std::nullopt);
+/// The text of the polycube_seconds= keyword's documentation, shared by mesh_surface and mesh_cad.
+extern const char* const kPolycubeSecondsDoc;
 void bind_segmentation(pybind11::module_& m);
 void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);

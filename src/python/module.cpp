@@ -20,15 +20,15 @@ using namespace hexdom;
 
 using namespace hexdom::python;
 
-PYBIND11_MODULE(_hexdom, m) {
-  m.doc() = "HexDom core: hex-dominant meshing by polycubes (numpy in, numpy out)";
-  m.attr("__version__") = HEXDOM_VERSION;
-
-  // Errors: the base first, then each subclass with the base as its Python base class.
+namespace {
+// The error classes: _hexdom.Error, then each subclass with it as its Python base class.
+void register_errors(py::module_& m) {
   static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
   static py::exception<InputError> input_error(m, "InputError", error.ptr());
   static py::exception<GeometryError> geometry_error(m, "GeometryError", error.ptr());
   static py::exception<MeshingError> meshing_error(m, "MeshingError", error.ptr());
+  // _hexdom.TimeoutError (not Python's builtin of that name): a time budget passed before a result.
+  static py::exception<TimeoutError> timeout_error(m, "TimeoutError", error.ptr());
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -38,10 +38,20 @@ PYBIND11_MODULE(_hexdom, m) {
       PyErr_SetString(geometry_error.ptr(), e.what());
     } catch (const MeshingError& e) {
       PyErr_SetString(meshing_error.ptr(), e.what());
+    } catch (const TimeoutError& e) {
+      PyErr_SetString(timeout_error.ptr(), e.what());
     } catch (const Error& e) {
       PyErr_SetString(error.ptr(), e.what());
     }
   });
+}
+}  // namespace
+
+PYBIND11_MODULE(_hexdom, m) {
+  m.doc() = "HexDom core: hex-dominant meshing by polycubes (numpy in, numpy out)";
+  m.attr("__version__") = HEXDOM_VERSION;
+
+  register_errors(m);
 
   m.def("read_mesh", [](const std::string& path) {
     mesh::Mesh r;

@@ -1,7 +1,9 @@
 """`hexdom mesh --method auto|polycube|overlay` on the shipped bracket (examples/data/bracket.step,
 made by examples/make_bracket_step.py): each path gives a valid mesh of the part (VTK's Verdict), the
 log says which path made it, and `auto` keeps the polycube mesh where it meets every target. A method
-that does not exist is refused before anything is read or written."""
+that does not exist is refused before anything is read or written. The polycube path's time budget
+(--polycube-seconds): under auto a tiny one gives the overlay mesh and says why; with --method
+polycube it is an error (exit 5) and nothing is written."""
 
 import subprocess
 from pathlib import Path
@@ -67,4 +69,42 @@ def test_an_unknown_method_is_refused_with_nothing_written(hexdom_bin, tmp_path)
     run, out = _mesh(hexdom_bin, tmp_path, "octree")
     assert run.returncode != 0
     assert "--method" in run.stderr and "octree" in run.stderr
+    assert not out.exists()
+
+
+def test_the_polycube_time_budget_is_an_option_next_to_the_method(hexdom_bin):
+    run = subprocess.run([str(hexdom_bin), "mesh", "--help"], capture_output=True, text=True)
+    assert run.returncode == 0
+    assert "--polycube-seconds" in run.stdout
+    assert run.stdout.index("--polycube-seconds") > run.stdout.index("--method")
+
+
+def test_auto_with_a_tiny_polycube_budget_keeps_the_overlay_mesh(hexdom_bin, tmp_path):
+    # Without a budget auto keeps the bracket's polycube mesh (test above); with a microsecond the
+    # polycube path stops at once and the overlay grid's mesh is written.
+    out = tmp_path / "bracket_budget.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--polycube-seconds", "0.000001"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "the polycube path stopped after its time budget of 1e-06 s" in run.stderr
+    assert "kept: overlay path" in run.stderr
+    sj, _ = _verdict(out)
+    assert np.all(sj > 0), f"{int(np.sum(sj <= 0))} inverted cells"
+
+
+def test_polycube_with_a_tiny_budget_fails_with_nothing_written(hexdom_bin, tmp_path):
+    out = tmp_path / "bracket_polycube_budget.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--method", "polycube",
+                          "--polycube-seconds", "0.000001"], capture_output=True, text=True)
+    assert run.returncode == 5, (run.returncode, run.stderr)
+    assert "hexdom: error:" in run.stderr and "stopped after the time budget of 1e-06 s" in run.stderr
+    assert not out.exists()
+    assert not list(tmp_path.iterdir()), "files were written"
+
+
+def test_a_negative_polycube_budget_is_a_usage_error(hexdom_bin, tmp_path):
+    out = tmp_path / "x.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--polycube-seconds", "-1"],
+                         capture_output=True, text=True)
+    assert run.returncode == 2, run.stderr
     assert not out.exists()

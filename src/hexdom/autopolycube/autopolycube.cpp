@@ -83,6 +83,7 @@ void collapse_blocks(GridPolycube& gp, const mesh::SurfaceMesh& s, const std::ve
   if (opt.sliver_ratio > 0) {
     CollapseSliversOptions co;
     co.max_ratio = opt.sliver_ratio;
+    co.deadline = opt.deadline;
     co.log = opt.log;
     const int before = gp.structure.num_nodes();
     const CollapseSlivers cs = collapse_slivers(gp, co);
@@ -143,6 +144,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
   r.labels = s;
   std::vector<Eigen::Vector3d> apexes;
   for (int attempt = 0;; ++attempt) {
+    opt.deadline.check("autopolycube");
     if (attempt == 0 && opt.repaired) {
       if (opt.repaired->labels.F.rows() < s.F.rows() || opt.repaired->labels.V.rows() < s.V.rows())
         throw GeometryError("the repaired labelling given has fewer triangles or vertices than the labels");
@@ -169,6 +171,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       RepairOptions ro;
       ro.max_relabels = std::max(0, opt.max_relabels - r.relabelled);
       ro.band_width = size;
+      ro.deadline = opt.deadline;
       ro.log = opt.log;
       RepairResult rep = repair_labels(s, ro);
       s.patch = rep.label;
@@ -196,6 +199,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
     PolycubeMapOptions mo;
     mo.cell = r.cell;
     mo.keep_widths = opt.keep_widths;
+    mo.deadline = opt.deadline;
     mo.log = opt.log;
     // Curves whose spans only touch are separated too, unless that orders the planes in a cycle.
     PolycubeMap map;

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
@@ -78,6 +79,11 @@ struct AutoPolycubeOptions {
   /// turned into it (x_frame = frame * x) and the structure, patches, labels and polycube come back
   /// in the input's coordinates; `repaired` stays in the frame. The identity: the model's axes.
   Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+  /// The time budget: checked before each relabel-and-retry round and inside the loops where the
+  /// time goes (the label repair's rounds and bands, each chart's map and untangling, each sliver
+  /// strip). Once passed, autopolycube throws TimeoutError naming the step ("autopolycube (slivers):
+  /// stopped after the time budget of 5 s"); a polycube half built is no result. None: no limit.
+  Deadline deadline;
   LogCallback log;
 };
 
@@ -119,7 +125,8 @@ struct AutoPolycube {
 /// Builds the structure and the patch surface from `labels` (closed surface, label 1..6 per
 /// triangle). When `progress` is given it holds, also when this throws, the repaired labels and
 /// the last polycube computed, for inspection. Throws GeometryError naming the charts or corners
-/// when the labelling cannot be repaired, MeshingError when a solve fails.
+/// when the labelling cannot be repaired, MeshingError when a solve fails, TimeoutError when
+/// options.deadline passes.
 AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& options = {},
                           AutoPolycube* progress = nullptr);
 

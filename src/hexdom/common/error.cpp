@@ -1,5 +1,7 @@
 #include "hexdom/common/error.h"
 
+#include <cstdio>
+
 namespace hexdom {
 
 static std::string format_input_error(const std::string& path, long line, const std::string& text) {
@@ -11,5 +13,14 @@ static std::string format_input_error(const std::string& path, long line, const 
 
 InputError::InputError(const std::string& path, long line, const std::string& text)
     : Error(format_input_error(path, line, text)), path_(path), line_(line) {}
+
+static std::string format_timeout(const std::string& where, double budget) {
+  char seconds[64];
+  std::snprintf(seconds, sizeof seconds, "%g", budget);
+  return (where.empty() ? std::string() : where + ": ") + "stopped after the time budget of " + seconds + " s";
+}
+
+TimeoutError::TimeoutError(const std::string& where, double budget)
+    : Error(format_timeout(where, budget)), where_(where), budget_(budget) {}
 
 }  // namespace hexdom

@@ -39,6 +39,21 @@ class MeshingError : public Error {
   explicit MeshingError(const std::string& what) : Error(what) {}
 };
 
+/// A computation that ran out of its time budget (Deadline::check) before it had a result: the
+/// stage that stopped and the budget. Prints as "<where>: stopped after the time budget of 5 s".
+/// Callers that have another way to a result (the auto method's overlay path) treat it as a failure
+/// of that path; the others pass it on (the program exits 5).
+class TimeoutError : public Error {
+ public:
+  TimeoutError(const std::string& where, double budget);
+  const std::string& where() const { return where_; }
+  double budget() const { return budget_; }  ///< seconds
+
+ private:
+  std::string where_;
+  double budget_;
+};
+
 /// Optional progress and warning sink carried in options structs. Level: 0 info, 1 warning.
 using LogCallback = std::function<void(int level, const std::string& message)>;
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "hexdom/common/format.h"
 #include "hexdom/optimize/improver.h"
 #include "hexdom/optimize/node_kinds.h"
 #include "hexdom/optimize/pillow.h"
@@ -31,7 +32,7 @@ class Run {
   // Throws GeometryError when the layer cannot be made.
   Run(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow, const std::vector<char>* sharp_in,
       const BoundaryConstraints& cons, const std::function<void(const std::string&)>& log, const std::vector<char>* layer = nullptr)
-      : with_pillow_(with_pillow), log_(log) {
+      : with_pillow_(with_pillow), deadline_(opt.deadline), log_(log) {
     m_ = input;
     std::vector<char> sharp;
     if (sharp_in) sharp = *sharp_in;
@@ -132,9 +133,10 @@ class Run {
       stale = w > worst + (worst <= 0 ? 1e-4 : 1e-3) ? 0 : stale + 1;
       worst = std::max(worst, w);
       r_.rounds = round + 1;
+      if (out_of_time()) break;
     }
     log_(name() + ": worst scaled Jacobian " + std::to_string(imp_->worst()) + imp_->worst_place() + " after " + std::to_string(r_.rounds) +
-         " rounds (" + std::to_string(seconds_since(t0)) + " s)");
+         " rounds (" + std::to_string(seconds_since(t0)) + " s)" + (r_.stopped ? ", stopped by the time budget" : ""));
   }
 
   // Mean-stage passes, each revisiting only the nodes near a move of the pass before, until a pass
@@ -146,7 +148,7 @@ class Run {
     const double mean0 = imp_->mean();
     double mean = mean0;
     int passes = 0;
-    while (passes < max_passes) {
+    while (passes < max_passes && !out_of_time()) {
       const int moved = imp_->mean_pass();
       ++passes;
       const double m1 = imp_->mean();
@@ -158,18 +160,29 @@ class Run {
          std::to_string(passes) + " passes (" + std::to_string(seconds_since(t0)) + " s)");
   }
 
-  void smooth(int passes) {
-    for (int i = 0; i < passes; ++i) {
+  // The explicit stages: at least one pass or round, then as many as the time budget allows.
+  int smooth(int passes) {
+    int i = 0;
+    for (; i < passes && (i == 0 || !out_of_time()); ++i) {
       update_floors();
       imp_->smooth_pass();
     }
+    return i;
   }
-  void optimize(int rounds) {
-    for (int i = 0; i < rounds; ++i) {
+  int optimize(int rounds) {
+    int i = 0;
+    for (; i < rounds && (i == 0 || !out_of_time()); ++i) {
       update_floors();
       imp_->optimize_round(std::max(imp_->worst() + 0.2, 0.3));
     }
+    return i;
   }
+  // Whether the time budget has passed (remembered in the result's `stopped`).
+  bool out_of_time() {
+    if (deadline_.passed()) r_.stopped = true;
+    return r_.stopped;
+  }
+  bool stopped() const { return r_.stopped; }
   void set_rounds(int n) { r_.rounds = n; }
   // The optimisation rounds also search a pattern of directions around the worst cells (see
   // Improver::optimize_round). The run without a layer: where a polycube edge lies on a round, its
@@ -184,6 +197,7 @@ class Run {
 
  private:
   bool with_pillow_, partial_ = false;
+  Deadline deadline_;
   std::function<void(const std::string&)> log_;
   ImproveResult r_;
   mesh::Mesh m_;
@@ -236,11 +250,12 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   ImproveResult r;
   if (!recommended) {
     Run run(input, opt, opt.pillow, sp, cons, log);
-    run.smooth(opt.smooth);
-    run.optimize(opt.optimize);
-    run.set_rounds(std::max(opt.smooth, opt.optimize));
+    const int smoothed = run.smooth(opt.smooth);
+    const int optimised = run.stopped() ? 0 : run.optimize(opt.optimize);
+    run.set_rounds(std::max(smoothed, optimised));
     if (opt.mean_after && opt.mean_passes > 0) run.mean_stage(opt.mean_passes, 3e-3);
     r = run.finish();
+    if (r.stopped) log("improve: stopped after the time budget of " + fmt("%g", opt.deadline.budget()) + " s");
   } else {
     // Pillowing is preferred (no hex keeps two faces on the boundary). Where a polycube edge lies
     // on a smooth surface, a layer over those smooth regions only comes first (smooth_layer_faces),
@@ -257,6 +272,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     for (const std::vector<char>* faces : {&layer, static_cast<const std::vector<char>*>(nullptr)}) {
       if (!opt.kinds.empty()) break;  // given kinds are the input's nodes': no layer
       if (faces && faces->empty()) continue;
+      if (!runs.empty() && opt.deadline.passed()) break;
       try {
         runs.push_back(std::make_unique<Run>(input, opt, true, sp, cons, log, faces));
         runs.back()->worst_stage(opt.max_rounds);
@@ -272,10 +288,11 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       // gradient alone does not open and the pattern does. What it reaches does not end the sequence
       // (a pillowed run lifted past the bar would stop it before a better run without a layer); it
       // takes part in the final choice. Figures: docs/tuning-notes.md.
+      if (runs.back()->stopped()) break;
       runs.back()->search_pattern();
       runs.back()->worst_stage(opt.max_rounds);
     }
-    if (!plain_good) {
+    if (!plain_good && (runs.empty() || !opt.deadline.passed())) {
       // Against a valid pillowed mesh, the run without a layer gets twice the rounds of the best
       // pillowed one (at least 10): untangling that creeps on beyond that would not win.
       int rival_rounds = -1;
@@ -293,9 +310,13 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
         kept = x.get();
     Run& best = *kept;
     if (kept != runs.front().get()) log("kept the result " + best.name() + ": its worst cell is better");
+    if (opt.deadline.passed())
+      log("improve: stopped after the time budget of " + fmt("%g", opt.deadline.budget()) + " s with " +
+          std::to_string(runs.size()) + " run" + (runs.size() == 1 ? "" : "s") + " made; kept the result " + best.name());
     // The mean only on the mesh kept: it never changes the worst cell the choice was made on.
     best.mean_stage(opt.mean_passes, 3e-3);
     r = best.finish();
+    r.stopped = r.stopped || opt.deadline.passed();
   }
   r.before = before;
   return r;

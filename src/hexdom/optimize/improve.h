@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/pillow.h"
@@ -60,6 +61,11 @@ struct ImproveOptions {
   double floor = -2;
   /// Pillow layer thickness as a fraction of the shortest boundary edge at each node.
   double pillow_depth = 0.2;
+  /// The time budget. Looked at after every round (smoothing, optimisation or mean pass): once
+  /// passed, the round running ends, no further round, run (with or without a layer) or mean pass
+  /// starts, and the best of the runs made so far is returned (by the recommended sequence's order)
+  /// with `stopped` set and a log line saying so. At least one round is always made. Never throws.
+  Deadline deadline;
   LogCallback log;
 };
 
@@ -69,6 +75,7 @@ struct ImproveResult {
   int pillow_cells = 0;  ///< cells added by pillowing
   int rounds = 0;        ///< smoothing/optimisation rounds run
   int feature_nodes = 0, corner_nodes = 0;
+  bool stopped = false;  ///< options.deadline passed: rounds, runs or mean passes were left out
 };
 
 /// Improves a hex / prism / tet mesh. Boundary nodes stay on `options.surface` (or the initial

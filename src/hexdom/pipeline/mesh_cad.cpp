@@ -35,16 +35,17 @@ void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const 
   if (mo.method != Method::Auto) return mesh_path_and_snap(shape, mo, opt, r);
   MeshSurfaceOptions path = mo;
   path.method = Method::Polycube;
+  path.deadline = polycube_deadline(mo);  // mesh_cad_part's, made at its start
   std::string note;
   bool have = false;
   try {
     mesh_path_and_snap(shape, path, opt, r);
     have = true;
     if (meets_targets(r.run, reference, mo)) return;
-    note = "the polycube mesh misses a target (" + run_summary(r.run, reference) + ")";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    note = "the polycube path failed at stage " + r.run.stage + ": " + what.substr(0, what.find('\n'));
+    note = "the polycube mesh misses a target (" + run_summary(r.run, reference) + ")" +
+           (r.run.budget_passed ? fmt(" (its time budget of %g s passed)", path.deadline.budget()) : std::string());
+  } catch (const Error& e) {  // a TimeoutError too: the polycube path ran out of its time
+    note = polycube_failure_note(e, r.run.stage);
   }
   if (opt.mesh.log) opt.mesh.log(0, note + "; meshing with the overlay grid too");
   MeshCadRun other;
@@ -100,15 +101,20 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   r.tessellations = 1;
   say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
   reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
+  // One time budget for the polycube path over every tessellation of this call, from here: the first
+  // tessellation serves both paths (on a part with many small faces it alone can take longer than
+  // the budget), the later ones are made for the polycube and count.
+  MeshSurfaceOptions first = opt.mesh;
+  first.deadline = polycube_deadline(opt.mesh);
   std::exception_ptr first_error;
-  bool meshed = attempt(opt.mesh, r, &first_error);
+  bool meshed = attempt(first, r, &first_error);  // a TimeoutError here (Method::Polycube) is passed on
   if (meshed && inverted_cells(r.run.quality) == 0) return r;
   // The overlay grid hardly depends on the triangles: with the overlay path alone another
   // tessellation would give the same mesh. (In auto mode another one may give a polycube.)
   if (meshed && opt.mesh.method == Method::Overlay) return r;
   // Later tessellations: the same grid (the element size the first run took, in its frame), other
   // triangles.
-  MeshSurfaceOptions mo = opt.mesh;
+  MeshSurfaceOptions mo = first;
   if (mo.size <= 0) mo.size = segmentation::frame_diagonal(r.surface, r.run.frame.rotation) / 30.0;
   const double first_size = r.stats.size;
   const std::string why = meshed ? fmt(r.snapped ? "%.0f inverted cells after the snap" : "%.0f inverted cells remain",
@@ -124,6 +130,10 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
                            : opt.retessellate.size();
   for (size_t k = 0; k < tries; ++k) {
     const double f = opt.retessellate[k];
+    if (mo.method != Method::Overlay && mo.deadline.passed()) {
+      say(why + fmt(": no further tessellation, the polycube path's time budget of %g s has passed", mo.deadline.budget()));
+      break;
+    }
     say(why + ": tessellating again with triangles of " + fmt("%.2f", f) + " x the size (" + fmt("%g", f * first_size) +
         "), the polycube grid kept at " + fmt("%g", mo.size));
     cad::TessellateOptions to = opt.tessellation;
@@ -132,7 +142,12 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
     again.tessellation_factor = f;
     again.surface = cad::tessellate(shape, to, &again.stats);
     ++r.tessellations;
-    if (!attempt(mo, again, nullptr)) continue;
+    try {
+      if (!attempt(mo, again, nullptr)) continue;
+    } catch (const TimeoutError& e) {  // the run so far is kept
+      say(fmt("tessellation at %.2f x the size: ", f) + e.what() + "; no further tessellation");
+      break;
+    }
     if (!meshed || pipeline::better_run(again.run, r.run, reference, mo)) {
       const int tessellations = r.tessellations;
       r = std::move(again);

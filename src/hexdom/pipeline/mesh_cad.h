@@ -48,6 +48,13 @@ struct MeshCadRun {
 /// is given it holds, also when this throws, the first tessellation and what its run produced (for
 /// the files written for inspection). Throws the first tessellation's error when no tessellation
 /// gives a mesh; inverted cells that remain are reported in run.quality, not thrown.
+/// The polycube path's time budget (options.mesh.polycube_seconds, or options.mesh.deadline) covers
+/// every polycube attempt of the call, retessellations included: one deadline, made when the first
+/// tessellation is done (that one serves the overlay path as well; a deadline given in
+/// options.mesh.deadline is used as it is).
+/// Once it has passed no further tessellation is tried for the polycube path (the log says so) and
+/// the best mesh so far is kept; a TimeoutError is thrown only with Method::Polycube and a deadline,
+/// when it passes on the first tessellation before any mesh exists.
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& options = {}, MeshCadRun* progress = nullptr);
 
 }  // namespace hexdom::pipeline

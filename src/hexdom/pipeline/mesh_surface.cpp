@@ -46,10 +46,12 @@ bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, 
   return worst_sj(b.quality) > worst_sj(a.quality);
 }
 
-// The time and the segmentations another candidate cost, added to the run that is kept.
+// The time and the segmentations another candidate cost, added to the run that is kept (and whether
+// the time budget cut either short).
 void add_costs(MeshSurfaceRun& kept, const MeshSurfaceRun& other) {
   for (int k = 0; k < 4; ++k) kept.seconds[k] += other.seconds[k];
   kept.segmentations += other.segmentations;
+  kept.budget_passed = kept.budget_passed || other.budget_passed;
 }
 
 // segment -> autopolycube -> generate -> improve at one level, one polycube option set.
@@ -71,6 +73,7 @@ bool try_candidate(const mesh::SurfaceMesh& surface, MeshSurfaceOptions other, c
     mesh_once(surface, other, again);
   } catch (const Error& e) {
     say(std::string(failed) + ": " + e.what() + "; " + keeping);
+    if (dynamic_cast<const TimeoutError*>(&e)) r.budget_passed = true;
     return false;
   }
   if (better(again, r, reference, opt)) {
@@ -93,11 +96,20 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   mesh_once(surface, opt, r);
   const double reference = mesh::enclosed_volume(surface.V, surface.F);
+  // Before each further candidate: once the time budget has passed, the run so far is kept.
+  bool said = false;
+  auto out_of_time = [&] {
+    if (!opt.deadline.passed()) return false;
+    if (!said) say("time budget passed: keeping " + run_summary(r, reference));
+    said = r.budget_passed = true;
+    return true;
+  };
   // A polycube that keeps the widths of holes is tried first; when its mesh misses a target, the one
   // with the least-squares plane offsets is tried too and the better kept (see `better`), unless
   // keeping the widths changed nothing (no hole: the same polycube again).
   bool widths = opt.polycube.keep_widths;
-  if (opt.polycube.keep_widths && opt.try_without_widths && r.polycube.widened > 0 && !meets_targets(r, reference, opt)) {
+  if (opt.polycube.keep_widths && opt.try_without_widths && r.polycube.widened > 0 && !meets_targets(r, reference, opt) &&
+      !out_of_time()) {
     say(run_summary(r, reference) + ": again without keeping the widths of holes");
     MeshSurfaceOptions other = opt;
     other.polycube.keep_widths = false;
@@ -108,7 +120,7 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
   }
   // Tet and prism blocks at apexes first; when that mesh misses a target, the hex blocks under the
   // caps are meshed too and the better kept (a blunt tip's hex corner can beat the tets' prisms).
-  if (r.polycube.apexes_collapsed > 0 && opt.try_hex_apexes && !meets_targets(r, reference, opt)) {
+  if (r.polycube.apexes_collapsed > 0 && opt.try_hex_apexes && !meets_targets(r, reference, opt) && !out_of_time()) {
     say(run_summary(r, reference) + " with tet blocks at the apexes: again with hex blocks under the caps");
     MeshSurfaceOptions other = opt;
     other.polycube.keep_widths = widths;
@@ -119,7 +131,7 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
   }
   const int inverted = inverted_cells(r.quality);
   const bool nearly = inverted == 0 && worst_sj(r.quality) < opt.refine_below_sj;
-  if ((inverted > 0 || nearly) && opt.level > 0 && opt.refine_when_inverted) {
+  if ((inverted > 0 || nearly) && opt.level > 0 && opt.refine_when_inverted && !out_of_time()) {
     if (nearly)
       say(fmt("worst SJ %.3f at level %.0f (below %.2f): again with level %.0f (grid of half the spacing), the better kept", worst_sj(r.quality),
               opt.level, opt.refine_below_sj, opt.level - 1));
@@ -135,6 +147,7 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
       mesh_candidates(surface, finer, &again);
     } catch (const Error& e) {
       say(std::string("level ") + std::to_string(finer.level) + ": " + e.what() + "; keeping level " + std::to_string(opt.level));
+      if (dynamic_cast<const TimeoutError*>(&e)) r.budget_passed = true;
       return progress ? *progress : local;
     }
     const int inverted2 = inverted_cells(again.quality);
@@ -144,6 +157,7 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
     } else {
       say(fmt("level %.0f is no better (%.0f inverted, worst SJ %.3f); keeping level %.0f", finer.level, inverted2,
               worst_sj(again.quality), opt.level));
+      r.budget_passed = r.budget_passed || again.budget_passed;
     }
   }
   return progress ? *progress : local;
@@ -198,6 +212,18 @@ Method method_from_name(const std::string& name) {
   throw InputError("unknown meshing method '" + name + "': auto, polycube or overlay");
 }
 
+Deadline polycube_deadline(const MeshSurfaceOptions& opt) {
+  if (opt.deadline) return opt.deadline;
+  return opt.method == Method::Auto ? Deadline::in(opt.polycube_seconds) : Deadline();
+}
+
+std::string polycube_failure_note(const Error& e, const std::string& stage) {
+  if (const auto* t = dynamic_cast<const TimeoutError*>(&e))
+    return fmt("the polycube path stopped after its time budget of %g s at stage ", t->budget()) + stage;
+  const std::string what = e.what();
+  return "the polycube path failed at stage " + stage + ": " + what.substr(0, what.find('\n'));
+}
+
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
@@ -205,18 +231,20 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
     run_overlay(surface, opt, r);
     return r;
   }
-  if (opt.method == Method::Polycube) return mesh_polycube(surface, opt, &r);
+  MeshSurfaceOptions po = opt;  // the polycube path's options: its deadline fixed now
+  po.deadline = polycube_deadline(opt);
+  if (opt.method == Method::Polycube) return mesh_polycube(surface, po, &r);
   const double reference = mesh::enclosed_volume(surface.V, surface.F);
   std::string note;
   bool have = false;
   try {
-    mesh_polycube(surface, opt, &r);
+    mesh_polycube(surface, po, &r);
     have = true;
     if (meets_targets(r, reference, opt)) return r;
-    note = "the polycube mesh " + run_summary(r, reference);
+    note = "the polycube mesh " + run_summary(r, reference) +
+           (r.budget_passed ? fmt(" (its time budget of %g s passed)", po.deadline.budget()) : std::string());
   } catch (const Error& e) {
-    const std::string what = e.what();
-    note = "the polycube path failed at stage " + r.stage + ": " + what.substr(0, what.find('\n'));
+    note = polycube_failure_note(e, r.stage);
   }
   if (opt.log) opt.log(0, note + "; meshing with the overlay grid too");
   MeshSurfaceRun other;
@@ -297,12 +325,14 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   autopolycube::AutoPolycubeOptions ao = opt.polycube;
   ao.size = size;
   ao.level = opt.level;
+  ao.deadline = opt.deadline;
   ao.log = inner;
   std::exception_ptr first_error;
   mesh::SurfaceMesh first_labels;
   autopolycube::AutoPolycube first_polycube;
   for (size_t attempt = 0; attempt < weights.size(); ++attempt) {
     r.stage = "segment";
+    opt.deadline.check("segment");  // also between the retries: each is a whole segmentation and polycube
     auto t = Clock::now();
     segmentation::CvtOptions so = opt.segment;
     so.edge_weight = weights[attempt];
@@ -322,6 +352,9 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
                                                                                                       : nullptr;
     try {
       autopolycube::autopolycube(r.labels, ao, &r.polycube);
+    } catch (const TimeoutError&) {  // no retry: the time is up
+      r.seconds[1] += since(t);
+      throw;
     } catch (const Error& e) {  // GeometryError (labelling) or MeshingError (cutting)
       r.seconds[1] += since(t);
       if (!first_error) {
@@ -349,6 +382,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
       fmt(", worst block SJ %.3f, in %.2f s", r.polycube.min_block_quality, r.seconds[1]));
 
   r.stage = "generate";
+  opt.deadline.check("generate");
   auto t = Clock::now();
   generation::GenerateOptions go;
   go.level = opt.level;
@@ -362,13 +396,17 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
 
   r.stage = "improve";
   t = Clock::now();
+  bool stopped = false;
   if (opt.improve) {
     optimize::ImproveOptions io = opt.improvement;
     io.surface = r.polycube.patches;
+    io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
     io.log = inner;
     optimize::ImproveResult ir = optimize::improve(r.generated, io);
     r.mesh = std::move(ir.mesh);
     r.quality = ir.after;
+    stopped = ir.stopped;
+    r.budget_passed = r.budget_passed || stopped;
   } else {
     r.mesh = r.generated;
     r.quality = r.generated_quality;
@@ -376,7 +414,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   r.seconds[3] = since(t);
   say(fmt("improve: %.0f cells, ", r.mesh.num_cells()) + worst_by_type(r.quality) +
       (r.quality.hex.count > 0 ? fmt(", mean hex %.3f", r.quality.hex.sj_mean) : std::string()) +
-      fmt(", in %.2f s", r.seconds[3]));
+      fmt(", in %.2f s", r.seconds[3]) + (stopped ? " (stopped early: time budget)" : ""));
   r.level = opt.level;
   r.keep_widths = opt.polycube.keep_widths;
   r.collapse_apexes = opt.polycube.collapse_apexes;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "hexdom/autopolycube/autopolycube.h"
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
@@ -28,6 +29,21 @@ Method method_from_name(const std::string& name);
 
 struct MeshSurfaceOptions {
   Method method = Method::Auto;
+  /// The polycube path's time budget in Method::Auto, in seconds from the call (0: no limit), so
+  /// that auto falls back to the overlay path quickly where the polycube path takes long. It is
+  /// looked at between the segmentation's retries and between the stages, inside autopolycube (label
+  /// repair, chart maps, sliver strips) and after each improvement round, and before each further
+  /// candidate. Where no polycube mesh exists yet the path stops with TimeoutError, which auto
+  /// treats as any failure of the polycube path (the overlay runs; polycube_note names the budget and
+  /// the stage); once a mesh exists the improvement ends early and no further candidate is tried,
+  /// the run so far kept (MeshSurfaceRun::budget_passed). Method::Polycube ignores it (no limit: the
+  /// path asked for runs to its end) unless `deadline` is set; the program's --polycube-seconds and
+  /// the module's polycube_seconds=, when given with the polycube method, set `deadline` from it.
+  /// Method::Overlay: not used (the overlay path has no budget).
+  double polycube_seconds = 5;
+  /// When set, the polycube path's deadline in Auto and Polycube, instead of polycube_seconds: a
+  /// moment fixed by the caller (mesh_cad_part sets it once for all its tessellations).
+  Deadline deadline;
   /// The overlay path's options; its size, alignment and log are taken from here.
   overlay::OverlayOptions overlay;
   double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30
@@ -98,15 +114,28 @@ struct MeshSurfaceRun {
   /// part was meshed in its own axes.
   segmentation::CubeFrame frame;
   int segmentations = 0;      ///< segmentations tried
+  /// The polycube path's deadline passed after it had a mesh: the improvement stopped early or
+  /// candidates were left untried; the mesh is the best one made in the time.
+  bool budget_passed = false;
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
 };
 
 /// Runs the path options.method names (see Method); for the polycube, segment -> autopolycube -> generate -> improve on `surface` (closed, oriented outward; its
 /// patch ids are CAD faces when there are several, see CvtOptions::respect_faces). When `progress`
 /// is given it holds, also when this throws, what the finished stages produced. Inverted cells that
-/// remain are reported in `quality`, not thrown. Throws what the stages throw.
+/// remain are reported in `quality`, not thrown. Throws what the stages throw; with Method::Polycube
+/// and a deadline (see polycube_seconds) TimeoutError when it passes before a mesh exists.
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
+
+/// The polycube path's deadline for a call starting now: options.deadline when set; otherwise in
+/// Method::Auto polycube_seconds from now (none for 0); none for Polycube and Overlay.
+Deadline polycube_deadline(const MeshSurfaceOptions& options);
+
+/// polycube_note's text for an error of the polycube path that stopped at `stage`: "the polycube
+/// path stopped after its time budget of 5 s at stage autopolycube" for a TimeoutError, "the
+/// polycube path failed at stage autopolycube: <first line of the error>" for the others.
+std::string polycube_failure_note(const Error& error, const std::string& stage);
 
 /// Whether run b is better than run a by the candidates' order (see try_without_widths): fewer
 /// inverted cells, then a worst SJ >= target_sj, then a volume within target_volume of `reference`,

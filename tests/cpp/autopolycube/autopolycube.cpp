@@ -1,7 +1,13 @@
 #include "hexdom/autopolycube/autopolycube.h"
 #include "hexdom/autopolycube/map/polycube_map.h"
+#include "hexdom/autopolycube/repair/chart_graph.h"
+#include "hexdom/autopolycube/repair/plane_groups.h"
+#include "hexdom/autopolycube/repair/repair_labels.h"
 
+#include <chrono>
 #include <map>
+#include <string>
+#include <thread>
 
 #include "auto_test_util.h"
 #include "hexdom/generation/generate.h"
@@ -193,6 +199,50 @@ TEST(Autopolycube, BadArgumentsAreGeometryErrors) {
   EXPECT_THROW(autopolycube::autopolycube(s, o), GeometryError);
   s.patch(0) = 0;
   EXPECT_THROW(autopolycube::autopolycube(s, cell_options(0.5, 1)), GeometryError);
+}
+
+// A passed time budget stops the automatic polycube with TimeoutError naming the step, in the
+// polycube itself and in its label repair and chart maps; the same calls without it succeed.
+TEST(Autopolycube, APassedDeadlineThrowsTimeoutErrorNamingTheStep) {
+  auto s = test::cylinder_surface(1.0, 2.0, 48, 12, 6);
+  auto o = cell_options(0.25, 1);
+  ASSERT_NO_THROW(autopolycube::autopolycube(s, o));
+  o.deadline = Deadline::in(1e-6);
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  try {
+    autopolycube::autopolycube(s, o);
+    FAIL() << "no TimeoutError";
+  } catch (const TimeoutError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("autopolycube", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("stopped after the time budget of 1e-06 s"), std::string::npos) << e.what();
+  }
+
+  // The label repair, on labels with islands to repair.
+  auto islands = test::cell_surface({{0, 0, 0}}, 4);
+  for (int f = 0; f < islands.F.rows(); f += 7) islands.patch(f) = islands.patch(f) == 1 ? 3 : 1;
+  autopolycube::RepairOptions ro;
+  ASSERT_GT(autopolycube::repair_labels(islands, ro).relabelled, 0);
+  ro.deadline = o.deadline;
+  try {
+    autopolycube::repair_labels(islands, ro);
+    FAIL() << "no TimeoutError";
+  } catch (const TimeoutError& e) {
+    EXPECT_EQ(e.where(), "autopolycube (label repair)");
+  }
+
+  // The chart maps.
+  const auto g = autopolycube::chart_graph(s);
+  const auto pg = autopolycube::plane_groups(s, g);
+  autopolycube::PolycubeMapOptions mo;
+  mo.cell = 0.25;
+  ASSERT_NO_THROW(autopolycube::polycube_map(s, g, pg, mo));
+  mo.deadline = o.deadline;
+  try {
+    autopolycube::polycube_map(s, g, pg, mo);
+    FAIL() << "no TimeoutError";
+  } catch (const TimeoutError& e) {
+    EXPECT_EQ(e.where(), "autopolycube (chart maps)");
+  }
 }
 
 // The paper's raw surfaces that the automatic path meshes with its defaults.

@@ -1,9 +1,12 @@
 #include "hexdom/optimize/improve.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <random>
+#include <string>
+#include <thread>
 
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/quality/metrics.h"
@@ -276,4 +279,38 @@ TEST(Improve, MeanAfterExplicitStagesRaisesTheMeanAndKeepsTheWorst) {
   std::printf("mean %.4f -> %.4f, worst %.4f -> %.4f\n", plain.mean(), with_mean.mean(), plain.minCoeff(), with_mean.minCoeff());
   EXPECT_GE(with_mean.minCoeff(), plain.minCoeff() - 1e-12);
   EXPECT_GT(with_mean.mean(), plain.mean() + 0.003);  // measured 0.8641 -> 0.8700, worst 0.2903 kept
+}
+
+// With its time budget passed, the improvement ends after its first round: one run, no mean pass,
+// still a valid mesh of the same box (no inverted cell, the unit volume), and the log says why.
+TEST(Improve, APassedDeadlineStopsAfterOneRoundWithAValidMesh) {
+  const mesh::Mesh m = cube_grid(4, 0.35);
+  const optimize::ImproveResult full = optimize::improve(m);
+  ASSERT_GT(full.rounds, 1) << "the unlimited sequence makes several rounds: the test would not tell";
+  EXPECT_FALSE(full.stopped);
+
+  optimize::ImproveOptions opt;
+  opt.deadline = Deadline::in(1e-6);
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  std::string log;
+  opt.log = [&](int, const std::string& s) { log += s + "\n"; };
+  const optimize::ImproveResult r = optimize::improve(m, opt);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_LE(r.rounds, 1);
+  EXPECT_NE(log.find("improve: stopped after the time budget of 1e-06 s"), std::string::npos) << log;
+  EXPECT_NE(log.find("mean scaled Jacobian"), std::string::npos) << log;
+  EXPECT_NE(log.find(" in 0 passes"), std::string::npos) << "a mean pass ran:\n" << log;
+  const Eigen::VectorXd sj = sj_of(r.mesh);
+  EXPECT_GT(sj.minCoeff(), 0.0);
+  EXPECT_EQ(r.after.hex.inverted + r.after.prism.inverted + r.after.tet.inverted, 0);
+  EXPECT_NEAR(quality::compute_metrics(r.mesh).volume.sum(), 1.0, 1e-9);
+
+  // Explicit stages: one smoothing pass, no optimisation round.
+  opt.smooth = 5;
+  opt.optimize = 5;
+  const optimize::ImproveResult e = optimize::improve(m, opt);
+  EXPECT_TRUE(e.stopped);
+  EXPECT_EQ(e.rounds, 1);
+  EXPECT_GT(sj_of(e.mesh).minCoeff(), 0.0);
+  EXPECT_NEAR(quality::compute_metrics(e.mesh).volume.sum(), 1.0, 1e-9);
 }

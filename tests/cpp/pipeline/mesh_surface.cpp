@@ -1,8 +1,10 @@
 #include "hexdom/pipeline/mesh_surface.h"
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "autopolycube/auto_test_util.h"
@@ -93,6 +95,32 @@ TEST(MeshSurface, ASecondCandidateIsMeasuredWhenTheFirstMissesATarget) {
   // 0.94 with the widths, 0.88 without.
   EXPECT_NE(log.find("kept the polycube with the widths of holes"), std::string::npos) << log;
   EXPECT_LT(volume_error(r, reference), 0.015);
+}
+
+// Once the time budget has passed after the first candidate, no further candidate is tried: the run
+// so far is kept and the log says so. (The log line of the first candidate's improvement waits until
+// the deadline has passed; the test above shows the second candidate tried without a budget.)
+TEST(MeshSurface, NoFurtherCandidateOnceTheTimeBudgetHasPassed) {
+  const auto s = tilted_hole_bar();
+  pipeline::MeshSurfaceOptions o = tilted_hole_options();
+  o.target_sj = 2.0;  // no mesh meets it: without the budget the second candidate is meshed
+  o.method = pipeline::Method::Polycube;
+  const Deadline deadline = Deadline::in(4.0);  // time for the first candidate (about 0.5 s)
+  o.deadline = deadline;
+  std::string log;
+  o.log = [&](int, const std::string& m) {
+    log += m + "\n";
+    if (m.rfind("improve:", 0) == 0)
+      while (!deadline.passed()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  };
+  const auto r = pipeline::mesh_surface(s, o);
+  ASSERT_EQ(log.find("stopped"), std::string::npos) << "the first candidate did not finish in time:\n" << log;
+  EXPECT_NE(log.find("time budget passed: keeping level 1: worst SJ"), std::string::npos) << log;
+  EXPECT_EQ(log.find("again without keeping the widths of holes"), std::string::npos) << log;
+  EXPECT_TRUE(r.budget_passed);
+  EXPECT_EQ(r.segmentations, 1);
+  EXPECT_TRUE(r.keep_widths);
+  EXPECT_EQ(r.quality.hex.inverted, 0);
 }
 
 // Without a hole keep_widths changes nothing, so the polycube without the widths would be the same

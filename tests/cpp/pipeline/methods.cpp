@@ -70,6 +70,54 @@ TEST(AutomaticChoice, MeshesTheGridTooWhenThePolycubeMissesATarget) {
   EXPECT_EQ(automatic.mesh.num_cells(), better.mesh.num_cells());
 }
 
+// A time budget too small for anything: auto meshes the box (whose polycube mesh it keeps without a
+// budget, test above) with the overlay grid, and polycube_note says that the budget stopped the
+// polycube path; for mesh_cad_part one budget stops every tessellation's polycube.
+TEST(TimeBudget, AutoWithATinyBudgetKeepsTheOverlayMeshAndNamesTheBudget) {
+  pipeline::MeshCadOptions o;
+  o.mesh.polycube_seconds = 1e-6;
+  std::string log;
+  o.log = o.mesh.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const pipeline::MeshCadRun r = pipeline::mesh_cad_part(cad::read_shape(test::write_part(test::make_box(), "budget_box")), o);
+  EXPECT_EQ(r.run.method, pipeline::Method::Overlay) << log;
+  EXPECT_NE(r.run.polycube_note.find("the polycube path stopped after its time budget of 1e-06 s at stage"), std::string::npos)
+      << r.run.polycube_note;
+  EXPECT_EQ(inverted(r.run.quality), 0);
+  EXPECT_EQ(r.tessellations, 1) << log;
+
+  // mesh_surface alone, on the box's tessellation.
+  pipeline::MeshSurfaceOptions so;
+  so.polycube_seconds = 1e-6;
+  const pipeline::MeshSurfaceRun sr = pipeline::mesh_surface(r.surface, so);
+  EXPECT_EQ(sr.method, pipeline::Method::Overlay);
+  EXPECT_NE(sr.polycube_note.find("time budget of 1e-06 s"), std::string::npos) << sr.polycube_note;
+  EXPECT_EQ(inverted(sr.quality), 0);
+  so.polycube_seconds = 0;  // no limit: the polycube mesh again
+  EXPECT_EQ(pipeline::mesh_surface(r.surface, so).method, pipeline::Method::Polycube);
+}
+
+// Method::Polycube runs to its end unless it is given a deadline; with one that passes before there
+// is a mesh it throws TimeoutError (mesh_surface and mesh_cad_part alike).
+TEST(TimeBudget, PolycubeWithATinyDeadlineThrowsTimeoutError) {
+  const cad::Shape shape = cad::read_shape(test::write_part(test::make_box(), "budget_box_polycube"));
+  const mesh::SurfaceMesh s = cad::tessellate(shape);
+  pipeline::MeshSurfaceOptions o;
+  o.method = pipeline::Method::Polycube;
+  o.polycube_seconds = 1e-6;  // not the polycube method's budget: no deadline, no limit
+  EXPECT_EQ(pipeline::mesh_surface(s, o).method, pipeline::Method::Polycube);
+  o.deadline = Deadline::in(1e-6);
+  EXPECT_THROW(pipeline::mesh_surface(s, o), TimeoutError);
+  pipeline::MeshCadOptions co;
+  co.mesh = o;
+  co.mesh.deadline = Deadline::in(1e-6);
+  try {
+    pipeline::mesh_cad_part(shape, co);
+    FAIL() << "no TimeoutError";
+  } catch (const TimeoutError& e) {
+    EXPECT_NE(std::string(e.what()).find("stopped after the time budget of 1e-06 s"), std::string::npos) << e.what();
+  }
+}
+
 TEST(AutomaticChoice, MethodsAreNamed) {
   for (auto m : {pipeline::Method::Auto, pipeline::Method::Polycube, pipeline::Method::Overlay})
     EXPECT_EQ(pipeline::method_from_name(pipeline::method_name(m)), m);

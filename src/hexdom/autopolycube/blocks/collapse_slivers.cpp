@@ -267,6 +267,7 @@ CollapseSlivers collapse_slivers(GridPolycube& polycube, const CollapseSliversOp
   auto matches = [&](State& s, Eigen::MatrixXd& pos, std::string* why) { return blocks.matches(s, pos, why); };
 
   for (const Strip& st : strips) {
+    opt.deadline.check("autopolycube (slivers)");
     // Blocks around the strip's vertices and their worst quality now.
     std::set<int> touched;
     for (int l = st.l0; l <= st.l0 + st.nl; ++l)

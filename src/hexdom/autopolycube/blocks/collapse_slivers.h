@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "hexdom/autopolycube/blocks/grid_polycube.h"
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
@@ -34,6 +35,9 @@ struct CollapseSliversOptions {
   /// that is not in the plane of the patch it joins leaves a crease inside that patch, and the mesh
   /// cuts across it.
   double max_volume_change = 0.01;
+  /// Checked before each strip (each costs a match of every block face to the patches): once
+  /// passed, collapse_slivers throws TimeoutError ("autopolycube (slivers): ...").
+  Deadline deadline;
   LogCallback log;
 };
 

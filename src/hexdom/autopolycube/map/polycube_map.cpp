@@ -594,7 +594,9 @@ void map_chart(const MapInputs& in, const std::vector<Edge>& edges, const std::v
       if (opt.untangle) {
         std::vector<char> free_vertex(nv, 0);
         for (int v : inner) free_vertex[v] = 1;
-        const UntangleResult u = untangle_plane_map(s.V, s.F, tris, free_vertex, a, sg, m.D);
+        UntangleOptions uo;
+        uo.deadline = opt.deadline;
+        const UntangleResult u = untangle_plane_map(s.V, s.F, tris, free_vertex, a, sg, m.D, uo);
         if (opt.log)
           opt.log(0, chart_name(g, c) + ": untangled " + std::to_string(u.folded_before) + " folded triangles to " +
                          std::to_string(u.folded_after) + " (" + std::to_string(u.folded_fixed) + " with no free vertex) in " +
@@ -674,7 +676,10 @@ PolycubeMap polycube_map(const mesh::SurfaceMesh& s, const ChartGraph& g, const 
   for (int v = 0; v < nv; ++v) on_boundary[v] = (pg.of_vertex.row(v).array() >= 0).count() >= 2;
   m.flipped.assign(g.num_charts(), 0);
   std::vector<int> slot(nv, -1);
-  for (int c = 0; c < g.num_charts(); ++c) map_chart(in, edges, chart_tris[c], on_boundary, c, slot, m);
+  for (int c = 0; c < g.num_charts(); ++c) {
+    opt.deadline.check("autopolycube (chart maps)");
+    map_chart(in, edges, chart_tris[c], on_boundary, c, slot, m);
+  }
   for (int v = 0; v < nv; ++v)
     if (!m.D.row(v).allFinite())
       throw MeshingError("polycube map: vertex " + std::to_string(v + 1) + " got no position (planes " +

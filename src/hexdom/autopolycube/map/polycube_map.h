@@ -9,6 +9,7 @@
 
 #include "hexdom/autopolycube/repair/chart_graph.h"
 #include "hexdom/autopolycube/repair/plane_groups.h"
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
@@ -38,6 +39,9 @@ struct PolycubeMapOptions {
   double length_share = 0.6;
   /// Untangle folded charts by the barrier energy of untangle_plane_map (otherwise only local moves).
   bool untangle = true;
+  /// Checked before each chart is mapped and in the untangling's rounds: once passed, polycube_map
+  /// throws TimeoutError ("autopolycube (chart maps): ...").
+  Deadline deadline;
   LogCallback log;
 };
 

@@ -204,6 +204,7 @@ UntangleResult untangle_plane_map(const Eigen::MatrixXd& V, const Eigen::MatrixX
   Eigen::VectorXd best = x;
   int best_folded = folded;
   for (int round = 0; round < opt.outer; ++round) {
+    opt.deadline.check("autopolycube (chart maps)");
     r.rounds = round + 1;
     const double E_prev = P.eval(x, eps, nullptr, nullptr, nullptr);
     r.iterations += lbfgs(P, x, eps, opt.inner);

@@ -7,12 +7,17 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "hexdom/common/deadline.h"
+
 namespace hexdom::autopolycube {
 
 struct UntangleOptions {
   int outer = 60;    ///< rounds of the regularisation parameter epsilon
   int inner = 300;   ///< L-BFGS iterations per round
   double theta = 1.0 / 128;  ///< weight of the area term against the shape term
+  /// Checked before every round: once passed, untangle_plane_map throws TimeoutError
+  /// ("autopolycube (chart maps): ...").
+  Deadline deadline;
 };
 
 struct UntangleResult {

@@ -317,6 +317,8 @@ namespace {
 
 // Curves (or crease sides) tried per round of the band repairs.
 constexpr size_t kMaxBandCurves = 4;
+// Where a TimeoutError says the repair stopped.
+const char* const kWhere = "autopolycube (label repair)";
 
 // Area-weighted loss of normal fit, sum of area * (n . axis(old) - n . axis(new)), of a relabelling.
 double fit_loss(const mesh::SurfaceMesh& s, const Eigen::VectorXi& label) {
@@ -337,13 +339,14 @@ double fit_loss(const mesh::SurfaceMesh& s, const Eigen::VectorXi& label) {
 // more material between a hole's wall and the face it leaves); an empty result when none leaves
 // fewer than `problems`.
 Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGraph& g, const ChartCurve& c, int problems,
-                                     double width, std::string* what) {
+                                     double width, std::string* what, const Deadline& deadline) {
   Eigen::VectorXi best;
   long best_n = problems;
   double best_loss = 0;
   mesh::SurfaceMesh t = s;
   for (int chart : {c.left, c.right})
     for (double w : {0.5 * width, width, 2.0 * width, 4.0 * width}) {
+      deadline.check(kWhere);
       t.patch = relabel_band(s, g, chart, c.vertices, w);
       const ChartGraph tg = chart_graph(t);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
@@ -372,7 +375,8 @@ Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGrap
 // none leaves fewer than `problems`. Only creases at least `width` long count, and only in the
 // charts marked in `only` when given.
 Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int problems, double width,
-                                   double crease_angle, std::string* what, const std::vector<char>* only) {
+                                   double crease_angle, std::string* what, const std::vector<char>* only,
+                                   const Deadline& deadline) {
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
   const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   const double cos_crease = std::cos(crease_angle * M_PI / 180.0);
@@ -428,6 +432,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
     for (int f = 0; f < nf; ++f)
       if (g.region(f) == side_chart[id] && side[f] != static_cast<int>(id)) sg.region(f) = -1;
     for (double w : {0.5 * width, width, 2.0 * width}) {
+      deadline.check(kWhere);
       t.patch = relabel_band(s, sg, side_chart[id], side_crease_vertices[id], w);
       const ChartGraph tg = chart_graph(t);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
@@ -452,7 +457,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
 // then the fewest mixed curves, then losing the least normal fit wins; an empty result when none
 // leaves fewer chart problems or as many and fewer than `mixed_curves` mixed curves.
 Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int problems, int mixed_curves,
-                                  double width, std::string* what) {
+                                  double width, std::string* what, const Deadline& deadline) {
   const std::vector<std::vector<int>> vt = vertex_triangles(s);
   std::vector<std::pair<double, int>> mixed;  // the longest curves first
   std::vector<CurveConvexity> parts(g.curves.size());
@@ -489,6 +494,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
       };
       for (const std::vector<int>* part : {&parts[ci].concave, &parts[ci].convex})
         for (double w : {width, 2.0 * width}) {
+          deadline.check(kWhere);
           const std::set<int> seeds(part->begin(), part->end());
           t.patch = s.patch;
           std::vector<char> seen(s.F.rows(), 0);
@@ -543,6 +549,7 @@ RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions&
     return h;
   };
   for (;;) {
+    opt.deadline.check(kWhere);
     const ChartGraph g = chart_graph(s);
     const PlaneGroups pg = plane_groups(s, g);
     auto problems = chart_problems(s, g, pg);
@@ -552,7 +559,7 @@ RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions&
       const auto mixed = mixed_convexity_problems(s, g, width);
       std::string what;
       Eigen::VectorXi band =
-          mixed.empty() ? Eigen::VectorXi() : repair_mixed_band(s, g, 0, static_cast<int>(mixed.size()), width, &what);
+          mixed.empty() ? Eigen::VectorXi() : repair_mixed_band(s, g, 0, static_cast<int>(mixed.size()), width, &what, opt.deadline);
       if (band.size()) {
         if (opt.log) opt.log(0, "relabelling " + what + ": " + mixed.front().message);
         s.patch = band;
@@ -590,7 +597,7 @@ RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions&
       for (const auto& [key, ci] : opposite) {
         const auto& c = g.curves[ci];
         std::string what;
-        Eigen::VectorXi band = repair_opposite_band(s, g, c, static_cast<int>(problems.size()), width, &what);
+        Eigen::VectorXi band = repair_opposite_band(s, g, c, static_cast<int>(problems.size()), width, &what, opt.deadline);
         if (band.size() == 0) continue;
         if (opt.log) opt.log(0, "relabelling " + what);
         s.patch = band;
@@ -605,7 +612,7 @@ RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions&
         for (const auto& p : problems)
           if (p.kind == ProblemKind::BadTurning) named[p.charts.front()] = 1;
         Eigen::VectorXi band =
-            repair_crease_band(s, g, static_cast<int>(problems.size()), width, opt.crease_angle, &what, &named);
+            repair_crease_band(s, g, static_cast<int>(problems.size()), width, opt.crease_angle, &what, &named, opt.deadline);
         if (band.size()) {
           if (opt.log) opt.log(0, "relabelling " + what);
           s.patch = band;

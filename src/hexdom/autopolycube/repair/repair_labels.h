@@ -8,6 +8,7 @@
 
 #include "hexdom/autopolycube/repair/chart_graph.h"
 #include "hexdom/autopolycube/repair/plane_groups.h"
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 
@@ -61,6 +62,9 @@ struct RepairOptions {
   double band_width = 0;
   /// Degrees: two triangles of one chart whose normals differ by more than this meet at a crease.
   double crease_angle = 35.0;
+  /// Checked at the head of every round and before every band tried: once passed, repair_labels
+  /// throws TimeoutError ("autopolycube (label repair): stopped after the time budget of ...").
+  Deadline deadline;
   LogCallback log;
 };
 
@@ -86,7 +90,8 @@ struct RepairResult {
 /// to the chart's other curves (at a cusp: the tip of the chart that the other wraps around), when one
 /// leaves no problem and fewer such curves, the least normal fit lost first; such curves that no band
 /// repairs are left (not returned). Stops when no problem is left, after max_relabels, or when a
-/// labelling comes back (a cycle). Never throws for problems: they are returned.
+/// labelling comes back (a cycle). Never throws for problems: they are returned; throws TimeoutError
+/// when options.deadline passes.
 RepairResult repair_labels(const mesh::SurfaceMesh& labels, const RepairOptions& options = {});
 
 /// The labels with the triangles of `chart` within `width` (centroid to the nearest vertex of

@@ -1,0 +1,33 @@
+#include "hexdom/common/deadline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "hexdom/common/error.h"
+
+namespace hexdom {
+
+Deadline Deadline::in(double seconds) {
+  Deadline d;
+  if (!(seconds > 0) || std::isinf(seconds)) return d;
+  d.set_ = true;
+  d.budget_ = seconds;
+  // duration<double> to the clock's ticks; budgets beyond a century are clamped to a century (the
+  // time_point would overflow), which is no limit in practice.
+  const double capped = std::min(seconds, 100.0 * 365 * 24 * 3600);
+  d.end_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(capped));
+  return d;
+}
+
+double Deadline::left() const {
+  if (!set_) return std::numeric_limits<double>::infinity();
+  const double s = std::chrono::duration<double>(end_ - Clock::now()).count();
+  return s > 0 ? s : 0.0;
+}
+
+void Deadline::check(const std::string& where) const {
+  if (passed()) throw TimeoutError(where, budget_);
+}
+
+}  // namespace hexdom

@@ -1,0 +1,44 @@
+// A time budget as a value: the moment after which a long computation should give up or stop early.
+//
+// Contract: a default-constructed Deadline is none (no limit): passed() is false, left() infinite and
+// check() never throws. Deadline::in(s) is s seconds from the call on the steady clock; s <= 0, NaN or
+// infinite give none, so that "0: no limit" options pass their value straight in. A Deadline is
+// copied freely into the options of the stages it bounds (all copies share the same moment); it
+// measures, it never interrupts: each stage decides where it looks (loop heads, between stages) and
+// what it does when the time is up: throw TimeoutError through check() where it has no result yet,
+// or stop early and return the best it has (saying so in its log) where it has one.
+#pragma once
+
+#include <chrono>
+#include <string>
+
+namespace hexdom {
+
+class Deadline {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  Deadline() = default;  ///< none: never passes
+
+  /// `seconds` from now; none when seconds <= 0, NaN or infinite.
+  static Deadline in(double seconds);
+
+  /// Whether there is a limit at all.
+  bool is_set() const { return set_; }
+  explicit operator bool() const { return set_; }
+  /// Whether the moment has come (false for none).
+  bool passed() const { return set_ && Clock::now() >= end_; }
+  /// Seconds until the moment: 0 once passed, infinity for none.
+  double left() const;
+  /// The budget it was made with (Deadline::in's seconds; 0 for none), for messages.
+  double budget() const { return budget_; }
+  /// Throws TimeoutError(where, budget()) when passed(): "<where>: stopped after the time budget of 5 s".
+  void check(const std::string& where) const;
+
+ private:
+  bool set_ = false;
+  double budget_ = 0;
+  Clock::time_point end_{};
+};
+
+}  // namespace hexdom
