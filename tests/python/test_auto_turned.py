@@ -95,7 +95,7 @@ def parts(freecad, tmp_path_factory, core):
                 shape.exportStep(str(step))
             out = d / "mesh.vtu"
             # The frame's effect on the polycube path, not its time: no budget (i10o_simp turned
-            # by 30 degrees takes longer than auto's default 5 s).
+            # by 30 degrees takes longer than auto's default 20 s).
             r = subprocess.run([str(support.hexdom_bin()), "mesh", str(step), "-o", str(out),
                                 "--polycube-seconds", "0"], capture_output=True, text=True)
             cache[key] = (shape, r, out)

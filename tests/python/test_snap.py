@@ -68,7 +68,7 @@ def meshed(tmp_path_factory, core):
             part = _cad(stem)
             out = tmp_path_factory.mktemp(stem) / f"{stem}.vtk"
             # The snap of the polycube mesh the path makes without a time budget (i01o_m1's takes
-            # longer than auto's default 5 s, and a mesh stopped early is another input).
+            # longer than auto's default 20 s, and a mesh stopped early is another input).
             r = subprocess.run([str(support.hexdom_bin()), "mesh", part, "-o", str(out), "--allow-inverted",
                                 "--polycube-seconds", "0"], capture_output=True, text=True)
             _MESHED[stem] = (part, r, out)

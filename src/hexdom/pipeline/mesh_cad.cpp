@@ -108,7 +108,13 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   first.deadline = polycube_deadline(opt.mesh);
   std::exception_ptr first_error;
   bool meshed = attempt(first, r, &first_error);  // a TimeoutError here (Method::Polycube) is passed on
-  if (meshed && inverted_cells(r.run.quality) == 0) return r;
+  // Done when the mesh has no inverted cell; in auto mode, when the overlay was kept (the polycube
+  // failed or did worse) and misses a target, other tessellations may still give a polycube.
+  auto done = [&] {
+    if (inverted_cells(r.run.quality) > 0) return false;
+    return !(opt.mesh.method == Method::Auto && r.run.method == Method::Overlay && !meets_targets(r.run, reference, opt.mesh));
+  };
+  if (meshed && done()) return r;
   // The overlay grid hardly depends on the triangles: with the overlay path alone another
   // tessellation would give the same mesh. (In auto mode another one may give a polycube.)
   if (meshed && opt.mesh.method == Method::Overlay) return r;
@@ -117,12 +123,14 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   MeshSurfaceOptions mo = first;
   if (mo.size <= 0) mo.size = segmentation::frame_diagonal(r.surface, r.run.frame.rotation) / 30.0;
   const double first_size = r.stats.size;
-  const std::string why = meshed ? fmt(r.snapped ? "%.0f inverted cells after the snap" : "%.0f inverted cells remain",
-                                       inverted_cells(r.run.quality))
-                                 : "the automatic polycube failed at stage " + r.run.stage;
-  // In auto mode an overlay mesh kept with inverted cells means the polycube failed on this
-  // tessellation: the others are tried as if nothing had meshed, with the polycube path only (the
-  // overlay grid would give the same mesh again), and the better kept.
+  const std::string why = !meshed ? "the automatic polycube failed at stage " + r.run.stage
+                          : inverted_cells(r.run.quality) > 0
+                              ? fmt(r.snapped ? "%.0f inverted cells after the snap" : "%.0f inverted cells remain",
+                                    inverted_cells(r.run.quality))
+                              : "the overlay mesh kept misses a target (" + run_summary(r.run, reference) + ")";
+  // In auto mode an overlay mesh kept with inverted cells or short of a target means the polycube
+  // failed or did worse on this tessellation: the others are tried as if nothing had meshed, with
+  // the polycube path only (the overlay grid would give the same mesh again), and the better kept.
   const bool polycube_failed = meshed && r.run.method == Method::Overlay;
   if (polycube_failed) mo.method = Method::Polycube;
   const size_t tries = meshed && !polycube_failed
@@ -155,7 +163,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       meshed = true;
       say(fmt("kept the tessellation at %.2f x the size", f));
     }
-    if (inverted_cells(r.run.quality) == 0) break;
+    if (r.run.method == Method::Polycube ? inverted_cells(r.run.quality) == 0 : meets_targets(r.run, reference, mo)) break;
   }
   if (!meshed) std::rethrow_exception(first_error);
   return r;
