@@ -163,7 +163,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       meshed = true;
       say(fmt("kept the tessellation at %.2f x the size", f));
     }
-    if (r.run.method == Method::Polycube ? inverted_cells(r.run.quality) == 0 : meets_targets(r.run, reference, mo)) break;
+    if (done()) break;
   }
   if (!meshed) std::rethrow_exception(first_error);
   return r;

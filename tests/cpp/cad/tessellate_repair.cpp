@@ -7,10 +7,8 @@
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
-#include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
-#include <GProp_GProps.hxx>
 #include <ShapeFix_Shell.hxx>
 #include <ShapeFix_Solid.hxx>
 #include <TopoDS_Shell.hxx>
@@ -33,12 +31,6 @@ using namespace hexdom;
 using hexdom::test::write_part;
 
 namespace {
-
-double brep_volume(const TopoDS_Shape& s) {
-  GProp_GProps g;
-  BRepGProp::VolumeProperties(s, g);
-  return g.Mass();
-}
 
 /// `solid` rebuilt with the faces numbered in `turn` (1-based, FreeCAD's FaceN) turned over in
 /// its shell: the B-rep's own orientations then disagree across their edges.
@@ -221,7 +213,7 @@ TEST(TessellateRepair, FacesTurnedOverInTheShellAreTurnedBack) {
     cad::Shape shape = cad::read_shape(write_part(with_turned_faces(c.intact, c.turn), "turned_" + c.name));
     const double size = cad::shape_info(shape).box.diagonal().norm() / 30;
     const Outcome o = tessellate_logged(shape, size);
-    expect_good_surface(shape, o.surface, brep_volume(c.intact), cad::shape_info(shape).faces, size);
+    expect_good_surface(shape, o.surface, test::brep_volume(c.intact), cad::shape_info(shape).faces, size);
     EXPECT_TRUE(logged(o, "turned over: its triangles ran against its neighbours'")) << c.name;
   }
   // The faces that were turned are named (Face3 alone: the other five outvote it).
@@ -238,7 +230,7 @@ TEST(TessellateRepair, FaceWithoutBrepMeshTrianglesIsTriangulatedFromItsEdges) {
   const TopoDS_Shape bent = box_with_bent_pcurve(cylinder);
   cad::Shape shape = cad::read_shape(write_part(bent, "bent_pcurve"));
   const Outcome o = tessellate_logged(shape, 1.0);
-  expect_good_surface(shape, o.surface, brep_volume(test::make_box_with_hole()), 7, 1.0, false);
+  expect_good_surface(shape, o.surface, test::brep_volume(test::make_box_with_hole()), 7, 1.0, false);
   EXPECT_TRUE(logged(o, "Face" + std::to_string(cylinder) + " triangulated by hexdom: BRepMesh could not triangulate it"));
   // Its triangles lie on the cylinder of radius 4 about (10, 10) and cover its area (2 pi 4 10).
   double area = 0;
