@@ -39,6 +39,7 @@ import fnmatch
 import glob
 import json
 import os
+import re
 import signal
 import statistics
 import subprocess
@@ -168,6 +169,8 @@ def run_one(hexdom, part, method, use_method, timeout):
             r.setdefault("error", first_error(stderr, p.returncode))
         if part["ref_volume"] is None:
             part["ref_volume"] = brep_volume_from_stdout(stdout)
+        kept = re.search(r"kept: (\w+) path", stderr)
+        r["path"] = kept.group(1) if kept else None
         return finish(r, part, report)
 
 
@@ -211,7 +214,7 @@ def reason(r):
     return ""
 
 
-HEADER = (f"{'part':28s} {'method':8s} {'status':7s} {'hex':>7s} {'prism':>6s} {'tet':>6s} {'inv':>4s} "
+HEADER = (f"{'part':28s} {'method':8s} {'status':7s} {'kept':8s} {'hex':>7s} {'prism':>6s} {'tet':>6s} {'inv':>4s} "
           f"{'SJ min':>7s} {'vol %':>8s} {'ER max':>7s} {'time s':>7s}  targets")
 
 
@@ -226,7 +229,7 @@ def row(r):
     c = r.get("cells", {})
     flags = " ".join(k if r["targets"][k] else "-" * len(k) for k in TARGETS[:-1])
     miss = "" if r["targets"]["all"] else "  <- " + reason(r)[:120]
-    return (f"{r['part'][:28]:28s} {r['method']:8s} {r['status']:7s} {f(c.get('hex'), '7d')} {f(c.get('prism'), '6d')} "
+    return (f"{r['part'][:28]:28s} {r['method']:8s} {r['status']:7s} {r.get('path') or '-':8s} {f(c.get('hex'), '7d')} {f(c.get('prism'), '6d')} "
             f"{f(c.get('tet'), '6d')} {f(r.get('inverted'), '4d')} {f(r.get('hex_sj_min'), '7.3f')} "
             f"{f(None if r.get('volume_error') is None else 100 * r['volume_error'], '+8.2f')} "
             f"{f(r.get('edge_ratio_max'), '7.2f')} {r['time']:7.2f}  {flags}{miss}")

@@ -188,8 +188,9 @@ void add_mesh(CLI::App& app) {
   cmd->add_flag("--no-snap", a->no_snap, "CAD files: leave the boundary nodes on the tessellation instead of the B-rep");
   cmd->add_option("--solid", a->solid, "CAD files: which solid (1-based); default: the first")->check(CLI::PositiveNumber);
   cmd->add_flag("--keep", a->keep,
-                "also write <output stem>_labels.k, _structure.k, _patches.k and _polycube.vtk (on failure the labels "
-                "and the polycube are always written)");
+                "also write <output stem>_surface.k (the triangle surface meshed: the tessellation kept, or the "
+                "input), and from the polycube path _labels.k, _structure.k, _patches.k and _polycube.vtk (on failure "
+                "the labels and the polycube are always written)");
   cmd->add_option("--report", a->report, "also write the final quality report as JSON to this file");
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
   cmd->add_flag("-v,--verbose", a->opt.verbose, "also print the stages' own messages");
@@ -214,6 +215,7 @@ void add_mesh(CLI::App& app) {
     auto write_intermediate = [&](bool all) {
       if (run.labels.F.rows() > 0) io::write_mesh(stem + "_labels.k", mesh::from_surface(run.labels));
       if (run.polycube.polycube.F.rows() > 0) io::write_mesh(stem + "_polycube.vtk", mesh::from_surface(run.polycube.polycube));
+      if (all && a->keep && surface.F.rows() > 0) io::write_mesh(stem + "_surface.k", mesh::from_surface(surface));
       if (all && run.polycube.structure.num_cells() > 0) {
         io::write_mesh(stem + "_structure.k", run.polycube.structure);
         io::write_mesh(stem + "_patches.k", mesh::from_surface(run.polycube.patches));
@@ -241,6 +243,7 @@ void add_mesh(CLI::App& app) {
         pipeline::mesh_cad_part(shape, co, &cr);
       } catch (const Error&) {
         run = std::move(cr.run);
+        surface = std::move(cr.surface);
         failed();
         throw;
       }

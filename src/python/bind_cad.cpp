@@ -90,8 +90,8 @@ const char* kSnapDoc =
     "the vertex, a node among faces sharing a CAD edge and that near it onto the edge, every other one onto\n"
     "the nearest of its faces (trimmed). Then the interior is smoothed (`smooth` passes) and optimised\n"
     "(`optimize` rounds) with the boundary held. Returns (mesh tuple, report dict): boundary_nodes,\n"
-    "face_nodes, edge_nodes, vertex_nodes, max_before, mean_before, max_after, mean_after (B-rep\n"
-    "distances), max_move, diagonal, inverted_snapped, inverted, worst_sj_before, worst_sj_snapped,\n"
+    "face_nodes, edge_nodes, vertex_nodes, max_before, mean_before, max_after, mean_after (each\n"
+    "node's distance to the face, edge or vertex it is put on, before and after: at least its B-rep distance), max_move, diagonal, inverted_snapped, inverted, worst_sj_before, worst_sj_snapped,\n"
     "worst_sj, seconds_project, seconds_restore, quality (as quality_report), kind (#V: 0 interior, 1 face,\n"
     "2 edge, 3 vertex) and entity (#V: 1-based face / edge / vertex id, 0 inside).";
 

@@ -171,7 +171,10 @@ def test_snap_moves_nodes_off_the_tessellation_onto_the_brep(core, Part):
           f"OCCT's own figures {rep['max_before']:.3g} -> {rep['max_after']:.3g}")
     assert before.max() > 1e-5 * diag  # the tessellation's chords are measurably off the B-rep
     assert after.max() <= 1e-7 * diag
-    assert rep["max_before"] == pytest.approx(before.max(), rel=1e-3)
+    # The report's own distances are to the face, edge or vertex each node is put on: at least
+    # the distance to the whole B-rep that FreeCAD measures.
+    assert rep["max_before"] >= before.max() * (1 - 1e-6)
+    assert after.max() <= rep["max_after"] + 1e-12 * diag and rep["max_after"] <= 1e-7 * diag
     # Interior nodes stay inside: the interior moved only to restore quality.
     assert np.array_equal(mesh.cells, run.mesh.cells)
     sj, _ = oracle.verdict_metrics(oracle.vtk_grid(mesh.V, mesh.cells, mesh.types))

@@ -78,17 +78,23 @@ class FaceProjector {
     if (on_edge) best_uv = analysis_->ValueOfUV(best, tol_);
   }
 
-  /// nearest() for a point near one whose nearest point had parameters `start` (a node sliding on
-  /// the face): a local search from there, kept when it ends inside the face; otherwise nearest().
-  void nearest_from(const gp_Pnt& p, const gp_Pnt2d& start, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
+  /// A local search for the nearest point from parameters `start` (Newton's method on the surface):
+  /// true with its point, distance and parameters when it ends inside the face, false otherwise. It
+  /// finds the nearest point of the face when `start` is near it (a node sliding on the face, or the
+  /// previous of a row of close nodes); the caller judges that.
+  bool nearest_local(const gp_Pnt& p, const gp_Pnt2d& start, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
     const gp_Pnt2d uv = analysis_->NextValueOfUV(start, p, tol_);
-    if (classifier_->Perform(uv) == TopAbs_IN) {
-      best = surface_->Value(uv.X(), uv.Y());
-      best_d = best.Distance(p);
-      best_uv = uv;
-      return;
-    }
-    nearest(p, best, best_d, best_uv);
+    if (classifier_->Perform(uv) != TopAbs_IN) return false;
+    best = surface_->Value(uv.X(), uv.Y());
+    best_d = best.Distance(p);
+    best_uv = uv;
+    return true;
+  }
+
+  /// nearest() for a point near one whose nearest point had parameters `start` (a node sliding on
+  /// the face): nearest_local from there when it ends inside the face; otherwise nearest().
+  void nearest_from(const gp_Pnt& p, const gp_Pnt2d& start, gp_Pnt& best, double& best_d, gp_Pnt2d& best_uv) const {
+    if (!nearest_local(p, start, best, best_d, best_uv)) nearest(p, best, best_d, best_uv);
   }
 
  private:

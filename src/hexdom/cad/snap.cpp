@@ -10,10 +10,12 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 #include "hexdom/cad/face_projector.h"
 #include "hexdom/cad/project.h"
@@ -60,10 +62,6 @@ double worst_sj(const mesh::Mesh& m, int* inverted) {
   return m.num_cells() ? w : 1.0;
 }
 
-void distance_stats(const Projection& p, double& max, double& mean) {
-  max = p.distance.size() ? p.distance.maxCoeff() : 0.0;
-  mean = p.distance.size() ? p.distance.mean() : 0.0;
-}
 
 }  // namespace
 
@@ -166,6 +164,29 @@ struct Targets {
   Eigen::MatrixXd point;
   std::vector<char> placed;
   SnapResult& r;
+  std::unordered_map<int, gp_Pnt2d> uv;  ///< face nodes: the parameters of their target on the face
+};
+
+/// The face and edge projectors of one shape, built on first use and kept for every query of a snap
+/// (one thread).
+class Projectors {
+ public:
+  explicit Projectors(const Shape::Impl& s)
+      : s_(s), faces_(s.faces.Extent() + 1), curves_(s.edges.Extent() + 1), have_curve_(s.edges.Extent() + 1, 0) {}
+  FaceProjector& face(int id) {
+    if (!faces_[id]) faces_[id] = std::make_unique<FaceProjector>(TopoDS::Face(s_.faces(id)));
+    return *faces_[id];
+  }
+  const EdgeCurve& curve(int id) {
+    if (!have_curve_[id]) curves_[id] = edge_curve(TopoDS::Edge(s_.edges(id))), have_curve_[id] = 1;
+    return curves_[id];
+  }
+
+ private:
+  const Shape::Impl& s_;
+  std::vector<std::unique_ptr<FaceProjector>> faces_;
+  std::vector<EdgeCurve> curves_;
+  std::vector<char> have_curve_;
 };
 
 /// Vertices: a node whose CAD faces include three of a vertex's faces, within the tolerance of it;
@@ -233,24 +254,53 @@ void place_on_edges(const Shape& shape, const mesh::Mesh& m, const BoundaryNodes
     if (t.r.kind[v] == SnapKind::Edge) t.placed[v] = 1;
 }
 
-/// Faces: the nodes on no vertex or edge go onto the nearest of their CAD faces, trimmed.
-void place_on_faces(const Shape& shape, const mesh::Mesh& m, const BoundaryNodes& b, Targets& t) {
+/// Faces: the nodes on no vertex or edge go onto the nearest of their CAD faces, trimmed. A face's
+/// nodes are taken in Morton order of their position, each searched locally from the previous one's
+/// parameters (FaceProjector::nearest_from) when that node is near; the local result is kept only
+/// when no nearer than the previous node's point, otherwise the whole face is searched.
+void place_on_faces(const mesh::Mesh& m, const BoundaryNodes& b, Projectors& projectors, Targets& t) {
   std::map<int, std::vector<int>> per_face;
   for (int v : b.nodes)
     if (!t.placed[v])
       for (int f : b.cand[v]) per_face[f].push_back(v);
+  if (per_face.empty()) return;
+  // Morton keys on a 2^20 grid over the boundary's box.
+  Eigen::RowVector3d lo = m.V.row(b.nodes[0]), hi = lo;
+  for (int v : b.nodes) lo = lo.cwiseMin(m.V.row(v)), hi = hi.cwiseMax(m.V.row(v));
+  const double extent = std::max((hi - lo).maxCoeff(), 1e-300);
+  auto morton = [&](int v) {
+    uint64_t key = 0;
+    uint32_t c[3];
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<uint32_t>(std::min(1048575.0, (m.V(v, k) - lo(k)) / extent * 1048575.0));
+    for (int bit = 19; bit >= 0; --bit)
+      for (int k = 0; k < 3; ++k) key = (key << 1) | ((c[k] >> bit) & 1u);
+    return key;
+  };
+  std::vector<uint64_t> key(m.num_nodes(), 0);
+  for (int v : b.nodes) key[v] = morton(v);
   std::vector<double> best(m.num_nodes(), std::numeric_limits<double>::infinity());
-  for (const auto& [f, nodes] : per_face) {
-    Eigen::MatrixXd P(nodes.size(), 3);
-    for (size_t i = 0; i < nodes.size(); ++i) P.row(i) = m.V.row(nodes[i]);
-    const Projection pr = project_to_face(shape, f, P);
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      const int v = nodes[i];
-      if (pr.distance(i) < best[v]) {
-        best[v] = pr.distance(i);
-        t.point.row(v) = pr.points.row(i);
+  for (auto& [f, nodes] : per_face) {
+    std::sort(nodes.begin(), nodes.end(), [&](int x, int y) { return key[x] < key[y]; });
+    FaceProjector& face = projectors.face(f);
+    int previous = -1;
+    gp_Pnt previous_q;
+    gp_Pnt2d previous_uv;
+    for (int v : nodes) {
+      const gp_Pnt p(m.V(v, 0), m.V(v, 1), m.V(v, 2));
+      gp_Pnt q;
+      gp_Pnt2d uv;
+      double d = std::numeric_limits<double>::infinity();
+      const bool near = previous >= 0 && (m.V.row(v) - m.V.row(previous)).norm() <= 3 * b.shortest[v];
+      if (!near || !face.nearest_local(p, previous_uv, q, d, uv) || d > p.Distance(previous_q) + 1e-12)
+        face.nearest(p, q, d, uv);
+      if (!std::isfinite(d)) continue;
+      previous = v, previous_q = q, previous_uv = uv;
+      if (d < best[v]) {
+        best[v] = d;
+        t.point.row(v) << q.X(), q.Y(), q.Z();
         t.r.kind[v] = SnapKind::Face;
         t.r.entity[v] = f;
+        t.uv[v] = uv;
       }
     }
   }
@@ -269,10 +319,10 @@ struct Restored {
 /// edge curves the sliding nodes project onto are built once, on first use, for all runs.
 class Restoration {
  public:
-  Restoration(const Shape::Impl& s, const mesh::Mesh& m, const std::vector<int>& boundary, const Eigen::MatrixXd& target,
-              const SnapResult& r, const SnapOptions& opt)
-      : s_(s), m_(m), boundary_(boundary), target_(target), r_(r), opt_(opt), faces_(s.faces.Extent() + 1),
-        curves_(s.edges.Extent() + 1), have_curve_(s.edges.Extent() + 1, 0) {}
+  Restoration(const mesh::Mesh& m, const std::vector<int>& boundary, const Targets& target, const SnapOptions& opt,
+              const Shape::Impl& s, Projectors& projectors)
+      : m_(m), boundary_(boundary), target_(target.point), r_(target.r), opt_(opt), s_(s), projectors_(projectors),
+        uv_(target.uv) {}
 
   /// Whether the options ask for a restoration at all (otherwise the nodes only move).
   bool enabled() const { return opt_.smooth > 0 || opt_.optimize > 0; }
@@ -305,45 +355,56 @@ class Restoration {
       for (int v : boundary_)
         if (!opt_.slide || r_.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
       if (opt_.slide)
-        io.project = [this, &w](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d { return slide(w, v, x); };
+        io.project = [this, &w](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+          Eigen::Vector3d q;
+          return project(v, x, q) ? q : Eigen::Vector3d(w.V.row(v).transpose());  // stays where it is
+        };
       w = optimize::improve(w, io).mesh;
     }
     out.mesh = std::move(w);
     return out;
   }
 
+  /// The distance from x to the CAD face, edge or vertex boundary node v was put on (infinity when
+  /// the projection fails): at least its distance to the B-rep.
+  double distance(int v, const Eigen::Vector3d& x) {
+    Eigen::Vector3d q;
+    return project(v, x, q) ? (q - x).norm() : std::numeric_limits<double>::infinity();
+  }
+
  private:
-  /// x on the CAD face or edge node v was put on; where v is in `w` when that projection fails.
-  Eigen::Vector3d slide(const mesh::Mesh& w, int v, const Eigen::Vector3d& x) {
+  /// q: x projected onto the CAD face, edge or vertex node v was put on; false when that fails.
+  bool project(int v, const Eigen::Vector3d& x, Eigen::Vector3d& out) {
     const gp_Pnt p(x(0), x(1), x(2));
     gp_Pnt q;
     double d = std::numeric_limits<double>::infinity();
     const int id = r_.entity[v];
     if (r_.kind[v] == SnapKind::Face) {
-      if (!faces_[id]) faces_[id] = std::make_unique<FaceProjector>(TopoDS::Face(s_.faces(id)));
+      FaceProjector& face = projectors_.face(id);
       // From the node's last place on the face: the optimiser's candidates lie near it.
       auto [last, fresh] = uv_.try_emplace(v);
-      if (fresh) faces_[id]->nearest(p, q, d, last->second);
-      else faces_[id]->nearest_from(p, last->second, q, d, last->second);
+      if (fresh) face.nearest(p, q, d, last->second);
+      else face.nearest_from(p, last->second, q, d, last->second);
     } else if (r_.kind[v] == SnapKind::Edge) {
-      if (!have_curve_[id]) curves_[id] = edge_curve(TopoDS::Edge(s_.edges(id))), have_curve_[id] = 1;
       double t;
-      if (!nearest_on_edge(curves_[id], p, q, t, d)) d = std::numeric_limits<double>::infinity();
+      if (!nearest_on_edge(projectors_.curve(id), p, q, t, d)) d = std::numeric_limits<double>::infinity();
+    } else if (r_.kind[v] == SnapKind::Vertex) {
+      q = BRep_Tool::Pnt(TopoDS::Vertex(s_.vertices(id)));
+      d = 0;
     }
-    if (!std::isfinite(d)) return w.V.row(v).transpose();  // stays where it is
-    return Eigen::Vector3d(q.X(), q.Y(), q.Z());
+    if (!std::isfinite(d)) return false;
+    out = Eigen::Vector3d(q.X(), q.Y(), q.Z());
+    return true;
   }
 
-  const Shape::Impl& s_;
   const mesh::Mesh& m_;
   const std::vector<int>& boundary_;
   const Eigen::MatrixXd& target_;
   const SnapResult& r_;
   const SnapOptions& opt_;
-  std::vector<std::unique_ptr<FaceProjector>> faces_;
+  const Shape::Impl& s_;
+  Projectors& projectors_;
   std::unordered_map<int, gp_Pnt2d> uv_;  // face nodes: parameters of their last projection
-  std::vector<EdgeCurve> curves_;
-  std::vector<char> have_curve_;
 };
 
 /// The restoration kept: the direct one; the progressive snap where the direct one costs quality
@@ -410,20 +471,20 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     r.quality = quality::quality_report(r.mesh);
     return r;
   }
-  Eigen::MatrixXd B(boundary.size(), 3);
-  for (size_t i = 0; i < boundary.size(); ++i) B.row(i) = m.V.row(boundary[i]);
-  distance_stats(project_to_shape(shape, B), rep.max_before, rep.mean_before);
-
   // The projection: vertices first, then edges, then faces.
   const std::vector<std::vector<int>> edge_faces = faces_of(s, TopAbs_EDGE, s.edges);
   const std::vector<std::vector<int>> vertex_faces = faces_of(s, TopAbs_VERTEX, s.vertices);
   const FacePairEdges pair_edges = edges_between_faces(s, edge_faces);
-  Targets target{m.V, std::vector<char>(nn, 0), r};
+  Targets target{m.V, std::vector<char>(nn, 0), r, {}};
+  Projectors projectors(s);
   place_on_vertices(s, m, b, vertex_faces, opt, target);
   place_on_edges(shape, m, b, pair_edges, opt, target);
-  place_on_faces(shape, m, b, target);
+  place_on_faces(m, b, projectors, target);
   for (int v : boundary) {
-    rep.max_move = std::max(rep.max_move, (target.point.row(v) - m.V.row(v)).norm());
+    const double move = (target.point.row(v) - m.V.row(v)).norm();
+    rep.max_move = std::max(rep.max_move, move);
+    rep.max_before = std::max(rep.max_before, move);
+    rep.mean_before += move / boundary.size();
     rep.face_nodes += r.kind[v] == SnapKind::Face;
     rep.edge_nodes += r.kind[v] == SnapKind::Edge;
     rep.vertex_nodes += r.kind[v] == SnapKind::Vertex;
@@ -432,7 +493,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
 
   // Restoration. Every cell that gets worse stays at or above min(keep, worst before the snap).
   const double keep = opt.keep < 0 ? -2.0 : std::min(opt.keep, rep.worst_sj_before);
-  Restoration restoration(s, m, boundary, target.point, r, opt);
+  Restoration restoration(m, boundary, target, opt, s, projectors);
   const auto t1 = Clock::now();
   Restored best = best_restoration(restoration, keep, rep.worst_sj_before, opt);
   m = std::move(best.mesh);
@@ -448,8 +509,11 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
   rep.seconds_restore = since(t1);
   rep.worst_sj = worst_sj(m, &rep.inverted);
 
-  for (size_t i = 0; i < boundary.size(); ++i) B.row(i) = m.V.row(boundary[i]);
-  distance_stats(project_to_shape(shape, B), rep.max_after, rep.mean_after);
+  for (int v : boundary) {
+    const double d = restoration.distance(v, m.V.row(v).transpose());
+    rep.max_after = std::max(rep.max_after, d);
+    rep.mean_after += d / boundary.size();
+  }
   r.quality = quality::quality_report(m);
   r.mesh = std::move(m);
   std::snprintf(line, sizeof line,

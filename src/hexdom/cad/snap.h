@@ -55,7 +55,9 @@ enum class SnapKind : int { Interior = 0, Face = 1, Edge = 2, Vertex = 3 };
 struct SnapReport {
   int boundary_nodes = 0;
   int face_nodes = 0, edge_nodes = 0, vertex_nodes = 0;  ///< boundary nodes moved onto each kind
-  /// Distances of the boundary nodes to the B-rep (OCCT, whole boundary) before and after.
+  /// Distances of the boundary nodes to the B-rep, before and after: each node's distance to the
+  /// point of its CAD face, edge or vertex it is put on, and after the restoration to that face, edge
+  /// or vertex (OCCT projections); each at least the node's distance to the whole B-rep.
   double max_before = 0, mean_before = 0, max_after = 0, mean_after = 0;
   double max_move = 0;   ///< largest displacement of a boundary node
   double diagonal = 0;   ///< bounding-box diagonal of the mesh, for relative figures

@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "hexdom/common/format.h"
+#include "hexdom/pipeline/choice.h"
 #include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::pipeline {
@@ -27,49 +28,23 @@ void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, c
   r.snap_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// mesh_path_and_snap with mo's method. Auto: the polycube path; when it fails or its snapped mesh
-// misses a target, the overlay path too, the better snapped mesh kept (pipeline::better_run against
-// `reference`, the B-rep's volume). The polycube's error is thrown when the overlay fails as well.
+// mesh_path_and_snap with mo's method; Auto: choose_path (choice.h) between the snapped meshes of
+// the two paths, measured against `reference`, the B-rep's volume.
 void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, double reference,
                    MeshCadRun& r) {
   if (mo.method != Method::Auto) return mesh_path_and_snap(shape, mo, opt, r);
-  MeshSurfaceOptions path = mo;
-  path.method = Method::Polycube;
-  path.deadline = polycube_deadline(mo);  // mesh_cad_part's, made at its start
-  std::string note;
-  bool have = false;
-  try {
-    mesh_path_and_snap(shape, path, opt, r);
-    have = true;
-    if (meets_targets(r.run, reference, mo)) return;
-    note = "the polycube mesh misses a target (" + run_summary(r.run, reference) + ")" +
-           (r.run.budget_passed ? fmt(" (its time budget of %g s passed)", path.deadline.budget()) : std::string());
-  } catch (const Error& e) {  // a TimeoutError too: the polycube path ran out of its time
-    note = polycube_failure_note(e, r.run.stage);
-  }
-  if (opt.mesh.log) opt.mesh.log(0, note + "; meshing with the overlay grid too");
-  MeshCadRun other;
-  other.surface = r.surface;
-  other.stats = r.stats;
-  other.tessellation_factor = r.tessellation_factor;
-  path.method = Method::Overlay;
-  try {
-    mesh_path_and_snap(shape, path, opt, other);
-  } catch (const Error& e) {
-    if (!have) throw;
-    if (opt.mesh.log) opt.mesh.log(0, std::string("overlay: ") + e.what() + "; keeping the polycube mesh");
-    r.run.polycube_note = note;
-    return;
-  }
-  if (!have || better_run(other.run, r.run, reference, mo)) {
-    if (opt.mesh.log) opt.mesh.log(0, "kept the overlay mesh (" + run_summary(other.run, reference) + ")");
-    const int tessellations = r.tessellations;
-    r = std::move(other);
-    r.tessellations = tessellations;
-  } else if (opt.mesh.log) {
-    opt.mesh.log(0, "kept the polycube mesh: the overlay mesh is no better (" + run_summary(other.run, reference) + ")");
-  }
-  r.run.polycube_note = note;
+  choose_path(
+      mo, reference, [&](const MeshSurfaceOptions& o, MeshCadRun& run) { mesh_path_and_snap(shape, o, opt, run); },
+      [](MeshCadRun& run) -> MeshSurfaceRun& { return run.run; },
+      [](const MeshCadRun& like) {
+        MeshCadRun other;
+        other.surface = like.surface;
+        other.stats = like.stats;
+        other.tessellation_factor = like.tessellation_factor;
+        other.tessellations = like.tessellations;
+        return other;
+      },
+      r);
 }
 }  // namespace
 

@@ -7,6 +7,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/generation/generate.h"
+#include "hexdom/pipeline/choice.h"
 
 namespace hexdom::pipeline {
 
@@ -34,8 +35,12 @@ double volume_error(const MeshSurfaceRun& r, double reference) {
 }
 
 
+bool edge_ratio_met(const MeshSurfaceRun& r, const MeshSurfaceOptions& opt) {
+  return opt.target_edge_ratio <= 0 || quality::max_edge_ratio(r.quality) <= opt.target_edge_ratio;
+}
+
 // Whether run b is better than run a: fewer inverted cells; then the one whose worst SJ meets the
-// target; then the one whose volume does; then the higher worst SJ.
+// target; then the one whose volume does; then the one whose edge ratio does; then the higher worst SJ.
 bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& opt) {
   const int ib = inverted_cells(b.quality), ia = inverted_cells(a.quality);
   if (ib != ia) return ib < ia;
@@ -43,6 +48,8 @@ bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, 
   if (sb != sa) return sb;
   const bool vb = volume_error(b, reference) <= opt.target_volume, va = volume_error(a, reference) <= opt.target_volume;
   if (vb != va) return vb;
+  const bool eb = edge_ratio_met(b, opt), ea = edge_ratio_met(a, opt);
+  if (eb != ea) return eb;
   return worst_sj(b.quality) > worst_sj(a.quality);
 }
 
@@ -172,7 +179,12 @@ bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceO
 std::string run_summary(const MeshSurfaceRun& r, double reference) {
   return (r.method == Method::Overlay ? std::string("overlay") : fmt("level %.0f", r.level)) +
          fmt(": worst SJ %.3f, %.0f inverted, volume %+.2f%%", worst_sj(r.quality), inverted_cells(r.quality),
-             100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0));
+             100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)) +
+         fmt(", max edge ratio %.1f", quality::max_edge_ratio(r.quality));
+}
+
+bool meets_path_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& opt) {
+  return meets_targets(r, reference, opt) && edge_ratio_met(r, opt);
 }
 
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options) {
@@ -235,34 +247,13 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
   po.deadline = polycube_deadline(opt);
   if (opt.method == Method::Polycube) return mesh_polycube(surface, po, &r);
   const double reference = mesh::enclosed_volume(surface.V, surface.F);
-  std::string note;
-  bool have = false;
-  try {
-    mesh_polycube(surface, po, &r);
-    have = true;
-    if (meets_targets(r, reference, opt)) return r;
-    note = "the polycube mesh " + run_summary(r, reference) +
-           (r.budget_passed ? fmt(" (its time budget of %g s passed)", po.deadline.budget()) : std::string());
-  } catch (const Error& e) {
-    note = polycube_failure_note(e, r.stage);
-  }
-  if (opt.log) opt.log(0, note + "; meshing with the overlay grid too");
-  MeshSurfaceRun other;
-  try {
-    run_overlay(surface, opt, other);
-  } catch (const Error& e) {
-    if (!have) throw;
-    if (opt.log) opt.log(0, std::string("overlay: ") + e.what() + "; keeping the polycube mesh");
-    r.polycube_note = note;
-    return r;
-  }
-  if (!have || better(other, r, reference, opt)) {
-    if (have && opt.log) opt.log(0, "kept the overlay mesh: it is better (" + run_summary(other, reference) + ")");
-    r = std::move(other);
-  } else if (opt.log) {
-    opt.log(0, "kept the polycube mesh: the overlay mesh is no better (" + run_summary(other, reference) + ")");
-  }
-  r.polycube_note = note;
+  choose_path(
+      opt, reference,
+      [&](const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
+        if (o.method == Method::Overlay) run_overlay(surface, o, run);
+        else mesh_polycube(surface, o, &run);
+      },
+      [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; }, r);
   return r;
 }
 

@@ -20,7 +20,8 @@ namespace hexdom::pipeline {
 /// Which meshing path runs: the polycube (segment -> autopolycube -> generate -> improve), the
 /// overlay grid (overlay::overlay_mesh), or the polycube and, when it fails or its mesh misses a
 /// target (an inverted cell, a worst SJ below target_sj, a volume off by more than target_volume),
-/// the overlay grid too, the better kept by better_run.
+/// the overlay grid too (also when its largest edge ratio passes target_edge_ratio), the better kept
+/// by better_run.
 enum class Method { Auto, Polycube, Overlay };
 
 /// "auto", "polycube", "overlay"; and back (throws InputError naming the word for another one).
@@ -73,13 +74,19 @@ struct MeshSurfaceOptions {
   /// when the mesh then misses a target (an inverted cell, a worst scaled Jacobian below target_sj,
   /// a volume off the input surface's by more than target_volume), run again with the least-squares
   /// plane offsets and keep the better mesh: fewer inverted cells; then the one whose worst SJ meets
-  /// target_sj; then the one whose volume meets target_volume; then the higher worst SJ.
+  /// target_sj; then the one whose volume meets target_volume; then the one within
+  /// target_edge_ratio; then the higher worst SJ.
   bool try_without_widths = true;
   /// When apexes got tet and prism blocks (AutoPolycubeOptions::collapse_apexes) and the mesh misses a
   /// target, mesh the hex blocks under the caps too and keep the better by the same order.
   bool try_hex_apexes = true;
   double target_sj = 0.3;       ///< worst scaled Jacobian the candidates are measured against
   double target_volume = 0.01;  ///< relative volume error the candidates are measured against
+  /// Largest edge ratio (longest over shortest edge of one cell, quality::max_edge_ratio) the paths
+  /// are measured against: in Method::Auto a polycube mesh above it (a cell layer much thinner than
+  /// the element size, from a feature far smaller than it) has the overlay path run too, and of two
+  /// meshes equal on the other targets the one within it is kept. 0: not looked at.
+  double target_edge_ratio = 10;
   /// Segment and build the polycube in the frame the faces fit best (cube_frame), so that a part
   /// lying at an angle is meshed as if square to the axes; a part the model's axes already fit (by
   /// `frame_options.min_gain`) is left as it is. Ignored when `segment.frame` or `polycube.frame`
@@ -139,12 +146,15 @@ std::string polycube_failure_note(const Error& error, const std::string& stage);
 
 /// Whether run b is better than run a by the candidates' order (see try_without_widths): fewer
 /// inverted cells, then a worst SJ >= target_sj, then a volume within target_volume of `reference`,
-/// then the higher worst SJ.
+/// then a largest edge ratio within target_edge_ratio, then the higher worst SJ.
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options);
 
 /// Whether a run meets every target: no inverted cell, worst SJ >= target_sj, volume within
 /// target_volume of `reference`.
 bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& options);
+/// meets_targets and a largest edge ratio within target_edge_ratio: the test after which Method::Auto
+/// keeps the polycube mesh without running the overlay path.
+bool meets_path_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& options);
 
 /// "level 1: worst SJ 0.190, 0 inverted, volume -1.18%" (the overlay's: "overlay: ..."), for the
 /// lines that say why another candidate is tried.

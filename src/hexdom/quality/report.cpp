@@ -51,6 +51,13 @@ QualityReport quality_report(const mesh::Mesh& m, const CellMetrics& q) {
   return r;
 }
 
+double max_edge_ratio(const QualityReport& q) {
+  double m = 0;
+  for (const TypeStats* s : {&q.hex, &q.prism, &q.tet})
+    if (s->count > 0) m = std::isnan(s->edge_ratio_max) ? std::numeric_limits<double>::infinity() : std::max(m, s->edge_ratio_max);
+  return m;
+}
+
 namespace {
 std::string num(double v) {
   if (!std::isfinite(v)) return "null";

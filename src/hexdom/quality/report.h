@@ -28,6 +28,9 @@ struct QualityReport {
 QualityReport quality_report(const mesh::Mesh& mesh);
 /// Inverted cells of every type.
 inline int inverted_cells(const QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+/// The largest edge ratio (longest over shortest edge of a cell) over the cells of every type; 0
+/// with no cells.
+double max_edge_ratio(const QualityReport& q);
 /// Same, from metrics already computed for `mesh`.
 QualityReport quality_report(const mesh::Mesh& mesh, const CellMetrics& metrics);
 

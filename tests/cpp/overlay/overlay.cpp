@@ -85,7 +85,9 @@ TEST(OverlayGrid, NodesOfABoxAreClassifiedByTheirSide) {
         if (std::abs(d) < 1e-9) continue;
         ++checked;
         wrong += (d > 0) != static_cast<bool>(f.inside[g.node(i, j, k)]);
-        if (d > 0 && d < 0.9) EXPECT_NEAR(f.distance[g.node(i, j, k)], d, 1e-12);
+        if (d > 0 && d < 0.9) {
+          EXPECT_NEAR(f.distance[g.node(i, j, k)], d, 1e-12);
+        }
       }
   EXPECT_GT(checked, 500);
   EXPECT_EQ(wrong, 0);
@@ -179,7 +181,7 @@ TEST(Overlay, ACylindersRimsAreCurves) {
 // A plate 100 x 100 x 0.5 and a rod 1000 x 1 x 1 (the grid's cells flat or long, laid as cubes
 // over the stretched surface): valid, on the surface, the volume exact, at least two cells across.
 TEST(Overlay, APlateAndARodAreValidWithCellsAcross) {
-  for (const Eigen::Vector3d size : {Eigen::Vector3d(100, 100, 0.5), Eigen::Vector3d(1000, 1, 1)}) {
+  for (const Eigen::Vector3d& size : {Eigen::Vector3d(100, 100, 0.5), Eigen::Vector3d(1000, 1, 1)}) {
     SCOPED_TRACE(size.transpose());
     auto s = test::cell_surface({{0, 0, 0}}, 1, 1.0);
     s.V = s.V * size.asDiagonal();

@@ -23,7 +23,9 @@ TEST(ImproveOnSharedPart, LayerOverTheSmoothRegionsOpensTheCrescentCornerOnARoun
   HEXDOM_REQUIRE_DATA(path);
   const cad::Shape shape = cad::read_shape(path);
   const mesh::SurfaceMesh surface = cad::tessellate(shape, cad::TessellateOptions{});
-  const pipeline::MeshSurfaceRun run = pipeline::mesh_surface(surface);
+  pipeline::MeshSurfaceOptions o;
+  o.method = pipeline::Method::Polycube;  // auto keeps the overlay mesh here (the polycube's edge ratio is 48)
+  const pipeline::MeshSurfaceRun run = pipeline::mesh_surface(surface, o);
   ASSERT_EQ(run.level, 1);
   EXPECT_GT(run.mesh.num_cells(), run.generated.num_cells());  // a pillowed run was kept
   const Eigen::VectorXd sj = quality::compute_metrics(run.mesh).scaled_jacobian;

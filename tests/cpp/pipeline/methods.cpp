@@ -70,6 +70,46 @@ TEST(AutomaticChoice, MeshesTheGridTooWhenThePolycubeMissesATarget) {
   EXPECT_EQ(automatic.mesh.num_cells(), better.mesh.num_cells());
 }
 
+// A 60 x 60 x 20 box with a 30 x 30 step 0.4 high on top: the polycube gives the step a layer of
+// cells 0.4 thick under cells of about 3 (edge ratio above 10); auto meshes the grid too and keeps
+// the mesh within the edge-ratio target, the other targets being met by both.
+TEST(AutomaticChoice, AThinLayerOfCellsHasTheGridMeshedTooAndTheMeshWithoutItKept) {
+  const TopoDS_Shape part = BRepAlgoAPI_Fuse(BRepPrimAPI_MakeBox(60.0, 60.0, 20.0).Shape(),
+                                             BRepPrimAPI_MakeBox(gp_Pnt(15, 15, 20), 30.0, 30.0, 0.4).Shape())
+                                .Shape();
+  const pipeline::MeshCadRun polycube = mesh_part(part, "auto_thin_step", pipeline::Method::Polycube);
+  const pipeline::MeshCadRun automatic = mesh_part(part, "auto_thin_step", pipeline::Method::Auto);
+  const double target = pipeline::MeshSurfaceOptions{}.target_edge_ratio;
+  EXPECT_GT(quality::max_edge_ratio(polycube.run.quality), target);
+  EXPECT_EQ(automatic.run.method, pipeline::Method::Overlay) << automatic.run.polycube_note;
+  EXPECT_NE(automatic.run.polycube_note.find("max edge ratio"), std::string::npos) << automatic.run.polycube_note;
+  EXPECT_LE(quality::max_edge_ratio(automatic.run.quality), target);
+  EXPECT_EQ(inverted(automatic.run.quality), 0);
+  EXPECT_NEAR(automatic.run.quality.total_volume, automatic.stats.brep_volume, 0.01 * automatic.stats.brep_volume);
+}
+
+// The order of two meshes equal on the other targets: the one within the edge-ratio target first,
+// whatever its worst SJ; with the target off (0) the higher worst SJ.
+TEST(AutomaticChoice, TheEdgeRatioTargetComesBeforeTheWorstSJ) {
+  pipeline::MeshSurfaceRun needle, blunt;
+  for (auto* r : {&needle, &blunt}) {
+    r->quality.hex.count = 10;
+    r->quality.total_volume = 1.0;
+  }
+  needle.quality.hex.sj_min = 0.9;
+  needle.quality.hex.edge_ratio_max = 40;
+  blunt.quality.hex.sj_min = 0.5;
+  blunt.quality.hex.edge_ratio_max = 3;
+  pipeline::MeshSurfaceOptions o;
+  EXPECT_TRUE(pipeline::better_run(blunt, needle, 1.0, o));
+  EXPECT_FALSE(pipeline::better_run(needle, blunt, 1.0, o));
+  EXPECT_FALSE(pipeline::meets_path_targets(needle, 1.0, o));
+  EXPECT_TRUE(pipeline::meets_targets(needle, 1.0, o));
+  o.target_edge_ratio = 0;
+  EXPECT_TRUE(pipeline::better_run(needle, blunt, 1.0, o));
+  EXPECT_TRUE(pipeline::meets_path_targets(needle, 1.0, o));
+}
+
 // A time budget too small for anything: auto meshes the box (whose polycube mesh it keeps without a
 // budget, test above) with the overlay grid, and polycube_note says that the budget stopped the
 // polycube path; for mesh_cad_part one budget stops every tessellation's polycube.

@@ -1,0 +1,94 @@
+// The automatic choice between the two meshing paths (Method::Auto), written once for the runs on a
+// triangle surface (mesh_surface) and on a CAD part (mesh_cad_part, each path's mesh snapped onto
+// the B-rep before it is measured).
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include "hexdom/common/error.h"
+#include "hexdom/common/format.h"
+#include "hexdom/pipeline/mesh_surface.h"
+
+namespace hexdom::pipeline {
+
+/// Method::Auto on one surface, cheapest first:
+///  1. the polycube path with its first candidate only (no further candidate: without the widths of
+///     holes, hex blocks under apex caps, a finer level), within the options' deadline. A mesh that
+///     meets every target (meets_path_targets) is kept; nothing else runs.
+///  2. the overlay path. When its mesh meets every target, the better of the two (better_run) is kept.
+///  3. otherwise, when neither mesh meets the targets the further candidates may mend (meets_targets:
+///     no inverted cell, the worst SJ, the volume) and the deadline has not passed, the polycube path
+///     again with its candidates (the labelling repaired once, taken from step 1), and the best of
+///     the meshes kept.
+/// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
+/// Error when the path gives no mesh; `run_of(run)` is its MeshSurfaceRun; `blank(run)` a fresh run
+/// for the same surface. The kept run is in `r`; its polycube_note says why the polycube mesh was
+/// not kept alone (empty when it was). Throws the overlay's error when no path gives a mesh.
+template <class Run, class MeshPath, class RunOf, class Blank>
+void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank, Run& r) {
+  auto say = [&](const std::string& m) { if (mo.log) mo.log(0, m); };
+  MeshSurfaceOptions quick = mo;
+  quick.method = Method::Polycube;
+  quick.deadline = polycube_deadline(mo);
+  quick.try_without_widths = quick.try_hex_apexes = quick.refine_when_inverted = false;
+  std::string note;
+  bool have = false;
+  try {
+    mesh_path(quick, r);
+    have = true;
+    if (meets_path_targets(run_of(r), reference, mo)) return;
+    note = "the polycube mesh misses a target (" + run_summary(run_of(r), reference) + ")" +
+           (run_of(r).budget_passed ? fmt(" (its time budget of %g s passed)", quick.deadline.budget()) : std::string());
+  } catch (const Error& e) {  // a TimeoutError too: the polycube path ran out of its time
+    note = polycube_failure_note(e, run_of(r).stage);
+  }
+  say(note + "; meshing with the overlay grid too");
+  Run grid = blank(r);
+  MeshSurfaceOptions overlay = mo;
+  overlay.method = Method::Overlay;
+  bool have_grid = false;
+  try {
+    mesh_path(overlay, grid);
+    have_grid = true;
+  } catch (const Error& e) {
+    if (!have) throw;
+    say(std::string("overlay: ") + e.what());
+  }
+  auto keep = [&](Run& other, const char* name) {
+    if (!have || better_run(run_of(other), run_of(r), reference, mo)) {
+      if (have) say(std::string("kept the ") + name + " mesh (" + run_summary(run_of(other), reference) + ")");
+      r = std::move(other);
+      have = true;
+      return true;
+    }
+    return false;
+  };
+  // The further candidates mend the worst SJ, inverted cells or the volume, seldom the edge ratio.
+  const bool grid_enough = have_grid && meets_targets(run_of(grid), reference, mo);
+  // Step 3: the polycube's further candidates, from its first run's repaired labelling.
+  if (have && !grid_enough && !meets_targets(run_of(r), reference, mo) && run_of(r).method == Method::Polycube &&
+      !quick.deadline.passed() && (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted)) {
+    say("the polycube again with its further candidates");
+    MeshSurfaceOptions full = mo;
+    full.method = Method::Polycube;
+    full.deadline = quick.deadline;
+    // The labelling (and lambda) of the first run: the repair is not run again.
+    full.polycube.repaired = &run_of(r).polycube.repaired;
+    full.segment.edge_weight = run_of(r).edge_weight;
+    full.retry_edge_weights.clear();
+    Run again = blank(r);
+    try {
+      mesh_path(full, again);
+      keep(again, "polycube");
+    } catch (const Error& e) {
+      say(std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh");
+    }
+  }
+  const bool polycube_kept = have;
+  if (have_grid && !keep(grid, "overlay") && polycube_kept)
+    say("kept the polycube mesh: the overlay mesh is no better (" + run_summary(run_of(grid), reference) + ")");
+  run_of(r).polycube_note = note;
+}
+
+}  // namespace hexdom::pipeline
