@@ -134,13 +134,14 @@ def brep_volume_from_stdout(stdout):
     return None
 
 
-def run_one(hexdom, part, method, use_method, timeout):
+def run_one(hexdom, part, method, use_method, timeout, extra_args=()):
     r = {"part": part["name"], "family": part["family"], "group": part["group"], "method": method}
     with tempfile.TemporaryDirectory(prefix="bench_corpus_") as tmp:
         out, rep = os.path.join(tmp, "m.vtu"), os.path.join(tmp, "m.json")
         cmd = [hexdom, "mesh", part["path"], "-o", out, "--report", rep, "--allow-inverted"]
         if use_method:
             cmd += ["--method", method]
+        cmd += list(extra_args)
         t0 = time.perf_counter()
         p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
         try:
@@ -279,6 +280,8 @@ def main(argv=None):
     ap.add_argument("--parts", help="only the parts whose name matches this glob (e.g. 'flange_*')")
     ap.add_argument("--limit", type=int, help="N corpus parts spread evenly over the sorted names")
     ap.add_argument("--json", help="write every run and the totals to this file")
+    ap.add_argument("--arg", action="append", default=[],
+                    help="one more argument for every `hexdom mesh` run (repeatable), e.g. --arg=--polycube-seconds --arg=5")
     args = ap.parse_args(argv)
     if not args.corpus and not args.extra:
         ap.error("give a corpus folder, --extra folders, or both")
@@ -315,7 +318,7 @@ def main(argv=None):
         os.replace(tmp, args.json)
 
     def one(job):
-        r = run_one(hexdom, job[0], job[1], use_method, args.timeout)
+        r = run_one(hexdom, job[0], job[1], use_method, args.timeout, args.arg)
         with lock:
             runs.append(r)
             print(row(r), flush=True)

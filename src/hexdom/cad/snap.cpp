@@ -195,7 +195,7 @@ void place_on_vertices(const Shape::Impl& s, const mesh::Mesh& m, const Boundary
                        const std::vector<std::vector<int>>& vertex_faces, const SnapOptions& opt, Targets& t) {
   std::map<int, std::pair<double, int>> best;  // vertex -> (distance, node)
   for (int v : b.nodes) {
-    if (b.cand[v].size() < 3) continue;
+    if (b.cand[v].size() < 3 || (!opt.face_only.empty() && opt.face_only[v])) continue;
     const Eigen::Vector3d p = m.V.row(v).transpose();
     for (int x = 1; x <= s.vertices.Extent(); ++x) {
       if (intersect_count(vertex_faces[x], b.cand[v]) < 3) continue;
@@ -226,7 +226,7 @@ void place_on_edges(const Shape& shape, const mesh::Mesh& m, const BoundaryNodes
                     const SnapOptions& opt, Targets& t) {
   std::map<int, std::vector<int>> per_edge;
   for (int v : b.nodes) {
-    if (t.placed[v] || b.cand[v].size() < 2) continue;
+    if (t.placed[v] || b.cand[v].size() < 2 || (!opt.face_only.empty() && opt.face_only[v])) continue;
     std::set<int> edges;
     for (auto a = b.cand[v].begin(); a != b.cand[v].end(); ++a)
       for (auto c = std::next(a); c != b.cand[v].end(); ++c) {
@@ -451,6 +451,9 @@ Restored best_restoration(Restoration& restoration, double keep, double worst_be
 SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::SurfaceMesh& tess, const SnapOptions& opt) {
   const Shape::Impl& s = shape.impl();
   check_input(s, input, tess);
+  if (!opt.face_only.empty() && static_cast<int>(opt.face_only.size()) != input.num_nodes())
+    throw InputError(s.source, 0, "snap_to_brep: face_only has " + std::to_string(opt.face_only.size()) + " entries for " +
+                                      std::to_string(input.num_nodes()) + " mesh nodes");
 
   SnapResult r;
   SnapReport& rep = r.report;

@@ -46,6 +46,10 @@ struct SnapOptions {
   /// the boundary (a pillow layer) follow instead of inverting; the better result is kept (fewer
   /// inverted cells, then the better worst cell). 1: direct only.
   int steps = 2;
+  /// Empty, or #V of the mesh: nodes marked non-zero go onto the nearest of their CAD faces only,
+  /// never onto a CAD edge or vertex (the overlay path's nodes on a smooth region, some of which it
+  /// let off a sharp curve on purpose so that a cell does not flatten along it).
+  std::vector<char> face_only;
   LogCallback log;
 };
 

@@ -100,6 +100,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   }
   r.mesh = std::move(ir.mesh);
   r.quality = ir.after;
+  r.node_kind = place_of.kind;
   return r;
 }
 

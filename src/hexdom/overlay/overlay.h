@@ -12,9 +12,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/node_kinds.h"
 #include "hexdom/overlay/features.h"
 #include "hexdom/quality/report.h"
 #include "hexdom/segmentation/cube_frame.h"
@@ -78,6 +80,10 @@ struct OverlayResult {
   double spacing = 0, thinnest = 0;  ///< the grid spacing of the result: largest and smallest over the axes
   int core_cells = 0, buffer_cells = 0, dropped = 0;
   int curve_nodes = 0, corner_nodes = 0, corners_missed = 0, demoted = 0;
+  /// #V: what each node of `mesh` is held on (optimize::NodeKind: Corner, Curve, Surface for the
+  /// outer nodes on a smooth region, Interior); a Surface node near a curve was let off it on purpose
+  /// (a staircase node, a loosened one).
+  std::vector<optimize::NodeKind> node_kind;
   int grids = 0;                     ///< grids made
   segmentation::CubeFrame frame;
   double seconds = 0;

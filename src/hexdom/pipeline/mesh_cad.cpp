@@ -19,7 +19,15 @@ void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, c
   pipeline::mesh_surface(r.surface, mo, &r.run);
   if (!opt.snap) return;
   const auto t0 = std::chrono::steady_clock::now();
-  cad::SnapResult sr = cad::snap_to_brep(shape, r.run.mesh, r.surface, opt.snap_options);
+  cad::SnapOptions so = opt.snap_options;
+  // The overlay's nodes on smooth regions stay off the CAD edges: it let some off a sharp curve on
+  // purpose (the grid's staircase along it), and putting them back flattens their cells.
+  const std::vector<optimize::NodeKind>& kind = r.run.overlay.node_kind;
+  if (r.run.method == Method::Overlay && so.face_only.empty() && static_cast<int>(kind.size()) == r.run.mesh.num_nodes()) {
+    so.face_only.assign(kind.size(), 0);
+    for (size_t v = 0; v < kind.size(); ++v) so.face_only[v] = kind[v] == optimize::Surface;
+  }
+  cad::SnapResult sr = cad::snap_to_brep(shape, r.run.mesh, r.surface, so);
   r.run.mesh = std::move(sr.mesh);
   r.run.quality = sr.quality;
   r.snap = std::move(sr);

@@ -77,6 +77,42 @@ TEST(SnapToBrep, BoxNodesGoOntoFacesEdgesAndCorners) {
   EXPECT_NEAR(r.quality.total_volume, 480.0, 1e-9);
 }
 
+// SnapOptions::face_only: the nodes marked go onto a CAD face only, however near an edge or a
+// vertex; the others as before. A list of the wrong length is refused.
+TEST(SnapToBrep, FaceOnlyNodesStayOffTheEdgesAndVertices) {
+  const cad::Shape shape = cad::read_shape(write_part(BRepPrimAPI_MakeBox(10.0, 8.0, 6.0).Shape(), "snap_box_face_only"));
+  const mesh::SurfaceMesh tess = cad::tessellate(shape, {});
+  const mesh::Mesh m = grid(5, 4, 3, [](double u, double v, double w) {
+    return Eigen::Vector3d(0.01 + 9.98 * u, 0.01 + 7.98 * v, 0.005 + 5.99 * w);
+  });
+  const Eigen::Vector3d size(10, 8, 6);
+  cad::SnapOptions o;
+  o.face_only.assign(m.num_nodes(), 0);
+  int marked = 0;
+  for (int v = 0; v < m.num_nodes(); ++v)  // the nodes of the x = 0 side
+    if (m.V(v, 0) < 0.02) o.face_only[v] = 1, ++marked;
+  ASSERT_EQ(marked, 5 * 4);
+  const cad::SnapResult r = cad::snap_to_brep(shape, m, tess, o);
+  int unmarked_edges = 0;
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    const Eigen::Vector3d p = r.mesh.V.row(v);
+    if (o.face_only[v]) {  // onto the nearest of its faces, on exactly one face plane: off the edges
+      int on = 0;
+      for (int a = 0; a < 3; ++a) on += std::abs(p(a)) < 1e-12 || std::abs(p(a) - size(a)) < 1e-12;
+      EXPECT_EQ(r.kind[v], cad::SnapKind::Face) << v;
+      EXPECT_EQ(on, 1) << v;
+    } else {
+      unmarked_edges += r.kind[v] == cad::SnapKind::Edge;
+    }
+  }
+  EXPECT_EQ(count(r, cad::SnapKind::Vertex), 4);                        // the four at x = 10
+  EXPECT_EQ(unmarked_edges, 4 * 4 + 2 * 3 + 2 * 2);  // the x edges' inner nodes, the x = 10 side's y and z edges
+  EXPECT_LT(r.report.max_after, 1e-12);
+  EXPECT_EQ(r.report.inverted, 0);
+  o.face_only.pop_back();
+  EXPECT_THROW(cad::snap_to_brep(shape, m, tess, o), InputError);
+}
+
 TEST(SnapToBrep, CylinderRimNodesGoOntoTheCircles) {
   const double R = 5, H = 12;
   const cad::Shape shape = cad::read_shape(write_part(BRepPrimAPI_MakeCylinder(R, H).Shape(), "snap_cyl"));
