@@ -60,7 +60,7 @@ def test_mesh_part_i11o_is_the_mesh_hexdom_mesh_chooses(doc):
     doc.recompute()
     size = shape.BoundBox.DiagonalLength / 30.0
     objs = hexdom.mesh_part(doc, part)
-    mesh, poly, seg = objs["mesh"], objs["polycube"], objs["segmentation"]
+    mesh = objs["mesh"]
     # `hexdom mesh`'s path in _hexdom on the same shape, at the same element size.
     run = core.mesh_part(shape.exportBrepToString(), size=size, allow_inverted=True)
     grid = oracles.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types)
@@ -72,12 +72,11 @@ def test_mesh_part_i11o_is_the_mesh_hexdom_mesh_chooses(doc):
             _counts(types), sj[types == oracles.HEX].min(), run.choice, _counts(types_cli),
             sj_cli[types_cli == oracles.HEX].min()))
     # The Surface object holds the triangles `hexdom mesh` tessellates (same options).
-    assert objs["surface"].TriangleCount == len(run.labels.F)
-    # The choice is on the objects, as ordinary properties.
-    assert seg.EdgeWeight == pytest.approx(run.edge_weight)
-    assert (poly.KeepWidths, poly.TetApexes, poly.Level, mesh.Level) == (
-        run.keep_widths, run.collapse_apexes, run.level, run.level)
-    assert not run.keep_widths  # i11o: the least-squares offsets beat the kept widths
+    assert objs["surface"].TriangleCount == len(run.surface.F)
+    # The same path; since the edge-ratio target (issue 19) the overlay grid's mesh (its polycube
+    # mesh has a layer 48 times thinner than long), and the Mesh no longer uses the Polycube.
+    assert mesh.MeshingPath == run.method == "overlay"
+    assert mesh.Polycube is None and mesh.PolycubeNote == run.polycube_note
     # The same mesh: counts per type, worst hex SJ (Verdict on both), no inverted cell.
     assert _counts(types) == _counts(types_cli)
     assert sj[types == oracles.HEX].min() == pytest.approx(sj_cli[types_cli == oracles.HEX].min(),

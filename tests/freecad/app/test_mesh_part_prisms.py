@@ -31,8 +31,9 @@ def _verdict_of(obj):
     penta = VTK, tetra VTK = smds[0,2,1,3]). FreeCAD's file writers are no oracle here: its VTK
     exporter leaves the wedges out, and meshio reads its C3D6 order as inverted VTK wedges."""
     fm = obj.FemMesh
-    ids = {nid: i for i, nid in enumerate(sorted(fm.Nodes))}
-    P = np.array([[fm.Nodes[n].x, fm.Nodes[n].y, fm.Nodes[n].z] for n in sorted(fm.Nodes)])
+    nodes_of = fm.Nodes  # a new dict on every access: once
+    ids = {nid: i for i, nid in enumerate(sorted(nodes_of))}
+    P = np.array([[nodes_of[n].x, nodes_of[n].y, nodes_of[n].z] for n in sorted(nodes_of)])
     order = {8: ([0, 3, 2, 1, 4, 7, 6, 5], oracles.HEX), 6: (list(range(6)), oracles.WEDGE), 4: ([0, 2, 1, 3], oracles.TET)}
     cells, types = [], []
     for e in fm.Volumes:
