@@ -127,7 +127,7 @@ const char* const kMeshHelp =
       "of cells out to the surface with its curves and corners, then optimised; meshes any closed solid).\n"
       "auto (the default) runs the polycube and, when it fails or its mesh misses a target (an inverted cell,\n"
       "a worst scaled Jacobian below 0.3, a volume more than 1% off), the overlay grid too, the better kept.\n"
-      "Under auto the polycube path has a time budget (--polycube-seconds, 6 s; for CAD parts over all its\n"
+      "Under auto the polycube path has a time budget (--polycube-seconds, 20 s; for CAD parts over all its\n"
       "polycube attempts, from the end of the first tessellation): once it has passed the path stops (the\n"
       "improvement ends its round, no further candidate or tessellation is tried) and, without a mesh that\n"
       "meets the targets, the overlay grid runs.\n"

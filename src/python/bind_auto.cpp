@@ -64,7 +64,7 @@ const char* kMeshSurfaceDoc =
 }  // namespace
 
 const char* const kPolycubeSecondsDoc =
-    "polycube_seconds: the polycube path's time budget in seconds (0: no limit; None: the default, 6 s under\n"
+    "polycube_seconds: the polycube path's time budget in seconds (0: no limit; None: the default, 20 s under\n"
     "\"auto\", no limit under \"polycube\"). auto: once it has passed, the polycube path stops (the improvement\n"
     "ends its round, no further candidate is tried) and, without a mesh that meets the targets, the overlay\n"
     "runs; polycube_note then names the budget. polycube: given, it raises TimeoutError (an Error) when it\n"

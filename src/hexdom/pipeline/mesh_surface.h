@@ -41,7 +41,7 @@ struct MeshSurfaceOptions {
   /// path asked for runs to its end) unless `deadline` is set; the program's --polycube-seconds and
   /// the module's polycube_seconds=, when given with the polycube method, set `deadline` from it.
   /// Method::Overlay: not used (the overlay path has no budget).
-  double polycube_seconds = 6;
+  double polycube_seconds = 20;
   /// When set, the polycube path's deadline in Auto and Polycube, instead of polycube_seconds: a
   /// moment fixed by the caller (mesh_cad_part sets it once for all its tessellations).
   Deadline deadline;
