@@ -3,6 +3,7 @@
 // the B-rep before it is measured).
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <utility>
 
@@ -18,7 +19,8 @@ namespace hexdom::pipeline {
 ///     meets every target (meets_path_targets) is kept; nothing else runs.
 ///  2. the overlay path. When its mesh meets every target, the better of the two (better_run) is kept.
 ///  3. otherwise, when neither mesh meets the targets the further candidates may mend (meets_targets:
-///     no inverted cell, the worst SJ, the volume) and the deadline has not passed, the polycube path
+///     no inverted cell, the worst SJ, the volume) and the deadline, moved later by the overlay's
+///     run time (the polycube's budget does not pay for it), has not passed, the polycube path
 ///     again with its candidates (the labelling repaired once, taken from step 1), and the best of
 ///     the meshes kept.
 /// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
@@ -48,6 +50,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   MeshSurfaceOptions overlay = mo;
   overlay.method = Method::Overlay;
   bool have_grid = false;
+  const auto overlay_start = std::chrono::steady_clock::now();
   try {
     mesh_path(overlay, grid);
     have_grid = true;
@@ -64,15 +67,18 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     }
     return false;
   };
+  // The polycube's budget does not pay for the overlay's run.
+  const Deadline rest = quick.deadline.extended(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - overlay_start).count());
   // The further candidates mend the worst SJ, inverted cells or the volume, seldom the edge ratio.
   const bool grid_enough = have_grid && meets_targets(run_of(grid), reference, mo);
   // Step 3: the polycube's further candidates, from its first run's repaired labelling.
   if (have && !grid_enough && !meets_targets(run_of(r), reference, mo) && run_of(r).method == Method::Polycube &&
-      !quick.deadline.passed() && (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted)) {
+      !rest.passed() && (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted)) {
     say("the polycube again with its further candidates");
     MeshSurfaceOptions full = mo;
     full.method = Method::Polycube;
-    full.deadline = quick.deadline;
+    full.deadline = rest;
     // The labelling (and lambda) of the first run: the repair is not run again.
     full.polycube.repaired = &run_of(r).polycube.repaired;
     full.segment.edge_weight = run_of(r).edge_weight;
