@@ -120,15 +120,22 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
                                   structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
+# The largest edge ratio the pipeline aims at (pipeline::MeshSurfaceOptions::target_edge_ratio):
+# improve and snap_to_brep move nodes to bring cells above it down, as `hexdom mesh` does.
+TARGET_EDGE_RATIO = 10.0
+
+
 def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angle=35.0,
-            sharp_nodes=()):
+            sharp_nodes=(), max_edge_ratio=TARGET_EDGE_RATIO):
     """Pillowing, smoothing and Jacobian optimisation of a Mesh. With no stage set, runs the
     recommended sequence until the worst cell stops improving, then raises the mean scaled Jacobian
-    without lowering the worst hex, prism or tet. Boundary nodes stay on `surface`
-    (a Surface) or on the mesh's own boundary."""
+    without lowering the worst hex, prism or tet; then, for cells whose edge ratio is above
+    max_edge_ratio (0: none), moves their nodes to lower it, no type's worst scaled Jacobian lowered.
+    Boundary nodes stay on `surface` (a Surface) or on the mesh's own boundary."""
     sv, sf = (surface.V, surface.F) if surface is not None else (None, None)
     return Mesh(*_hexdom.improve(mesh.V, mesh.cells, mesh.types, mesh.region, pillow, smooth,
-                                 optimize, feature_angle, list(sharp_nodes), sv, sf))
+                                 optimize, feature_angle, list(sharp_nodes), sv, sf,
+                                 float(max_edge_ratio)))
 
 
 # ------------------------------------------------------------------------------------------------
@@ -338,12 +345,14 @@ if has_opencascade():
 SNAP_KINDS = {0: "interior", 1: "face", 2: "edge", 3: "vertex"}
 
 
-def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, optimize=20):
+def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, optimize=20,
+                 max_edge_ratio=TARGET_EDGE_RATIO):
     """Puts the boundary nodes of ``mesh`` (a Mesh of hex / prism / tet cells) exactly on the B-rep of
     ``source`` (a .step/.iges/.brep path or BREP text), using the CAD face ids of ``surface`` (its
     tessellation, e.g. Surface(*tessellate_file(...)), patch = 1-based CAD face) to decide which node
     goes onto a CAD face, edge (within edge_tolerance x its shortest boundary edge) or vertex; then
-    untangles and optimises the interior with the boundary held. Returns (Mesh, report dict:
+    untangles and optimises the interior with the boundary held (and lowers edge ratios above
+    max_edge_ratio, 0: none, as improve does). Returns (Mesh, report dict:
     boundary_nodes, face_nodes, edge_nodes, vertex_nodes, max_before / mean_before / max_after /
     mean_after B-rep distances (max_distance = max_after), max_move, diagonal, inverted_snapped, inverted, worst_sj_before,
     worst_sj_snapped, worst_sj, seconds_project, seconds_restore, quality, kind and entity per node
@@ -354,7 +363,7 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
     m, report = _hexdom.snap_to_brep(text, mesh.V, mesh.cells, mesh.types, mesh.region, surface.V,
                                      surface.F, surface.patch, solid=int(solid),
                                      edge_tolerance=float(edge_tolerance), smooth=int(smooth),
-                                     optimize=int(optimize))
+                                     optimize=int(optimize), max_edge_ratio=float(max_edge_ratio))
     report = dict(report)
     report["max_distance"] = report["max_after"]
     return Mesh(*m), report

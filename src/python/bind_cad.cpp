@@ -208,13 +208,14 @@ void bind_cad(py::module_& m) {
   m.def("snap_to_brep",
         [](const std::string& source, const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
            const std::optional<Eigen::VectorXi>& region, const RefV& sV, const RefF& sF, const RefI& face_id, int solid,
-           double edge_tolerance, int smooth, int optimize) {
+           double edge_tolerance, int smooth, int optimize, double max_edge_ratio) {
           mesh::Mesh mesh = make_mesh(V, cells, types, region);
           const mesh::SurfaceMesh surface = surface_of(sV, sF, face_id);
           cad::SnapOptions opt;
           opt.edge_tolerance = edge_tolerance;
           opt.smooth = smooth;
           opt.optimize = optimize;
+          opt.max_edge_ratio = max_edge_ratio;
           cad::SnapResult r;
           {
             py::gil_scoped_release nogil;
@@ -224,7 +225,7 @@ void bind_cad(py::module_& m) {
         },
         py::arg("source"), py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region"), py::arg("surface_V"),
         py::arg("surface_F"), py::arg("face_id"), py::arg("solid") = 0, py::arg("edge_tolerance") = 0.25,
-        py::arg("smooth") = 3, py::arg("optimize") = 20, kSnapDoc);
+        py::arg("smooth") = 3, py::arg("optimize") = 20, py::arg("max_edge_ratio") = 0.0, kSnapDoc);
 
   m.def("mesh_cad",
         [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,

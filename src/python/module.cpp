@@ -150,7 +150,8 @@ PYBIND11_MODULE(_hexdom, m) {
   m.def("improve", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
                       const std::optional<Eigen::VectorXi>& region, bool pillow, int smooth, int optimize,
                       double feature_angle, const std::vector<int>& sharp_nodes,
-                      const std::optional<Eigen::MatrixXd>& surface_V, const std::optional<Eigen::MatrixXi>& surface_F) {
+                      const std::optional<Eigen::MatrixXd>& surface_V, const std::optional<Eigen::MatrixXi>& surface_F,
+                      double max_edge_ratio) {
     mesh::Mesh msh = make_mesh(V, cells, types, region);
     optimize::ImproveOptions opt;
     opt.pillow = pillow;
@@ -158,6 +159,7 @@ PYBIND11_MODULE(_hexdom, m) {
     opt.optimize = optimize;
     opt.feature_angle = feature_angle;
     opt.sharp_nodes = sharp_nodes;
+    opt.max_edge_ratio = max_edge_ratio;
     if (surface_V && surface_F) {
       opt.surface.V = *surface_V;
       opt.surface.F = *surface_F;
@@ -169,8 +171,11 @@ PYBIND11_MODULE(_hexdom, m) {
   }, py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region") = py::none(), py::arg("pillow") = false,
      py::arg("smooth") = 0, py::arg("optimize") = 0, py::arg("feature_angle") = 35.0,
      py::arg("sharp_nodes") = std::vector<int>{}, py::arg("surface_V") = py::none(), py::arg("surface_F") = py::none(),
+     py::arg("max_edge_ratio") = 0.0,
   "Pillowing, smoothing and Jacobian optimisation; with no stage set, the recommended sequence.\n"
-  "Boundary nodes stay on the given surface (or the mesh's own boundary). Returns (V, cells, types, region).");
+  "Boundary nodes stay on the given surface (or the mesh's own boundary). max_edge_ratio > 0: then the\n"
+  "nodes of cells above that edge ratio move to lower it, no type's worst scaled Jacobian lowered.\n"
+  "Returns (V, cells, types, region).");
 
   python::bind_segmentation(m);
   python::bind_polycube(m);

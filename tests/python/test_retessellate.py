@@ -65,17 +65,20 @@ def test_a_labelling_the_repair_cannot_use_gets_another_tessellation(cad, tmp_pa
     assert f"the polycube grid kept at {size:g}" in log
 
 
-def test_inverted_cells_after_the_snap_get_another_tessellation(cad):
+def test_the_part_whose_snap_left_inverted_cells_meshes_on_its_first_tessellation(cad):
+    """i01o_m1 at 1.1 x the default size kept 3 inverted cells after the snap on its first
+    tessellation, and the one at 0.97 x the size rescued it. Since the optimiser lowers edge ratios
+    above 10 (optimize::ImproveOptions::max_edge_ratio, in the improvement and in the snap's
+    restoration) the first tessellation gives no inverted cell, at this size and at 0.90 to 1.16 x
+    the default (measured): the part is tessellated once. (The branch that tessellates again for
+    inverted cells is no longer reached by a shared part; the one for a labelling that defeats the
+    repair is tested above.)"""
     path = _shared("i01o_m1")
-    size = 6.3930  # 1.1 x the default size, as the sweep printed it (6.393049... keeps 1 inverted cell
-    # on all five tessellations: the rescue is not certain, the targets are then reported as missed)
+    size = 6.3930  # 1.1 x the default size, as the sweep printed it
     assert size == pytest.approx(1.1 * _default_size(cad, path), rel=1e-4)
-    # The polycube path without a time budget: its retessellations are what is tested (auto keeps
-    # the overlay mesh here, which meets the targets, and tessellates once).
     run = cad.mesh_part(path, size=size, allow_inverted=True, polycube_seconds=0, method="polycube")
-    assert run.tessellations >= 2 and run.tessellation_factor != 1.0
     assert run.inverted == 0
-    assert len(run.surface.F) == len(run.labels.F)  # the run is the kept tessellation's
+    assert run.tessellations == 1 and run.tessellation_factor == 1.0
 
 
 def test_a_part_that_meshes_at_once_is_tessellated_once(cad):

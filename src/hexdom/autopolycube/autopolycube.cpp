@@ -143,6 +143,8 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
   mesh::SurfaceMesh s = drop_unused_vertices(labels);
   r.labels = s;
   std::vector<Eigen::Vector3d> apexes;
+  // The labellings mapped so far: the repair is deterministic, so meeting one again means it cycles.
+  std::vector<std::pair<Eigen::MatrixXi, Eigen::VectorXi>> mapped;
   for (int attempt = 0;; ++attempt) {
     opt.deadline.check("autopolycube");
     if (attempt == 0 && opt.repaired) {
@@ -238,6 +240,11 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
       for (double x : g.area) total += x;
       if (attempt + 1 >= opt.max_attempts || r.relabelled >= opt.max_relabels || g.area[bad.front()] > opt.max_relabel_area * total)
         throw GeometryError(why + "; charts: " + names + " (after relabelling " + std::to_string(r.relabelled) + " charts)");
+      for (const auto& [F, patch] : mapped)
+        if (F.rows() == s.F.rows() && patch.size() == s.patch.size() && patch == s.patch && F == s.F)
+          throw GeometryError(why + "; charts: " + names + " (the label repair came back to a labelling it had mapped, after " +
+                              std::to_string(attempt + 1) + " rounds: it cycles)");
+      mapped.emplace_back(s.F, s.patch);
       log(why + ": relabelling " + chart_name(g, bad.front()));
       s.patch = relabel_chart(s, g, bad.front());
       ++r.relabelled;

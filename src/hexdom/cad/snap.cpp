@@ -352,6 +352,7 @@ class Restoration {
       io.optimize = opt_.optimize;
       io.floor = floor;
       io.mean_after = true;  // the smoothing costs the mean improve reached
+      io.max_edge_ratio = opt_.max_edge_ratio;
       for (int v : boundary_)
         if (!opt_.slide || r_.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
       if (opt_.slide)

@@ -31,6 +31,8 @@ struct SnapOptions {
   /// (optimize::improve with the boundary nodes fixed); both 0 skips it.
   int smooth = 3;
   int optimize = 20;
+  /// Edge-ratio target of the final restoration (optimize::ImproveOptions::max_edge_ratio); 0: none.
+  double max_edge_ratio = 0;
   /// During the restoration, boundary nodes may slide along their own CAD face or edge (vertex
   /// nodes stay); false holds every boundary node where the projection put it.
   bool slide = true;

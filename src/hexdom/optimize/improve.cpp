@@ -160,6 +160,25 @@ class Run {
          std::to_string(passes) + " passes (" + std::to_string(seconds_since(t0)) + " s)");
   }
 
+  // Edge-ratio rounds (ImproveOptions::max_edge_ratio) until no cell is above `target`, a round
+  // moves no node, or `max_rounds`. Each type's worst scaled Jacobian is kept, and a cell above
+  // `sj_floor` is not pushed below it.
+  void ratio_stage(double target, double sj_floor, int max_rounds) {
+    const double r0 = imp_->max_ratio();
+    if (!(r0 > target)) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    double bar[3];
+    imp_->worst_by_type(bar);
+    for (double& b : bar) b = std::max(b, sj_floor);
+    int rounds = 0;
+    while (rounds < max_rounds && !out_of_time()) {
+      ++rounds;
+      if (imp_->ratio_round(target, bar) == 0) break;
+    }
+    log_(name() + ": largest edge ratio " + fmt("%.3g", r0) + " -> " + fmt("%.3g", imp_->max_ratio()) + " in " +
+         std::to_string(rounds) + " rounds (" + std::to_string(seconds_since(t0)) + " s)");
+  }
+
   // The explicit stages: at least one pass or round, then as many as the time budget allows.
   int smooth(int passes) {
     int i = 0;
@@ -254,6 +273,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     const int optimised = run.stopped() ? 0 : run.optimize(opt.optimize);
     run.set_rounds(std::max(smoothed, optimised));
     if (opt.mean_after && opt.mean_passes > 0) run.mean_stage(opt.mean_passes, 3e-3);
+    if (opt.max_edge_ratio > 0) run.ratio_stage(opt.max_edge_ratio, opt.ratio_sj_floor, opt.ratio_rounds);
     r = run.finish();
     if (r.stopped) log("improve: stopped after the time budget of " + fmt("%g", opt.deadline.budget()) + " s");
   } else {
@@ -315,6 +335,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
           std::to_string(runs.size()) + " run" + (runs.size() == 1 ? "" : "s") + " made; kept the result " + best.name());
     // The mean only on the mesh kept: it never changes the worst cell the choice was made on.
     best.mean_stage(opt.mean_passes, 3e-3);
+    if (opt.max_edge_ratio > 0) best.ratio_stage(opt.max_edge_ratio, opt.ratio_sj_floor, opt.ratio_rounds);
     r = best.finish();
     r.stopped = r.stopped || opt.deadline.passed();
   }

@@ -30,6 +30,14 @@ struct ImproveOptions {
   /// node moves that raise the sum of their cells' scaled Jacobians while no cell that gets worse
   /// falls below the worst cell of its type, so the worst hex, prism and tet are kept (0: none).
   int mean_passes = 12;
+  /// Edge-ratio target (largest over shortest edge of a cell, quality::edge_ratio); 0: none. After
+  /// the mean passes, the nodes of the cells above it step down the gradient of their cells'
+  /// largest ratio, at most `ratio_rounds` rounds. A move never lowers a type's worst scaled
+  /// Jacobian, never inverts a cell, and never takes a cell that was at or above `ratio_sj_floor`
+  /// below it: the ratio gives way to the scaled Jacobian targets.
+  double max_edge_ratio = 0;
+  double ratio_sj_floor = 0.3;
+  int ratio_rounds = 30;
   /// With explicit stages (smooth / optimize), run the mean passes after them too (the recommended
   /// sequence always does): smoothing lowers the mean of an optimised mesh.
   bool mean_after = false;

@@ -261,6 +261,76 @@ int Improver::mean_pass() {
   return moved;
 }
 
+double Improver::local_ratio(int v, const Vec& x) {
+  const Vec old = m_.V.row(v).transpose();
+  m_.V.row(v) = x.transpose();
+  double r = 0;
+  for (int q : t_.node_cells[v]) r = std::max(r, quality::edge_ratio(m_.type(q), cell_points(m_, q)));
+  m_.V.row(v) = old.transpose();
+  return r;
+}
+
+bool Improver::try_move_ratio(int v, const Vec& x, const double bar[3]) {
+  if (negligible(v, x)) return false;
+  const Vec old = m_.V.row(v).transpose();
+  const double r_old = local_ratio(v, old);
+  if (!(local_ratio(v, x) < r_old * (1 - 1e-6))) return false;
+  m_.V.row(v) = x.transpose();
+  trial_.clear();
+  for (int q : t_.node_cells[v]) {
+    const double sj = cell_sj(m_, q);
+    trial_.push_back(sj);
+    if (sj < sj_[q] && (sj <= 0 || sj < std::min(sj_[q], bar[type_slot(q)]) || crosses_keep(q, sj))) {
+      m_.V.row(v) = old.transpose();
+      return false;
+    }
+  }
+  for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
+  mark_around(v);
+  return true;
+}
+
+int Improver::ratio_round(double target, const double bar[3]) {
+  std::vector<char> mark(m_.num_nodes(), 0);
+  std::vector<int> nodes;
+  for (int q = 0; q < m_.num_cells(); ++q) {
+    if (!(quality::edge_ratio(m_.type(q), cell_points(m_, q)) > target)) continue;
+    for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) {
+      const int v = m_.cells(q, i);
+      if (!mark[v] && t_.kind[v] != Corner) { mark[v] = 1; nodes.push_back(v); }
+    }
+  }
+  int moved = 0;
+  for (int v : nodes) {
+    const Vec x0 = m_.V.row(v).transpose();
+    const double h = 1e-4 * edge_[v];
+    if (!(h > 0)) continue;
+    const double f0 = local_ratio(v, x0);
+    Vec g;
+    for (int k = 0; k < 3; ++k) {
+      Vec x = x0;
+      x(k) += h;
+      g(k) = (local_ratio(v, x) - f0) / h;
+    }
+    if (!(g.norm() > 0) || !g.allFinite()) continue;
+    const Vec d = -g.normalized();
+    for (double a : {0.3, 0.15, 0.07, 0.03, 0.01})
+      if (try_move_ratio(v, constrain(v, x0 + a * edge_[v] * d), bar)) { ++moved; break; }
+  }
+  return moved;
+}
+
+double Improver::max_ratio() const {
+  double r = 0;
+  for (int q = 0; q < m_.num_cells(); ++q) r = std::max(r, quality::edge_ratio(m_.type(q), cell_points(m_, q)));
+  return r;
+}
+
+void Improver::worst_by_type(double out[3]) const {
+  out[0] = out[1] = out[2] = 2;
+  for (int q = 0; q < m_.num_cells(); ++q) out[type_slot(q)] = std::min(out[type_slot(q)], sj_[q]);
+}
+
 double Improver::mean() const {
   double s = 0;
   for (double x : sj_) s += x;

@@ -62,6 +62,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   r.demoted = place_of.demoted;
   optimize::ImproveOptions io;
   io.max_rounds = opt.max_rounds;
+  io.max_edge_ratio = opt.max_edge_ratio;
   io.mean_passes = opt.mean_passes;
   io.surface = s;
   io.kinds = place_of.kind;

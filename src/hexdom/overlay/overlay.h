@@ -50,6 +50,8 @@ struct OverlayOptions {
   /// until the worst stops improving, at most this many, then passes raising the mean.
   int max_rounds = 40;
   int mean_passes = 8;
+  /// Edge-ratio target of the optimiser (optimize::ImproveOptions::max_edge_ratio); 0: none.
+  double max_edge_ratio = 10;
   /// Halvings of the spacing allowed when the core falls apart or is empty (a part thinner than the
   /// cells), and, of those, how many when cells stay inverted, the volume is off by more than
   /// target_volume or the worst hex SJ is below refine_below_sj (each costs 8 times the cells); the
@@ -70,7 +72,10 @@ struct OverlayOptions {
   /// one with inverted cells, and of two that both lost part of it the one that lost less. Between
   /// meshes within it: fewer inverted cells, then the volume, then the worst scaled Jacobian.
   double lost_volume = 0.05;
-  double max_grid_cells = 1e6;  ///< no grid beyond this many cells is made (a bound on time and memory)
+  /// No grid beyond this many cells is made (a bound on time and memory: about 25 bytes per grid
+  /// cell, 200 MB here). A thin-walled part needs a grid of cells finer than its walls over its
+  /// whole box, of which it keeps only a few percent.
+  double max_grid_cells = 8e6;
   LogCallback log;
 };
 

@@ -3,7 +3,9 @@
 // the B-rep before it is measured).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 #include <string>
 #include <utility>
 
@@ -22,29 +24,45 @@ namespace hexdom::pipeline {
 ///     no inverted cell, the worst SJ, the volume) and the deadline, moved later by the overlay's
 ///     run time (the polycube's budget does not pay for it), has not passed, the polycube path
 ///     again with its candidates (the labelling repaired once, taken from step 1), and the best of
-///     the meshes kept.
+///     the meshes kept. When step 1 gave no mesh because its labelling defeated the repair, step 3
+///     segments again with the options' further edge weights (retry_edge_weights; step 1 tries the
+///     first weight only).
 /// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
 /// Error when the path gives no mesh; `run_of(run)` is its MeshSurfaceRun; `blank(run)` a fresh run
-/// for the same surface. The kept run is in `r`; its polycube_note says why the polycube mesh was
+/// for the same surface; `unsnapped(run)` the polycube run of step 1 as mesh_surface made it (before
+/// a snap; nullptr when not kept), from which step 3's candidates start instead of meshing it again. The kept run is in `r`; its polycube_note says why the polycube mesh was
 /// not kept alone (empty when it was). Throws the overlay's error when no path gives a mesh.
-template <class Run, class MeshPath, class RunOf, class Blank>
-void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank, Run& r) {
+template <class Run, class MeshPath, class RunOf, class Blank, class Unsnapped>
+void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank,
+                 Unsnapped unsnapped, Run& r) {
   auto say = [&](const std::string& m) { if (mo.log) mo.log(0, m); };
   MeshSurfaceOptions quick = mo;
   quick.method = Method::Polycube;
   quick.deadline = polycube_deadline(mo);
   quick.try_without_widths = quick.try_hex_apexes = quick.refine_when_inverted = false;
+  quick.retry_edge_weights.clear();
+  // The edge weights step 3 segments with when step 1's labelling defeats the repair.
+  std::vector<double> weights;
+  for (double w : mo.retry_edge_weights)
+    if (w != mo.segment.edge_weight && std::find(weights.begin(), weights.end(), w) == weights.end()) weights.push_back(w);
   std::string note;
-  bool have = false;
+  bool have = false, labelling_failed = false;
   try {
     mesh_path(quick, r);
     have = true;
-    if (meets_path_targets(run_of(r), reference, mo)) return;
+    if (meets_path_targets(run_of(r), reference, mo)) {
+      run_of(r).polycube_meshed = true;
+      return;
+    }
     note = "the polycube mesh misses a target (" + run_summary(run_of(r), reference) + ")" +
            (run_of(r).budget_passed ? fmt(" (its time budget of %g s passed)", quick.deadline.budget()) : std::string());
-  } catch (const Error& e) {  // a TimeoutError too: the polycube path ran out of its time
+  } catch (const TimeoutError& e) {  // the polycube path ran out of its time: no retry
     note = polycube_failure_note(e, run_of(r).stage);
+  } catch (const Error& e) {
+    note = polycube_failure_note(e, run_of(r).stage);
+    labelling_failed = true;
   }
+  const bool first_meshed = have;
   say(note + "; meshing with the overlay grid too");
   Run grid = blank(r);
   MeshSurfaceOptions overlay = mo;
@@ -83,6 +101,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     full.polycube.repaired = &run_of(r).polycube.repaired;
     full.segment.edge_weight = run_of(r).edge_weight;
     full.retry_edge_weights.clear();
+    full.first_run = unsnapped(r);  // the first candidate is step 1's run
     Run again = blank(r);
     try {
       mesh_path(full, again);
@@ -90,11 +109,28 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     } catch (const Error& e) {
       say(std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh");
     }
+  } else if (!have && labelling_failed && !weights.empty() && !grid_enough && !rest.passed()) {
+    say(fmt("the polycube again, segmenting with lambda %g", weights.front()) +
+        (weights.size() > 1 ? " and then the further edge weights" : ""));
+    MeshSurfaceOptions full = mo;
+    full.method = Method::Polycube;
+    full.deadline = rest;
+    full.first_run = nullptr;
+    full.segment.edge_weight = weights.front();
+    full.retry_edge_weights.assign(weights.begin() + 1, weights.end());
+    Run again = blank(r);
+    try {
+      mesh_path(full, again);
+      keep(again, "polycube");
+    } catch (const Error& e) {
+      say(std::string("the polycube with the further edge weights: ") + polycube_failure_note(e, run_of(again).stage));
+    }
   }
   const bool polycube_kept = have;
   if (have_grid && !keep(grid, "overlay") && polycube_kept)
     say("kept the polycube mesh: the overlay mesh is no better (" + run_summary(run_of(grid), reference) + ")");
   run_of(r).polycube_note = note;
+  run_of(r).polycube_meshed = first_meshed;
 }
 
 }  // namespace hexdom::pipeline

@@ -18,8 +18,10 @@ using quality::inverted_cells;
 void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, MeshCadRun& r) {
   pipeline::mesh_surface(r.surface, mo, &r.run);
   if (!opt.snap) return;
+  if (r.run.method == Method::Polycube) r.unsnapped = std::make_shared<const MeshSurfaceRun>(r.run);
   const auto t0 = std::chrono::steady_clock::now();
   cad::SnapOptions so = opt.snap_options;
+  so.max_edge_ratio = mo.target_edge_ratio;
   // The overlay's nodes on smooth regions stay off the CAD edges: it let some off a sharp curve on
   // purpose (the grid's staircase along it), and putting them back flattens their cells.
   const std::vector<optimize::NodeKind>& kind = r.run.overlay.node_kind;
@@ -52,7 +54,7 @@ void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const 
         other.tessellations = like.tessellations;
         return other;
       },
-      r);
+      [](const MeshCadRun& run) { return run.unsnapped ? run.unsnapped.get() : &run.run; }, r);
 }
 }  // namespace
 
@@ -94,6 +96,10 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   // Done when the mesh has no inverted cell; in auto mode, when the overlay was kept (the polycube
   // failed or did worse) and misses a target, other tessellations may still give a polycube.
   auto done = [&] {
+    // Auto: when the polycube meshed this tessellation and the overlay's mesh was kept, another
+    // tessellation seldom does better (measured on the corpus: 0 of 11 parts), and costs the
+    // polycube path's whole budget.
+    if (opt.mesh.method == Method::Auto && r.run.method == Method::Overlay && r.run.polycube_meshed) return true;
     if (inverted_cells(r.run.quality) > 0) return false;
     return !(opt.mesh.method == Method::Auto && r.run.method == Method::Overlay && !meets_targets(r.run, reference, opt.mesh));
   };

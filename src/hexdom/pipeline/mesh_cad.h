@@ -5,6 +5,7 @@
 // element size) and the better mesh kept. `hexdom mesh` and _hexdom's mesh_part run this.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "hexdom/pipeline/mesh_surface.h"
@@ -37,6 +38,9 @@ struct MeshCadRun {
   cad::TessellateStats stats;            ///< its figures
   /// The kept run as mesh_surface gives it, but for `mesh` and `quality`: after the snap when `snapped`.
   pipeline::MeshSurfaceRun run;
+  /// A polycube run as mesh_surface gave it, before the snap (Method::Auto's step 3 starts its
+  /// further candidates from it); empty for an overlay run or without the snap.
+  std::shared_ptr<const pipeline::MeshSurfaceRun> unsnapped;
   bool snapped = false;
   cad::SnapResult snap;                  ///< the snap's report, quality and node kinds, when snapped (its mesh is run.mesh)
   double snap_seconds = 0;

@@ -75,6 +75,7 @@ bool try_candidate(const mesh::SurfaceMesh& surface, MeshSurfaceOptions other, c
   other.polycube.repaired = &r.polycube.repaired;  // the same labelling: repaired once
   other.segment.edge_weight = r.edge_weight;
   other.retry_edge_weights.clear();
+  other.first_run = nullptr;
   MeshSurfaceRun again;
   try {
     mesh_once(surface, other, again);
@@ -101,7 +102,8 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
   MeshSurfaceRun& r = progress ? *progress : local;
   r = MeshSurfaceRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
-  mesh_once(surface, opt, r);
+  if (opt.first_run) r = *opt.first_run;
+  else mesh_once(surface, opt, r);
   const double reference = mesh::enclosed_volume(surface.V, surface.F);
   // Before each further candidate: once the time budget has passed, the run so far is kept.
   bool said = false;
@@ -146,6 +148,7 @@ MeshSurfaceRun mesh_candidates(const mesh::SurfaceMesh& surface, const MeshSurfa
       say(fmt("%.0f inverted cells at level %.0f: again with level %.0f (grid of half the spacing)", inverted, opt.level,
               opt.level - 1));
     MeshSurfaceOptions finer = opt;
+    finer.first_run = nullptr;
     finer.level = opt.level - 1;
     finer.segment.edge_weight = r.edge_weight;
     finer.polycube.repaired = &r.polycube.repaired;  // the repair does not depend on the level
@@ -201,6 +204,7 @@ void run_overlay(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt
   overlay::OverlayOptions oo = opt.overlay;
   oo.size = opt.size;
   oo.align = opt.align;
+  oo.max_edge_ratio = opt.target_edge_ratio;
   oo.log = opt.verbose ? opt.log : LogCallback();
   r.overlay = overlay::overlay_mesh(surface, oo);
   r.mesh = std::move(r.overlay.mesh);
@@ -253,7 +257,8 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
         if (o.method == Method::Overlay) run_overlay(surface, o, run);
         else mesh_polycube(surface, o, &run);
       },
-      [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; }, r);
+      [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; },
+      [](const MeshSurfaceRun& run) { return &run; }, r);
   return r;
 }
 
@@ -390,6 +395,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   bool stopped = false;
   if (opt.improve) {
     optimize::ImproveOptions io = opt.improvement;
+    io.max_edge_ratio = opt.target_edge_ratio;
     io.surface = r.polycube.patches;
     io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
     io.log = inner;

@@ -28,6 +28,8 @@ enum class Method { Auto, Polycube, Overlay };
 std::string method_name(Method m);
 Method method_from_name(const std::string& name);
 
+struct MeshSurfaceRun;
+
 struct MeshSurfaceOptions {
   Method method = Method::Auto;
   /// The polycube path's time budget in Method::Auto, in seconds from the call (0: no limit), so
@@ -58,6 +60,9 @@ struct MeshSurfaceOptions {
   /// in turn, then give up with the first attempt's error. Smoother labellings have fewer small
   /// charts for the label repair to merge.
   std::vector<double> retry_edge_weights = {1.0, 0.3, 3.0};
+  /// Method::Polycube: when set, the first candidate's run, already made with these options (auto's
+  /// first run, before any snap): the candidates start from it instead of meshing it again.
+  const MeshSurfaceRun* first_run = nullptr;
   int relax_sweeps = 10;              ///< generation's relaxation sweeps
   bool improve = true;                ///< run the improvement stage (recommended sequence)
   optimize::ImproveOptions improvement;  ///< its surface is the patch surface
@@ -124,6 +129,10 @@ struct MeshSurfaceRun {
   /// The polycube path's deadline passed after it had a mesh: the improvement stopped early or
   /// candidates were left untried; the mesh is the best one made in the time.
   bool budget_passed = false;
+  /// Method::Auto: the polycube path's first run gave a mesh (whether kept or not). Without one
+  /// (its labelling defeated the repair, or its time ran out) another tessellation may still give
+  /// a polycube (mesh_cad_part); with one, another tessellation seldom gives a better one.
+  bool polycube_meshed = false;
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
 };
 

@@ -314,3 +314,30 @@ TEST(Improve, APassedDeadlineStopsAfterOneRoundWithAValidMesh) {
   EXPECT_GT(sj_of(e.mesh).minCoeff(), 0.0);
   EXPECT_NEAR(quality::compute_metrics(e.mesh).volume.sum(), 1.0, 1e-9);
 }
+
+// A layer of cells squeezed to a tenth of a cell (their scaled Jacobians still high, their edge
+// ratios about 12): with max_edge_ratio the nodes of those cells move apart until the ratio is
+// below the target, while no type's worst scaled Jacobian drops (the stage's guarantee), measured
+// against the same sequence without it.
+TEST(Improve, EdgeRatioTargetOpensASqueezedLayerWithoutLoweringTheWorst) {
+  mesh::Mesh m = cube_grid(4, 0.08, 11);
+  const int k = 5;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) m.V(i + k * (j + k * 2), 2) = m.V(i + k * (j + k * 1), 2) + 0.025;
+  auto max_ratio = [](const mesh::Mesh& x) { return quality::compute_metrics(x).edge_ratio.maxCoeff(); };
+  const double ratio0 = max_ratio(m);
+  ASSERT_GT(ratio0, 9.0);
+  ASSERT_GT(sj_of(m).minCoeff(), 0.3);
+  optimize::ImproveOptions opt;  // explicit stages: no pillow layer (its own thin cells)
+  opt.optimize = 3;
+  const optimize::ImproveResult plain = optimize::improve(m, opt);
+  opt.max_edge_ratio = 4;
+  const optimize::ImproveResult with = optimize::improve(m, opt);
+  const Eigen::VectorXd sj_plain = sj_of(plain.mesh), sj_with = sj_of(with.mesh);
+  std::printf("edge ratio %.2f -> %.2f without the target, %.2f with it; worst SJ %.4f / %.4f\n", ratio0,
+              max_ratio(plain.mesh), max_ratio(with.mesh), sj_plain.minCoeff(), sj_with.minCoeff());
+  EXPECT_LE(max_ratio(with.mesh), 4.0 + 1e-9);
+  EXPECT_GT(max_ratio(plain.mesh), 4.0) << "the sequence alone mends the ratio: the test would not tell";
+  EXPECT_GE(sj_with.minCoeff(), sj_plain.minCoeff() - 1e-12);
+  EXPECT_NEAR(quality::compute_metrics(with.mesh).volume.sum(), 1.0, 1e-9);
+}

@@ -37,6 +37,7 @@ mesh::Mesh rebuild(const mesh::SurfaceMesh& s, const pipeline::MeshSurfaceOption
   go.relax_sweeps = o.relax_sweeps;
   optimize::ImproveOptions io = o.improvement;
   io.surface = p.patches;
+  io.max_edge_ratio = o.target_edge_ratio;  // as the pipeline's improvement stage
   return optimize::improve(generation::generate(p.patches, p.structure, go), io).mesh;
 }
 
@@ -170,6 +171,29 @@ TEST(MeshSurface, TheLabelRepairRunsOncePerRun) {
   EXPECT_EQ(repairs, 2) << log;  // two candidates
   EXPECT_EQ(handed, 1) << log;   // the second one took the first one's repair
   EXPECT_EQ(r.quality.hex.inverted, 0);
+}
+
+// Auto's further candidates start from its first run (MeshSurfaceOptions::first_run): that one is
+// not segmented, repaired nor meshed again, and the result is the one the whole chain gives.
+TEST(MeshSurface, TheCandidatesStartFromTheFirstRunGiven) {
+  const auto s = tilted_hole_bar();
+  pipeline::MeshSurfaceOptions o = tilted_hole_options();
+  o.target_sj = 2.0;  // no mesh meets it: the second candidate is meshed
+  o.method = pipeline::Method::Polycube;
+  o.refine_when_inverted = false;
+  int segmentations = 0;
+  o.log = [&](int, const std::string& m) { segmentations += m.rfind("segment:", 0) == 0; };
+  const auto whole = pipeline::mesh_surface(s, o);
+  EXPECT_EQ(segmentations, 2);  // the first candidate and the one without the widths
+  pipeline::MeshSurfaceOptions first = o;
+  first.try_without_widths = false;
+  const auto one = pipeline::mesh_surface(s, first);
+  segmentations = 0;
+  o.first_run = &one;
+  const auto rest = pipeline::mesh_surface(s, o);
+  EXPECT_EQ(segmentations, 1);  // the one without the widths only
+  EXPECT_EQ(rest.keep_widths, whole.keep_widths);
+  expect_same_mesh(rest.mesh, whole.mesh);
 }
 
 // The run reports the options of the candidate it kept (level, lambda, widths of holes, tet or hex

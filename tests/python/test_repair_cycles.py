@@ -1,0 +1,53 @@
+"""The automatic polycube stops when its label repair cycles (issue 19: "the polycube path stops
+early when its repair is not converging, instead of running for minutes").
+
+The part is one of our own corpus's (bench/make_corpus.py, counterbore family, 6th draw of the
+default seed: a plate with counterbores, countersinks and spot faces), made here by FreeCAD. On its
+tessellation segmented with lambda 0.1, the polycube map makes two charts overlap; relabelling the
+smaller one and the repair that follows give, after a few rounds, a labelling the repair had
+already mapped, and from there the same rounds again. Before the check, autopolycube went on for
+its 20 rounds (about 25 s here, over its four edge weights and five tessellations several minutes
+under `--method polycube`); now it stops the first time a labelling comes back and says so. The
+oracle is the run itself: the message names the cycle and the rounds, which are fewer than the
+rounds allowed (max_attempts), and the same run with max_attempts below that count ends on the
+round limit instead (so the stop is the cycle's, not a limit's)."""
+
+import re
+import subprocess
+import sys
+
+import pytest
+
+import hexdom_test_support as support
+
+SCRIPT = support.REPO / "bench" / "make_corpus.py"
+
+
+@pytest.fixture(scope="module")
+def labels(freecad, core, tmp_path_factory):
+    if not core.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    out = tmp_path_factory.mktemp("counterbore")
+    p = subprocess.run([sys.executable, str(SCRIPT), str(out), "--families", "counterbore", "--count", "6", "--no-fixed"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
+    V, F, face = core.tessellate_file(str(out / "counterbore_005.step"))
+    surface = core.Surface(V, F, face)
+    assert not core.cube_frame(surface)["turned"]  # the part is square to the axes: no frame to pass
+    size = core.frame_diagonal(surface, [[1, 0, 0], [0, 1, 0], [0, 0, 1]]) / 30.0
+    return core.segment(surface, edge_weight=0.1), size
+
+
+def test_a_label_repair_that_comes_back_to_a_labelling_stops(core, labels):
+    s, size = labels
+    with pytest.raises(core.GeometryError) as e:
+        core.autopolycube(s, size=size, level=1)
+    message = str(e.value)
+    print(message)
+    m = re.search(r"came back to a labelling it had mapped, after (\d+) rounds: it cycles", message)
+    assert m, message
+    rounds = int(m.group(1))
+    assert 2 <= rounds < 20  # 20: AutoPolycubeOptions::max_attempts
+    with pytest.raises(core.GeometryError) as limited:
+        core.autopolycube(s, size=size, level=1, max_attempts=rounds - 1)
+    assert "it cycles" not in str(limited.value)
