@@ -30,8 +30,10 @@ namespace hexdom::pipeline {
 /// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
 /// Error when the path gives no mesh; `run_of(run)` is its MeshSurfaceRun; `blank(run)` a fresh run
 /// for the same surface; `unsnapped(run)` the polycube run of step 1 as mesh_surface made it (before
-/// a snap; nullptr when not kept), from which step 3's candidates start instead of meshing it again. The kept run is in `r`; its polycube_note says why the polycube mesh was
-/// not kept alone (empty when it was). Throws the overlay's error when no path gives a mesh.
+/// a snap; nullptr when not kept), from which step 3's candidates start instead of meshing it
+/// again. The kept run is in `r`; its polycube_note says why the polycube mesh was not kept alone
+/// (empty when it was), its polycube_meshed whether step 1 gave a mesh. Throws the overlay's error
+/// when no path gives a mesh.
 template <class Run, class MeshPath, class RunOf, class Blank, class Unsnapped>
 void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank,
                  Unsnapped unsnapped, Run& r) {
