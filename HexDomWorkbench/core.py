@@ -120,13 +120,14 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
                                   structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
-# The largest edge ratio the pipeline aims at (pipeline::MeshSurfaceOptions::target_edge_ratio):
-# improve and snap_to_brep move nodes to bring cells above it down, as `hexdom mesh` does.
+# The largest edge ratio the pipeline aims at (pipeline::MeshSurfaceOptions::target_edge_ratio): its
+# improvement and snap pass it as max_edge_ratio (the Mesh object does the same through improve and
+# snap_to_brep, which by themselves, as `hexdom improve`, leave edge ratios alone).
 TARGET_EDGE_RATIO = 10.0
 
 
 def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angle=35.0,
-            sharp_nodes=(), max_edge_ratio=TARGET_EDGE_RATIO):
+            sharp_nodes=(), max_edge_ratio=0.0):
     """Pillowing, smoothing and Jacobian optimisation of a Mesh. With no stage set, runs the
     recommended sequence until the worst cell stops improving, then raises the mean scaled Jacobian
     without lowering the worst hex, prism or tet; then, for cells whose edge ratio is above
@@ -346,7 +347,7 @@ SNAP_KINDS = {0: "interior", 1: "face", 2: "edge", 3: "vertex"}
 
 
 def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, optimize=20,
-                 max_edge_ratio=TARGET_EDGE_RATIO):
+                 max_edge_ratio=0.0):
     """Puts the boundary nodes of ``mesh`` (a Mesh of hex / prism / tet cells) exactly on the B-rep of
     ``source`` (a .step/.iges/.brep path or BREP text), using the CAD face ids of ``surface`` (its
     tessellation, e.g. Surface(*tessellate_file(...)), patch = 1-based CAD face) to decide which node

@@ -137,7 +137,7 @@ class HexMesh(BaseHexDomObject):
             mesh = get_mesh(base)
             if obj.Improve:
                 with Progress("Improving " + obj.Label, 1) as bar:
-                    mesh = bar.run("improve", core.improve, mesh)
+                    mesh = bar.run("improve", core.improve, mesh, max_edge_ratio=core.TARGET_EDGE_RATIO)
                     bar.step("improved")
             return mesh
         self.path = meshing_path(obj)
@@ -163,11 +163,12 @@ class HexMesh(BaseHexDomObject):
             mesh = bar.run("generate", core.generate, surface, structure, level=obj.Level)
             bar.step("generated {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if obj.Improve:
-                mesh = bar.run("improve", core.improve, mesh, surface)
+                mesh = bar.run("improve", core.improve, mesh, surface, max_edge_ratio=core.TARGET_EDGE_RATIO)
                 bar.step("improved")
             if snap:
                 brep, cad_surface = snap
-                mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface)
+                mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface,
+                                     max_edge_ratio=core.TARGET_EDGE_RATIO)
                 self.brep_distance = float(info["max_distance"])
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
         return mesh
@@ -193,7 +194,8 @@ class HexMesh(BaseHexDomObject):
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:
                 brep, cad_surface = snap
-                mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface)
+                mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface,
+                                     max_edge_ratio=core.TARGET_EDGE_RATIO)
                 self.brep_distance = float(info["max_distance"])
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
         return mesh

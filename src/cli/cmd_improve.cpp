@@ -25,6 +25,10 @@ void add_improve(CLI::App& app) {
   auto* sharp = cmd->add_option("--sharp", a->sharp, "sharp-feature node file (last integer per line: 0-based node index)");
   cmd->add_option("--feature-angle", a->opt.feature_angle, "boundary edges whose faces' normals differ by more than this many degrees are sharp")
       ->capture_default_str()->excludes(sharp);
+  cmd->add_option("--max-edge-ratio", a->opt.max_edge_ratio,
+                  "then move the nodes of cells whose edge ratio is above this to lower it, no type's worst scaled "
+                  "Jacobian lowered, no cell at or above 0.3 taken below it (0: off; hexdom mesh uses 10)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--report", a->report, "also write the quality report after improvement as JSON to this file");
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
   cmd->footer("With no stage flags, runs the recommended sequence: pillow, then smoothing and optimisation until the worst cell stops "

@@ -296,10 +296,11 @@ def test_snap_to_brep_wiring(doc, monkeypatch):
     if not api.core_has("snap_to_brep"):
         objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
         assert objs["mesh"].BrepDistance == -1.0
-    calls = []
+    calls, ratios = [], []
 
-    def fake_snap(mesh, source, surface, solid=0):
+    def fake_snap(mesh, source, surface, solid=0, max_edge_ratio=0.0):
         calls.append((mesh, source, surface, solid))
+        ratios.append(max_edge_ratio)
         moved = core.Mesh(mesh.V + 0.0, mesh.cells, mesh.types, mesh.region)
         moved.V[0] += 1e-3  # so the test sees that the returned mesh is the one stored
         return moved, {"max_distance": 2.5e-9}
@@ -310,6 +311,7 @@ def test_snap_to_brep_wiring(doc, monkeypatch):
     objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
     mesh = objs["mesh"]
     assert len(calls) == 1
+    assert ratios == [core.TARGET_EDGE_RATIO]  # the pipeline's edge-ratio target, as `hexdom mesh` snaps
     given, source, surface, solid = calls[0]
     assert "CASCADE Topology" in source and solid == 0
     assert sorted(set(np.asarray(surface.patch).tolist())) == list(range(1, 7))  # Face1..Face6
