@@ -202,8 +202,7 @@ double Improver::local_sum(int v) const {
 }
 
 void Improver::set_floors(double extra, double only_above) {
-  for (double& f : floor_) f = 2;
-  for (int q = 0; q < m_.num_cells(); ++q) floor_[type_slot(q)] = std::min(floor_[type_slot(q)], sj_[q]);
+  worst_by_type(floor_);
   const double w = std::min({floor_[0], floor_[1], floor_[2]});
   for (double& f : floor_) f = only_above > 0 && f < w + only_above ? -2 : std::max(f, extra);
 }
@@ -270,11 +269,10 @@ double Improver::local_ratio(int v, const Vec& x) {
   return r;
 }
 
-bool Improver::try_move_ratio(int v, const Vec& x, const double bar[3]) {
+bool Improver::try_move_ratio(int v, const Vec& x, double ratio_now, const double bar[3]) {
   if (negligible(v, x)) return false;
   const Vec old = m_.V.row(v).transpose();
-  const double r_old = local_ratio(v, old);
-  if (!(local_ratio(v, x) < r_old * (1 - 1e-6))) return false;
+  if (!(local_ratio(v, x) < ratio_now * (1 - 1e-6))) return false;
   m_.V.row(v) = x.transpose();
   trial_.clear();
   for (int q : t_.node_cells[v]) {
@@ -315,7 +313,7 @@ int Improver::ratio_round(double target, const double bar[3]) {
     if (!(g.norm() > 0) || !g.allFinite()) continue;
     const Vec d = -g.normalized();
     for (double a : {0.3, 0.15, 0.07, 0.03, 0.01})
-      if (try_move_ratio(v, constrain(v, x0 + a * edge_[v] * d), bar)) { ++moved; break; }
+      if (try_move_ratio(v, constrain(v, x0 + a * edge_[v] * d), f0, bar)) { ++moved; break; }
   }
   return moved;
 }

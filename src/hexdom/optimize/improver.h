@@ -91,10 +91,10 @@ class Improver {
 
   // Largest edge ratio (quality::edge_ratio) of the cells of node v, with v at x.
   double local_ratio(int v, const Vec& x);
-  // Moves v to x if that lowers the largest edge ratio of its cells, none of them becomes inverted
-  // or crosses the keep level, and no cell whose scaled Jacobian drops ends below `bar[type]` (or
-  // its own value, when that is lower).
-  bool try_move_ratio(int v, const Vec& x, const double bar[3]);
+  // Moves v to x if that lowers the largest edge ratio of its cells (`ratio_now` with v where it
+  // is), none of them becomes inverted or crosses the keep level, and no cell whose scaled
+  // Jacobian drops ends below `bar[type]` (or its own value, when that is lower).
+  bool try_move_ratio(int v, const Vec& x, double ratio_now, const double bar[3]);
   // One edge-ratio round: the nodes of the cells whose edge ratio is above `target` step down the
   // numerical gradient of their cells' largest ratio (try_move_ratio). Returns the nodes moved.
   int ratio_round(double target, const double bar[3]);

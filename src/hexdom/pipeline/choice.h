@@ -29,9 +29,9 @@ namespace hexdom::pipeline {
 ///     first weight only).
 /// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
 /// Error when the path gives no mesh; `run_of(run)` is its MeshSurfaceRun; `blank(run)` a fresh run
-/// for the same surface; `unsnapped(run)` the polycube run of step 1 as mesh_surface made it (before
-/// a snap; nullptr when not kept), from which step 3's candidates start instead of meshing it
-/// again. The kept run is in `r`; its polycube_note says why the polycube mesh was not kept alone
+/// for the same surface; `unsnapped(run)` (a MeshSurfaceRun) the polycube run of step 1 as
+/// mesh_surface made it, before any snap, from which step 3's candidates start instead of meshing
+/// it again. The kept run is in `r`; its polycube_note says why the polycube mesh was not kept alone
 /// (empty when it was), its polycube_meshed whether step 1 gave a mesh. Throws the overlay's error
 /// when no path gives a mesh.
 template <class Run, class MeshPath, class RunOf, class Blank, class Unsnapped>
@@ -92,41 +92,41 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
       std::chrono::duration<double>(std::chrono::steady_clock::now() - overlay_start).count());
   // The further candidates mend the worst SJ, inverted cells or the volume, seldom the edge ratio.
   const bool grid_enough = have_grid && meets_targets(run_of(grid), reference, mo);
-  // Step 3: the polycube's further candidates, from its first run's repaired labelling.
+  // Step 3: the polycube path again with `full` within the rest of the budget, kept when better;
+  // `failed(e, run)` says why when it gives no mesh.
+  auto polycube_again = [&](MeshSurfaceOptions full, auto failed) {
+    full.method = Method::Polycube;
+    full.deadline = rest;
+    Run again = blank(r);
+    try {
+      mesh_path(full, again);
+      keep(again, "polycube");
+    } catch (const Error& e) {
+      say(failed(e, again));
+    }
+  };
   if (have && !grid_enough && !meets_targets(run_of(r), reference, mo) && run_of(r).method == Method::Polycube &&
       !rest.passed() && (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted)) {
     say("the polycube again with its further candidates");
     MeshSurfaceOptions full = mo;
-    full.method = Method::Polycube;
-    full.deadline = rest;
     // The labelling (and lambda) of the first run: the repair is not run again.
     full.polycube.repaired = &run_of(r).polycube.repaired;
     full.segment.edge_weight = run_of(r).edge_weight;
     full.retry_edge_weights.clear();
-    full.first_run = unsnapped(r);  // the first candidate is step 1's run
-    Run again = blank(r);
-    try {
-      mesh_path(full, again);
-      keep(again, "polycube");
-    } catch (const Error& e) {
-      say(std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh");
-    }
+    const MeshSurfaceRun first = unsnapped(r);
+    full.first_run = &first;  // the first candidate is step 1's run
+    polycube_again(full, [](const Error& e, Run&) {
+      return std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh";
+    });
   } else if (!have && labelling_failed && !weights.empty() && !grid_enough && !rest.passed()) {
     say(fmt("the polycube again, segmenting with lambda %g", weights.front()) +
         (weights.size() > 1 ? " and then the further edge weights" : ""));
     MeshSurfaceOptions full = mo;
-    full.method = Method::Polycube;
-    full.deadline = rest;
-    full.first_run = nullptr;
     full.segment.edge_weight = weights.front();
     full.retry_edge_weights.assign(weights.begin() + 1, weights.end());
-    Run again = blank(r);
-    try {
-      mesh_path(full, again);
-      keep(again, "polycube");
-    } catch (const Error& e) {
-      say(std::string("the polycube with the further edge weights: ") + polycube_failure_note(e, run_of(again).stage));
-    }
+    polycube_again(full, [&](const Error& e, Run& again) {
+      return "the polycube with the further edge weights: " + polycube_failure_note(e, run_of(again).stage);
+    });
   }
   const bool polycube_kept = have;
   if (have_grid && !keep(grid, "overlay") && polycube_kept)

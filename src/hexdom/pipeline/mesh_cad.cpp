@@ -18,7 +18,6 @@ using quality::inverted_cells;
 void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, MeshCadRun& r) {
   pipeline::mesh_surface(r.surface, mo, &r.run);
   if (!opt.snap) return;
-  if (r.run.method == Method::Polycube) r.unsnapped = std::make_shared<const MeshSurfaceRun>(r.run);
   const auto t0 = std::chrono::steady_clock::now();
   cad::SnapOptions so = opt.snap_options;
   so.max_edge_ratio = mo.target_edge_ratio;
@@ -30,6 +29,8 @@ void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, c
     for (size_t v = 0; v < kind.size(); ++v) so.face_only[v] = kind[v] == optimize::Surface;
   }
   cad::SnapResult sr = cad::snap_to_brep(shape, r.run.mesh, r.surface, so);
+  r.unsnapped_mesh = std::move(r.run.mesh);
+  r.unsnapped_quality = r.run.quality;
   r.run.mesh = std::move(sr.mesh);
   r.run.quality = sr.quality;
   r.snap = std::move(sr);
@@ -54,7 +55,15 @@ void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const 
         other.tessellations = like.tessellations;
         return other;
       },
-      [](const MeshCadRun& run) { return run.unsnapped ? run.unsnapped.get() : &run.run; }, r);
+      [](const MeshCadRun& run) {
+        MeshSurfaceRun u = run.run;
+        if (run.snapped) {
+          u.mesh = run.unsnapped_mesh;
+          u.quality = run.unsnapped_quality;
+        }
+        return u;
+      },
+      r);
 }
 }  // namespace
 

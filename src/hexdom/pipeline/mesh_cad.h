@@ -5,7 +5,6 @@
 // element size) and the better mesh kept. `hexdom mesh` and _hexdom's mesh_part run this.
 #pragma once
 
-#include <memory>
 #include <vector>
 
 #include "hexdom/pipeline/mesh_surface.h"
@@ -38,10 +37,11 @@ struct MeshCadRun {
   cad::TessellateStats stats;            ///< its figures
   /// The kept run as mesh_surface gives it, but for `mesh` and `quality`: after the snap when `snapped`.
   pipeline::MeshSurfaceRun run;
-  /// A polycube run as mesh_surface gave it, before the snap (Method::Auto's step 3 starts its
-  /// further candidates from it); empty for an overlay run or without the snap.
-  std::shared_ptr<const pipeline::MeshSurfaceRun> unsnapped;
   bool snapped = false;
+  /// When `snapped`: run.mesh and run.quality as mesh_surface gave them, before the snap
+  /// (Method::Auto's step 3 starts the polycube's further candidates from that run).
+  mesh::Mesh unsnapped_mesh;
+  quality::QualityReport unsnapped_quality;
   cad::SnapResult snap;                  ///< the snap's report, quality and node kinds, when snapped (its mesh is run.mesh)
   double snap_seconds = 0;
   double tessellation_factor = 1;   ///< its triangle size over the first tessellation's

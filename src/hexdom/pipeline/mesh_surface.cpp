@@ -258,7 +258,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
         else mesh_polycube(surface, o, &run);
       },
       [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; },
-      [](const MeshSurfaceRun& run) { return &run; }, r);
+      [](const MeshSurfaceRun& run) { return run; }, r);
   return r;
 }
 
