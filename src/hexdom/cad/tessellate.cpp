@@ -378,7 +378,8 @@ void run_brepmesh(const WorkShape& w, const Sizes& z, const std::string& source)
 
 /// The merged triangles remeshed on the B-rep (OcctGeometry), each triangle's patch its face in the
 /// original's numbering.
-mesh::SurfaceMesh remesh_on_brep(const WorkShape& w, Merged&& merged, const Sizes& z, const TessellateOptions& options) {
+mesh::SurfaceMesh remesh_on_brep(const WorkShape& w, Merged&& merged, const Sizes& z, const TessellateOptions& options,
+                                 long* splits) {
   OcctGeometry geometry(w.faces, w.edges, w.vertices, z.size, z.deflection, z.angle, z.min_size);
   mesh::remesh::RemeshParams rp;
   rp.max_size = z.size;
@@ -390,6 +391,7 @@ mesh::SurfaceMesh remesh_on_brep(const WorkShape& w, Merged&& merged, const Size
     if (edge_nodes[e].size() == 2 && edge_nodes[e][0] != edge_nodes[e][1])
       remesher.set_corner_edge(edge_nodes[e][0], edge_nodes[e][1], e);
   remesher.run();
+  *splits = remesher.splits();
 
   mesh::SurfaceMesh out;
   Eigen::VectorXi face;
@@ -410,7 +412,8 @@ mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& o
     const Sizes z = resolve_sizes(shape, options);
     const WorkShape w = copy_without_triangulations(impl);
     run_brepmesh(w, z, source);
-    mesh::SurfaceMesh out = remesh_on_brep(w, merge_triangulations(w, z, options), z, options);
+    long splits = 0;
+    mesh::SurfaceMesh out = remesh_on_brep(w, merge_triangulations(w, z, options), z, options, &splits);
     int at = -1;
     const std::string problem = closed_manifold_problem(out.F, &at);
     if (!problem.empty())
@@ -423,6 +426,7 @@ mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& o
     if (stats) {
       *stats = tessellation_stats(shape, out);
       stats->size = z.size;
+      stats->splits = splits;
       stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
       if (options.log && stats->brep_volume != 0 &&
           std::abs(stats->volume - stats->brep_volume) > 0.01 * std::abs(stats->brep_volume))

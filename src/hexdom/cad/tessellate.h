@@ -59,6 +59,7 @@ struct TessellateStats {
   double volume = 0;             ///< volume enclosed by the triangles
   double brep_volume = 0;        ///< volume of the solid (OCCT GProp)
   double seconds = 0;
+  long splits = 0;               ///< edges the remesher split (see mesh::remesh::SurfaceRemesher::splits)
 };
 
 /// Triangulates the boundary of `shape` (a solid). The result is closed, 2-manifold and oriented

@@ -196,7 +196,11 @@ bool SurfaceRemesher::split(int a, int b, int depth) {
   };
   const int before = (planar1 ? invalid(t1) : 0) + (planar2 ? invalid(t2) : 0);
   m.size = std::min(geom_.size_at(m), params_.max_size);
-  m.h = std::min(m.size, 0.5 * (V_[a].h + V_[b].h));
+  // Graded from the edge's ends (h may grow by `gradation` per unit of distance), not their mean:
+  // the mean of two small sizes at the ends of a long edge would fill its whole length with them.
+  // Graded from the edge's ends (h may grow by `gradation` per unit of distance), not their mean:
+  // the mean of two small sizes at the ends of a long edge would fill its whole length with them.
+  m.h = std::min({m.size, V_[a].h + params_.gradation * (m.p - pa).norm(), V_[b].h + params_.gradation * (m.p - pb).norm()});
   const int mi = static_cast<int>(V_.size());
   V_.push_back(m);
   vt_.emplace_back();
@@ -443,6 +447,7 @@ int SurfaceRemesher::split_long_edges() {
       if (split(a, b)) ++n;
     }
     total += n;
+    splits_ += n;
     if (n == 0) break;
   }
   return total;

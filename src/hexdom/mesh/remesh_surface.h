@@ -64,6 +64,9 @@ class SurfaceRemesher {
   /// mesh edge knows which curve to put the new vertex on).
   void set_corner_edge(int a, int b, int cad_edge);
   void run();
+  /// Edges split so far. The graded size field bounds them by a small multiple of the vertices
+  /// the result keeps (sizes grow away from a small feature; they do not spread along long edges).
+  long splits() const { return splits_; }
   /// Compacted result: #V by 3, #F by 3, #F CAD face per triangle (0-based).
   void extract(Eigen::MatrixXd& V, Eigen::MatrixXi& F, Eigen::VectorXi& face) const;
 
@@ -107,6 +110,7 @@ class SurfaceRemesher {
   mutable std::vector<int> scratch_a_, scratch_b_;  ///< neighbour lists of can_collapse  ///< per CAD face: unit normal (outward) if planar, else 0
   const RemeshGeometry& geom_;
   RemeshParams params_;
+  long splits_ = 0;
 };
 
 }  // namespace hexdom::mesh::remesh

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace hexdom::segmentation {
@@ -13,7 +15,9 @@ namespace {
 
 constexpr int kSharpExponents[] = {16, 64};
 
-// Unit normals and areas of the triangles (zero-area triangles are left out).
+// Unit normals and areas of the triangles (zero-area triangles are left out), triangles of one
+// normal (to about 1e-9: a planar face's) merged into one entry with their summed area, so that
+// the fits below cost per distinct normal, not per triangle.
 struct Normals {
   std::vector<Eigen::Vector3d> n;
   std::vector<double> area;
@@ -21,17 +25,45 @@ struct Normals {
 };
 
 Normals normals_of(const mesh::SurfaceMesh& s) {
+  struct Key {
+    int64_t x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct Hash {
+    size_t operator()(const Key& k) const {
+      return std::hash<int64_t>()(k.x) ^ (std::hash<int64_t>()(k.y) * 0x9e3779b97f4a7c15ULL) ^ (std::hash<int64_t>()(k.z) << 1);
+    }
+  };
+  std::unordered_map<Key, int, Hash> index;
+  std::vector<Eigen::Vector3d> sum;  // area-weighted normals of each entry
   Normals out;
   for (int f = 0; f < s.F.rows(); ++f) {
     const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     const Eigen::Vector3d x = (b - a).cross(c - a);
     const double twice = x.norm();
     if (!(twice > 0)) continue;
-    out.n.push_back(x / twice);
-    out.area.push_back(0.5 * twice);
+    const Eigen::Vector3d n = x / twice;
+    const Key key{std::llround(n.x() * 1e9), std::llround(n.y() * 1e9), std::llround(n.z() * 1e9)};
+    auto [it, added] = index.emplace(key, static_cast<int>(sum.size()));
+    if (added) {
+      sum.push_back(Eigen::Vector3d::Zero());
+      out.area.push_back(0);
+    }
+    sum[it->second] += 0.5 * x;
+    out.area[it->second] += 0.5 * twice;
     out.total += 0.5 * twice;
   }
+  out.n.reserve(sum.size());
+  for (const Eigen::Vector3d& m : sum) out.n.push_back(m.normalized());
   return out;
+}
+
+// x^k for k >= 0 by squaring (std::pow costs several times more in the fits' inner loop).
+double int_pow(double x, int k) {
+  double r = 1;
+  for (; k > 0; k >>= 1, x *= x)
+    if (k & 1) r *= x;
+  return r;
 }
 
 // Fit of R with exponent p (even): the area-weighted mean of sum_k (R n)_k^p, and, when `gradient` is
@@ -43,7 +75,8 @@ double fit_of(const Normals& ns, const Eigen::Matrix3d& R, Eigen::Vector3d* grad
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < ns.n.size(); ++i) {
     const Eigen::Vector3d m = R * ns.n[i];
-    const Eigen::Vector3d c = p == 4 ? Eigen::Vector3d(m.array().cube().matrix()) : Eigen::Vector3d(m.array().pow(p - 1).matrix());
+    const Eigen::Vector3d c = p == 4 ? Eigen::Vector3d(m.array().cube().matrix())
+                                      : Eigen::Vector3d(int_pow(m.x(), p - 1), int_pow(m.y(), p - 1), int_pow(m.z(), p - 1));
     e += ns.area[i] * m.dot(c);
     if (gradient) g += ns.area[i] * m.cross(c);
   }

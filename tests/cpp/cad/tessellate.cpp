@@ -121,6 +121,22 @@ TEST(Tessellate, CurvatureRefinesSmallHoles) {
   EXPECT_GE(on_rim, 12);
 }
 
+TEST(Tessellate, SmallSizesDoNotSpreadAlongLongEdges) {
+  // A plate 200 x 100 with a slot 0.3 wide and 150 long: the slot's faces need edges of about 0.3,
+  // and BRepMesh's first triangles join the slot's ends to far corners of the plate by edges 100
+  // long. The split points of such an edge take sizes graded from its ends, so the small sizes
+  // reach only a few units into the plate's faces: splits stay within a few times the vertices
+  // kept (1.7 times; sizes averaged from the ends filled whole edges: 12 times).
+  const TopoDS_Shape plate = BRepPrimAPI_MakeBox(200.0, 100.0, 10.0).Shape();
+  const TopoDS_Shape slot = BRepPrimAPI_MakeBox(gp_Pnt(25.0, 49.85, -1.0), 150.0, 0.3, 12.0).Shape();
+  cad::Shape shape = cad::read_shape(write_part(BRepAlgoAPI_Cut(plate, slot).Shape(), "long_slot"));
+  cad::TessellateStats st;
+  mesh::SurfaceMesh s = cad::tessellate(shape, {}, &st);
+  EXPECT_TRUE(st.closed);
+  EXPECT_LT(st.min_edge, 0.35);  // the slot's width is resolved
+  EXPECT_LT(st.splits, 3L * st.vertices) << st.vertices << " vertices";
+}
+
 TEST(Tessellate, VerticesLieOnTheBrep) {
   for (const Part& part : test_parts()) {
     cad::Shape shape = cad::read_shape(write_part(part.make(), part.name + "_on"));

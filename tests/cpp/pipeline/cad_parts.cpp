@@ -12,13 +12,14 @@
 using namespace hexdom;
 
 // i11o_s1 at the default size (diagonal / 30, level 1): where the R65 round's -Y / +Z label boundary
-// meets the plate's faces, cells have two faces on the round. The run without a layer caps there
-// (0.270, 0.267 after the snap). The layer over the smooth regions was inverted at the arm's R11
-// hole rim (-0.084) once its edge nodes went back onto the surface, and, made valid, its gradient
-// rounds stalled at the x = 16 crescent (0.158), where a layer cell's face has two edges on the R65
-// arc. Now the layer is checked after that projection and the run goes on with the pattern search
-// below the bar: 0.320, and 0.301 after the snap (its restoration keeps 0.3).
-TEST(ImproveOnSharedPart, LayerOverTheSmoothRegionsOpensTheCrescentCornerOnARound) {
+// meets the plate's faces, cells have two faces on the round. With the tessellation of 2026-11 the
+// run without a layer capped there (0.270, 0.267 after the snap) and the layer over the smooth
+// regions, checked after its edge nodes went back onto the surface and optimised with the pattern
+// search below the bar, gave 0.320 (0.301 after the snap). The remesher's graded split sizes
+// (2026-12) give a tessellation on which the candidate without the widths of holes, unpillowed,
+// reaches 0.329 (0.322 after the snap). Which candidate wins depends on the triangles; the worst SJ
+// of 0.3 before and after the snap is what this part must keep.
+TEST(ImproveOnSharedPart, PolycubeMeshOfAPlateWithARoundKeepsTheWorstSJAboveTheBar) {
   const std::string path = test::data_path("cad/i11o_s1.step");
   HEXDOM_REQUIRE_DATA(path);
   const cad::Shape shape = cad::read_shape(path);
@@ -27,7 +28,6 @@ TEST(ImproveOnSharedPart, LayerOverTheSmoothRegionsOpensTheCrescentCornerOnARoun
   o.method = pipeline::Method::Polycube;  // auto keeps the overlay mesh here (the polycube's edge ratio is 48)
   const pipeline::MeshSurfaceRun run = pipeline::mesh_surface(surface, o);
   ASSERT_EQ(run.level, 1);
-  EXPECT_GT(run.mesh.num_cells(), run.generated.num_cells());  // a pillowed run was kept
   const Eigen::VectorXd sj = quality::compute_metrics(run.mesh).scaled_jacobian;
   EXPECT_GE(sj.minCoeff(), 0.3);
   const cad::SnapResult snapped = cad::snap_to_brep(shape, run.mesh, surface, cad::SnapOptions{});
