@@ -20,13 +20,23 @@ Deadline Deadline::in(double seconds) {
   return d;
 }
 
+Deadline Deadline::cancellable(const Deadline& base) {
+  Deadline d = base;
+  d.cancel_ = std::make_shared<std::atomic<bool>>(false);
+  return d;
+}
+
+Deadline Deadline::cancellable() { return cancellable(Deadline()); }
+
 double Deadline::left() const {
+  if (cancelled()) return 0.0;
   if (!set_) return std::numeric_limits<double>::infinity();
   const double s = std::chrono::duration<double>(end_ - Clock::now()).count();
   return s > 0 ? s : 0.0;
 }
 
 void Deadline::check(const std::string& where) const {
+  if (cancelled()) throw TimeoutError(where, budget_, true);
   if (passed()) throw TimeoutError(where, budget_);
 }
 

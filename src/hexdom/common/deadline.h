@@ -7,9 +7,15 @@
 // measures, it never interrupts: each stage decides where it looks (loop heads, between stages) and
 // what it does when the time is up: throw TimeoutError through check() where it has no result yet,
 // or stop early and return the best it has (saying so in its log) where it has one.
+//
+// A cancellable Deadline (Deadline::cancellable) also passes once cancel() is called on any of its
+// copies, from any thread: the auto method runs the overlay path beside the polycube's first
+// candidate and calls it off when that candidate is kept.
 #pragma once
 
+#include <atomic>
 #include <chrono>
+#include <memory>
 #include <string>
 
 namespace hexdom {
@@ -22,12 +28,20 @@ class Deadline {
 
   /// `seconds` from now; none when seconds <= 0, NaN or infinite.
   static Deadline in(double seconds);
+  /// `base` (its moment, if any) that cancel() also ends; its copies share the cancellation.
+  static Deadline cancellable(const Deadline& base);
+  static Deadline cancellable();  ///< no moment: only cancel() ends it
 
-  /// Whether there is a limit at all.
-  bool is_set() const { return set_; }
-  explicit operator bool() const { return set_; }
-  /// Whether the moment has come (false for none).
-  bool passed() const { return set_ && Clock::now() >= end_; }
+  /// Whether there is a limit at all (a moment, or a cancellation).
+  bool is_set() const { return set_ || cancel_; }
+  explicit operator bool() const { return is_set(); }
+  /// Whether the moment has come or the deadline was cancelled (false for none).
+  bool passed() const { return cancelled() || (set_ && Clock::now() >= end_); }
+  /// Ends a cancellable deadline and every copy of it at once (thread-safe); nothing otherwise.
+  void cancel() const {
+    if (cancel_) cancel_->store(true);
+  }
+  bool cancelled() const { return cancel_ && cancel_->load(); }
   /// Seconds until the moment: 0 once passed, infinity for none.
   double left() const;
   /// The same budget with its moment `seconds` later (time spent on other work given back, as for
@@ -39,11 +53,13 @@ class Deadline {
   }
   /// The budget it was made with (Deadline::in's seconds; 0 for none), for messages.
   double budget() const { return budget_; }
-  /// Throws TimeoutError(where, budget()) when passed(): "<where>: stopped after the time budget of 5 s".
+  /// Throws TimeoutError(where, budget()) when passed(): "<where>: stopped after the time budget of 5 s"
+  /// ("<where>: cancelled" once cancelled).
   void check(const std::string& where) const;
 
  private:
   bool set_ = false;
+  std::shared_ptr<std::atomic<bool>> cancel_;
   double budget_ = 0;
   Clock::time_point end_{};
 };

@@ -20,7 +20,7 @@ static std::string format_timeout(const std::string& where, double budget) {
   return (where.empty() ? std::string() : where + ": ") + "stopped after the time budget of " + seconds + " s";
 }
 
-TimeoutError::TimeoutError(const std::string& where, double budget)
-    : Error(format_timeout(where, budget)), where_(where), budget_(budget) {}
+TimeoutError::TimeoutError(const std::string& where, double budget, bool cancelled)
+    : Error(cancelled ? where + ": cancelled" : format_timeout(where, budget)), where_(where), budget_(budget), cancelled_(cancelled) {}
 
 }  // namespace hexdom

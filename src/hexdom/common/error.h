@@ -45,13 +45,16 @@ class MeshingError : public Error {
 /// of that path; the others pass it on (the program exits 5).
 class TimeoutError : public Error {
  public:
-  TimeoutError(const std::string& where, double budget);
+  /// `cancelled`: the run was called off (Deadline::cancel), not out of time: "<where>: cancelled".
+  TimeoutError(const std::string& where, double budget, bool cancelled = false);
   const std::string& where() const { return where_; }
   double budget() const { return budget_; }  ///< seconds
+  bool cancelled() const { return cancelled_; }
 
  private:
   std::string where_;
   double budget_;
+  bool cancelled_;
 };
 
 /// Optional progress and warning sink carried in options structs. Level: 0 info, 1 warning.

@@ -68,7 +68,9 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.kinds = place_of.kind;
   io.curve_neighbours = curve_neighbours(place_of, outer, feat);
   io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, feat, v, x); };
+  io.deadline = opt.deadline;
   optimize::ImproveResult ir = optimize::improve(m, io);
+  opt.deadline.check("overlay");
   // Cells the optimiser could not make valid with their nodes held on curves and corners: those
   // nodes let off one level (loosen), the optimiser again, the better kept; twice at most.
   for (int round = 0; round < 2 && inverted(ir.after) > 0; ++round) {
@@ -81,6 +83,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     io.kinds = place_of.kind;
     io.curve_neighbours = curve_neighbours(place_of, outer, feat);
     optimize::ImproveResult again = optimize::improve(ir.mesh, io);
+    opt.deadline.check("overlay");
     if (opt.log)
       opt.log(0, fmt("overlay: %.0f inverted cells: %.0f of their nodes let off their curves or corners, ", double(bad.size()),
                      double(freed)) + fmt("%.0f inverted after", double(inverted(again.after))));
@@ -173,6 +176,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   int finer_for_quality = 0;
   for (int k = 0; k <= opt.refinements; ++k) {
     const Eigen::Vector3d h = h0 / std::pow(2.0, k);
+    opt.deadline.check("overlay");
     OverlayResult r;
     try {
       r = one_grid(h, opt);

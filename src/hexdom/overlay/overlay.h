@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/node_kinds.h"
@@ -76,6 +77,10 @@ struct OverlayOptions {
   /// cell, 200 MB here). A thin-walled part needs a grid of cells finer than its walls over its
   /// whole box, of which it keeps only a few percent.
   double max_grid_cells = 8e6;
+  /// Looked at before each grid and after each optimisation (which it also bounds: the optimiser
+  /// ends its round): once passed or cancelled, TimeoutError. None by default: the path runs to
+  /// its end.
+  Deadline deadline;
   LogCallback log;
 };
 
@@ -97,7 +102,8 @@ struct OverlayResult {
 /// A hex mesh of `surface` (closed, 2-manifold, oriented outward; its patch ids CAD faces, or
 /// anything for triangle input). Its boundary nodes lie on the surface. Inverted cells that remain
 /// are reported in `quality`, not thrown. Throws GeometryError when no grid within
-/// max_grid_cells gives a core (the part is too thin for it).
+/// max_grid_cells gives a core (the part is too thin for it), TimeoutError once options.deadline
+/// has passed or was cancelled.
 OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOptions& options = {});
 
 /// "overlay: grid 2.5, 1234 core + 567 buffer cells, ..." on one line.

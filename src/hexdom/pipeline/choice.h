@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <vector>
+#include <exception>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "hexdom/common/error.h"
@@ -18,22 +20,25 @@ namespace hexdom::pipeline {
 /// Method::Auto on one surface, cheapest first:
 ///  1. the polycube path with its first candidate only (no further candidate: without the widths of
 ///     holes, hex blocks under apex caps, a finer level), within the options' deadline. A mesh that
-///     meets every target (meets_path_targets) is kept; nothing else runs.
-///  2. the overlay path. When its mesh meets every target, the better of the two (better_run) is kept.
-///  3. otherwise, when neither mesh meets the targets the further candidates may mend (meets_targets:
-///     no inverted cell, the worst SJ, the volume) and the deadline, moved later by the overlay's
-///     run time (the polycube's budget does not pay for it), has not passed, the polycube path
-///     again with its candidates (the labelling repaired once, taken from step 1), and the best of
-///     the meshes kept. When step 1 gave no mesh because its labelling defeated the repair, step 3
-///     segments again with the options' further edge weights (retry_edge_weights; step 1 tries the
-///     first weight only).
+///     meets every target (meets_path_targets) is kept; the overlay's run is called off.
+///  2. the overlay path, run beside step 1 on a thread of its own (the machine's second core; its
+///     messages are said after step 1's, as if it had run after it). When its mesh meets every
+///     target, the better of the two (better_run) is kept.
+///  3. when step 1's mesh misses the targets the further candidates may mend (meets_targets: no
+///     inverted cell, the worst SJ, the volume) and the polycube's deadline has not passed, the
+///     polycube path again with its candidates (the labelling repaired once, taken from step 1),
+///     started beside the overlay as soon as step 1 ends; when step 1 gave no mesh because its
+///     labelling defeated the repair, the segmentation with the options' further edge weights
+///     (retry_edge_weights; step 1 tries the first weight only). It is called off, and counts for
+///     nothing, when the overlay's mesh meets those targets. The best of the meshes is kept.
 /// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
 /// Error when the path gives no mesh; `run_of(run)` is its MeshSurfaceRun; `blank(run)` a fresh run
 /// for the same surface; `unsnapped(run)` (a MeshSurfaceRun) the polycube run of step 1 as
 /// mesh_surface made it, before any snap, from which step 3's candidates start instead of meshing
 /// it again. The kept run is in `r`; its polycube_note says why the polycube mesh was not kept alone
 /// (empty when it was), its polycube_meshed whether step 1 gave a mesh. Throws the overlay's error
-/// when no path gives a mesh.
+/// when no path gives a mesh. `mesh_path` must be callable from two threads at once on different
+/// runs (the two paths share only what they read), and say its messages through the options' log.
 template <class Run, class MeshPath, class RunOf, class Blank, class Unsnapped>
 void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank,
                  Unsnapped unsnapped, Run& r) {
@@ -47,6 +52,36 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   std::vector<double> weights;
   for (double w : mo.retry_edge_weights)
     if (w != mo.segment.edge_weight && std::find(weights.begin(), weights.end(), w) == weights.end()) weights.push_back(w);
+  // Step 2 starts now on its own thread, with its messages kept; it is called off (its deadline
+  // cancelled) when step 1's mesh is kept, and always joined before this returns or throws.
+  Run grid = blank(r);
+  MeshSurfaceOptions overlay = mo;
+  overlay.method = Method::Overlay;
+  overlay.deadline = Deadline::cancellable();
+  std::vector<std::pair<int, std::string>> overlay_said;
+  if (mo.log) overlay.log = [&overlay_said](int level, const std::string& m) { overlay_said.emplace_back(level, m); };
+  bool have_grid = false;
+  std::exception_ptr grid_error;
+  // Step 3's deadline: the polycube's, called off by the overlay's thread (see below).
+  const Deadline step3 = Deadline::cancellable(quick.deadline);
+  std::thread worker([&] {
+    try {
+      mesh_path(overlay, grid);
+      have_grid = true;
+      if (meets_targets(run_of(grid), reference, mo)) step3.cancel();
+    } catch (...) {
+      grid_error = std::current_exception();
+    }
+  });
+  struct Join {
+    std::thread& t;
+    const Deadline& d;
+    bool cancel;
+    ~Join() {
+      if (cancel) d.cancel();
+      if (t.joinable()) t.join();
+    }
+  } join{worker, overlay.deadline, true};
   std::string note;
   bool have = false, labelling_failed = false;
   try {
@@ -54,7 +89,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     have = true;
     if (meets_path_targets(run_of(r), reference, mo)) {
       run_of(r).polycube_meshed = true;
-      return;
+      return;  // the overlay's run called off
     }
     note = "the polycube mesh misses a target (" + run_summary(run_of(r), reference) + ")" +
            (run_of(r).budget_passed ? fmt(" (its time budget of %g s passed)", quick.deadline.budget()) : std::string());
@@ -66,17 +101,55 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   }
   const bool first_meshed = have;
   say(note + "; meshing with the overlay grid too");
-  Run grid = blank(r);
-  MeshSurfaceOptions overlay = mo;
-  overlay.method = Method::Overlay;
-  bool have_grid = false;
-  const auto overlay_start = std::chrono::steady_clock::now();
-  try {
-    mesh_path(overlay, grid);
-    have_grid = true;
-  } catch (const Error& e) {
-    if (!have) throw;
-    say(std::string("overlay: ") + e.what());
+  // Step 3, decided on step 1's result, starts at once beside the overlay (its messages kept): its
+  // deadline is the polycube's, cancelled by the overlay's thread once the overlay's mesh meets
+  // the targets the further candidates could mend; it then counts for nothing (whether it finished
+  // or not), so the mesh kept does not depend on which thread was faster.
+  const bool further = have && !meets_targets(run_of(r), reference, mo) && run_of(r).method == Method::Polycube &&
+                       (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted);
+  const bool reweigh = !have && labelling_failed && !weights.empty();
+  std::string again_heading, again_failed;
+  std::vector<std::pair<int, std::string>> again_said;
+  Run again = blank(r);
+  bool have_again = false;
+  if ((further || reweigh) && !step3.passed()) {
+    MeshSurfaceOptions full = mo;
+    full.method = Method::Polycube;
+    full.deadline = step3;
+    if (mo.log) full.log = [&again_said](int level, const std::string& m) { again_said.emplace_back(level, m); };
+    MeshSurfaceRun first;
+    if (further) {
+      again_heading = "the polycube again with its further candidates";
+      // The labelling (and lambda) of the first run: the repair is not run again.
+      full.polycube.repaired = &run_of(r).polycube.repaired;
+      full.segment.edge_weight = run_of(r).edge_weight;
+      full.retry_edge_weights.clear();
+      first = unsnapped(r);
+      full.first_run = &first;  // the first candidate is step 1's run
+    } else {
+      again_heading = fmt("the polycube again, segmenting with lambda %g", weights.front()) +
+                      (weights.size() > 1 ? " and then the further edge weights" : "");
+      full.segment.edge_weight = weights.front();
+      full.retry_edge_weights.assign(weights.begin() + 1, weights.end());
+    }
+    try {
+      mesh_path(full, again);
+      have_again = true;
+    } catch (const Error& e) {
+      again_failed = further ? std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh"
+                             : "the polycube with the further edge weights: " + polycube_failure_note(e, run_of(again).stage);
+    }
+  }
+  join.cancel = false;
+  worker.join();
+  for (const auto& [level, m] : overlay_said) mo.log(level, m);
+  if (grid_error) {
+    try {
+      std::rethrow_exception(grid_error);
+    } catch (const Error& e) {
+      if (!have && !have_again) throw;
+      say(std::string("overlay: ") + e.what());
+    }
   }
   auto keep = [&](Run& other, const char* name) {
     if (!have || better_run(run_of(other), run_of(r), reference, mo)) {
@@ -87,46 +160,17 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     }
     return false;
   };
-  // The polycube's budget does not pay for the overlay's run.
-  const Deadline rest = quick.deadline.extended(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - overlay_start).count());
   // The further candidates mend the worst SJ, inverted cells or the volume, seldom the edge ratio.
   const bool grid_enough = have_grid && meets_targets(run_of(grid), reference, mo);
-  // Step 3: the polycube path again with `full` within the rest of the budget, kept when better;
-  // `failed(e, run)` says why when it gives no mesh.
-  auto polycube_again = [&](MeshSurfaceOptions full, auto failed) {
-    full.method = Method::Polycube;
-    full.deadline = rest;
-    Run again = blank(r);
-    try {
-      mesh_path(full, again);
-      keep(again, "polycube");
-    } catch (const Error& e) {
-      say(failed(e, again));
+  if (!again_heading.empty()) {
+    if (grid_enough) {
+      say(again_heading + ": called off, the overlay mesh meets the targets");
+    } else {
+      say(again_heading);
+      for (const auto& [level, m] : again_said) mo.log(level, m);
+      if (have_again) keep(again, "polycube");
+      else say(again_failed);
     }
-  };
-  if (have && !grid_enough && !meets_targets(run_of(r), reference, mo) && run_of(r).method == Method::Polycube &&
-      !rest.passed() && (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted)) {
-    say("the polycube again with its further candidates");
-    MeshSurfaceOptions full = mo;
-    // The labelling (and lambda) of the first run: the repair is not run again.
-    full.polycube.repaired = &run_of(r).polycube.repaired;
-    full.segment.edge_weight = run_of(r).edge_weight;
-    full.retry_edge_weights.clear();
-    const MeshSurfaceRun first = unsnapped(r);
-    full.first_run = &first;  // the first candidate is step 1's run
-    polycube_again(full, [](const Error& e, Run&) {
-      return std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh";
-    });
-  } else if (!have && labelling_failed && !weights.empty() && !grid_enough && !rest.passed()) {
-    say(fmt("the polycube again, segmenting with lambda %g", weights.front()) +
-        (weights.size() > 1 ? " and then the further edge weights" : ""));
-    MeshSurfaceOptions full = mo;
-    full.segment.edge_weight = weights.front();
-    full.retry_edge_weights.assign(weights.begin() + 1, weights.end());
-    polycube_again(full, [&](const Error& e, Run& again) {
-      return "the polycube with the further edge weights: " + polycube_failure_note(e, run_of(again).stage);
-    });
   }
   const bool polycube_kept = have;
   if (have_grid && !keep(grid, "overlay") && polycube_kept)

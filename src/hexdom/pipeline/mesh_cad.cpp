@@ -18,9 +18,11 @@ using quality::inverted_cells;
 void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const MeshCadOptions& opt, MeshCadRun& r) {
   pipeline::mesh_surface(r.surface, mo, &r.run);
   if (!opt.snap) return;
+  if (mo.deadline.cancelled()) mo.deadline.check("snap");  // called off (auto's overlay beside the polycube)
   const auto t0 = std::chrono::steady_clock::now();
   cad::SnapOptions so = opt.snap_options;
   so.max_edge_ratio = mo.target_edge_ratio;
+  if (so.log && mo.log) so.log = mo.log;  // the run's own sink (choose_path keeps the overlay's messages)
   // The overlay's nodes on smooth regions stay off the CAD edges: it let some off a sharp curve on
   // purpose (the grid's staircase along it), and putting them back flattens their cells.
   const std::vector<optimize::NodeKind>& kind = r.run.overlay.node_kind;

@@ -206,6 +206,7 @@ void run_overlay(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt
   oo.align = opt.align;
   oo.max_edge_ratio = opt.target_edge_ratio;
   oo.log = opt.verbose ? opt.log : LogCallback();
+  oo.deadline = opt.deadline;
   r.overlay = overlay::overlay_mesh(surface, oo);
   r.mesh = std::move(r.overlay.mesh);
   r.overlay.mesh = mesh::Mesh{};

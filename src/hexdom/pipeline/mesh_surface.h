@@ -45,7 +45,9 @@ struct MeshSurfaceOptions {
   /// Method::Overlay: not used (the overlay path has no budget).
   double polycube_seconds = 20;
   /// When set, the polycube path's deadline in Auto and Polycube, instead of polycube_seconds: a
-  /// moment fixed by the caller (mesh_cad_part sets it once for all its tessellations).
+  /// moment fixed by the caller (mesh_cad_part sets it once for all its tessellations). With
+  /// Method::Overlay, when set, the overlay path stops with TimeoutError once it passes or is
+  /// cancelled (auto runs the overlay with a cancellable one of its own, no time limit).
   Deadline deadline;
   /// The overlay path's options; its size, alignment and log are taken from here.
   overlay::OverlayOptions overlay;

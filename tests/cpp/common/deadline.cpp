@@ -94,3 +94,31 @@ TEST(Deadline, ExtendedMovesTheMomentAndKeepsTheBudget) {
   EXPECT_TRUE(passed.extended(0.0).passed());
   EXPECT_FALSE(Deadline().extended(5.0).is_set());
 }
+
+TEST(Deadline, ACancellableOnePassesOnceAnyCopyIsCancelledFromAnotherThread) {
+  const Deadline d = Deadline::cancellable();
+  const Deadline copy = d, later = d.extended(10);
+  EXPECT_TRUE(d.is_set());
+  EXPECT_FALSE(d.passed());
+  EXPECT_TRUE(std::isinf(d.left()));
+  EXPECT_NO_THROW(d.check("overlay"));
+  std::thread([copy] { copy.cancel(); }).join();
+  for (const Deadline& x : {d, copy, later}) {
+    EXPECT_TRUE(x.cancelled());
+    EXPECT_TRUE(x.passed());
+    EXPECT_EQ(x.left(), 0.0);
+  }
+  try {
+    later.check("overlay");
+    FAIL() << "no TimeoutError";
+  } catch (const hexdom::TimeoutError& e) {
+    EXPECT_STREQ(e.what(), "overlay: cancelled");
+    EXPECT_TRUE(e.cancelled());
+  }
+  // Cancelling a plain deadline does nothing; a cancellable one keeps its base's moment.
+  const Deadline plain = Deadline::in(1000);
+  plain.cancel();
+  EXPECT_FALSE(plain.passed());
+  EXPECT_TRUE(Deadline::cancellable(passed_deadline()).passed());
+  EXPECT_FALSE(Deadline::cancellable(plain).passed());
+}

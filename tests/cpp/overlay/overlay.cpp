@@ -2,8 +2,10 @@
 // (valid cells, boundary on the surface, volume).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <map>
+#include <thread>
 
 #include "autopolycube/auto_test_util.h"
 #include "hexdom/mesh/cell_faces.h"
@@ -197,4 +199,28 @@ TEST(Overlay, APlateAndARodAreValidWithCellsAcross) {
 // An empty surface has no mesh: a clear error, not a crash.
 TEST(Overlay, AnEmptySurfaceIsAnError) {
   EXPECT_THROW(overlay::overlay_mesh(mesh::SurfaceMesh{}), GeometryError);
+}
+
+// A cancelled deadline stops the path with TimeoutError: before it starts, and while it optimises a
+// fine grid (auto calls the overlay off this way once the polycube's first mesh is kept).
+TEST(Overlay, ACancelledDeadlineStopsIt) {
+  const auto s = sphere_surface(20.0, 4);
+  overlay::OverlayOptions o;
+  o.deadline = Deadline::cancellable();
+  o.deadline.cancel();
+  EXPECT_THROW(overlay::overlay_mesh(s, o), TimeoutError);
+  o.deadline = Deadline::cancellable();
+  o.size = 0.8;  // about 70000 cells: seconds of work
+  std::thread later([d = o.deadline] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    d.cancel();
+  });
+  try {
+    overlay::overlay_mesh(s, o);
+    ADD_FAILURE() << "no TimeoutError";
+  } catch (const TimeoutError& e) {
+    EXPECT_TRUE(e.cancelled());
+    EXPECT_STREQ(e.what(), "overlay: cancelled");
+  }
+  later.join();
 }

@@ -1,0 +1,143 @@
+// choose_path (Method::Auto) with fake paths whose meshes are only their quality figures: which run
+// is kept, what the threads call off, and the order of the messages, independent of which thread
+// finishes first.
+#include "hexdom/pipeline/choice.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace hexdom;
+using namespace hexdom::pipeline;
+
+namespace {
+
+constexpr double kReference = 1000;
+
+// A run of one hex type with worst SJ `sj`, no inverted cell, the reference volume, edge ratio 2.
+MeshSurfaceRun fake_run(Method method, double sj) {
+  MeshSurfaceRun r;
+  r.method = method;
+  r.quality.hex.count = 10;
+  r.quality.hex.sj_min = sj;
+  r.quality.hex.edge_ratio_max = 2;
+  r.quality.total_volume = kReference;
+  r.stage = "done";
+  return r;
+}
+
+struct Fake {
+  double first_sj = 0.2, overlay_sj = 0.5, further_sj = 0.6;
+  int overlay_millis = 0, further_millis = 0;  // how long each pretends to work
+  std::atomic<bool> overlay_cancelled{false}, further_cancelled{false};
+  std::mutex mutex;
+  std::vector<std::string> said;  // everything said, in order
+
+  MeshSurfaceOptions options() {
+    MeshSurfaceOptions o;
+    o.log = [this](int, const std::string& m) {
+      std::lock_guard<std::mutex> lock(mutex);
+      said.push_back(m);
+    };
+    return o;
+  }
+  // Works `millis` unless the deadline passes first (then says so in `cancelled`).
+  static void work(int millis, const Deadline& d, std::atomic<bool>& cancelled) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(millis);
+    while (std::chrono::steady_clock::now() < end) {
+      if (d.cancelled()) {
+        cancelled = true;
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+  void mesh_path(const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
+    if (o.method == Method::Overlay) {
+      o.log(0, "fake overlay");
+      work(overlay_millis, o.deadline, overlay_cancelled);
+      if (overlay_cancelled) o.deadline.check("overlay");
+      run = fake_run(Method::Overlay, overlay_sj);
+    } else if (o.first_run == nullptr) {
+      o.log(0, "fake first candidate");
+      run = fake_run(Method::Polycube, first_sj);
+    } else {
+      o.log(0, "fake further candidates");
+      work(further_millis, o.deadline, further_cancelled);
+      run = fake_run(Method::Polycube, further_cancelled ? first_sj : further_sj);
+    }
+  }
+  MeshSurfaceRun choose() {
+    MeshSurfaceRun r;
+    choose_path(
+        options(), kReference, [this](const MeshSurfaceOptions& o, MeshSurfaceRun& run) { mesh_path(o, run); },
+        [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; },
+        [](const MeshSurfaceRun& run) { return run; }, r);
+    return r;
+  }
+  int index(const std::string& prefix) const {
+    for (size_t i = 0; i < said.size(); ++i)
+      if (said[i].rfind(prefix, 0) == 0) return static_cast<int>(i);
+    return -1;
+  }
+};
+
+}  // namespace
+
+TEST(ChoosePath, AFirstCandidateThatMeetsEveryTargetCallsTheOverlayOff) {
+  Fake f;
+  f.first_sj = 0.7;
+  f.overlay_millis = 20000;  // would take 20 s
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshSurfaceRun r = f.choose();
+  EXPECT_EQ(r.method, Method::Polycube);
+  EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.7);
+  EXPECT_TRUE(f.overlay_cancelled);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  EXPECT_EQ(f.index("fake overlay"), -1);  // the overlay's messages are not said
+}
+
+TEST(ChoosePath, TheOverlaysMessagesFollowTheFirstCandidatesAndTheFurtherOnesFollowThem) {
+  for (int overlay_millis : {0, 300}) {  // the overlay ends before or after the further candidates
+    SCOPED_TRACE(overlay_millis);
+    Fake f;
+    f.overlay_sj = 0.25;  // misses the SJ target: the further candidates count
+    f.overlay_millis = overlay_millis;
+    f.further_millis = 300 - overlay_millis;
+    const MeshSurfaceRun r = f.choose();
+    EXPECT_EQ(r.method, Method::Polycube);
+    EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.6);
+    EXPECT_FALSE(f.further_cancelled);
+    const int first = f.index("fake first candidate"), misses = f.index("the polycube mesh misses a target"),
+              overlay = f.index("fake overlay"), heading = f.index("the polycube again with its further candidates"),
+              further = f.index("fake further candidates"), kept = f.index("kept the polycube mesh");
+    EXPECT_EQ(first, 0);
+    EXPECT_LT(first, misses);
+    EXPECT_LT(misses, overlay);
+    EXPECT_LT(overlay, heading);
+    EXPECT_LT(heading, further);
+    EXPECT_LT(further, kept);
+  }
+}
+
+TEST(ChoosePath, AnOverlayMeshThatMeetsTheTargetsCallsTheFurtherCandidatesOffWhicheverEndsFirst) {
+  // The further candidates would give a better worst SJ (0.6 > 0.5), but once the overlay's mesh
+  // meets the targets they count for nothing, whether they had ended before it or not.
+  for (int further_millis : {0, 20000}) {
+    SCOPED_TRACE(further_millis);
+    Fake f;
+    f.overlay_millis = 200;
+    f.further_millis = further_millis;
+    const MeshSurfaceRun r = f.choose();
+    EXPECT_EQ(r.method, Method::Overlay);
+    EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.5);
+    EXPECT_EQ(f.further_cancelled.load(), further_millis > 0);
+    EXPECT_GE(f.index("the polycube again with its further candidates: called off"), 0);
+    EXPECT_EQ(f.index("fake further candidates"), -1);  // its messages are not said
+  }
+}
