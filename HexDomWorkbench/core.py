@@ -347,13 +347,15 @@ SNAP_KINDS = {0: "interior", 1: "face", 2: "edge", 3: "vertex"}
 
 
 def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, optimize=20,
-                 max_edge_ratio=0.0):
+                 max_edge_ratio=0.0, face_only=None):
     """Puts the boundary nodes of ``mesh`` (a Mesh of hex / prism / tet cells) exactly on the B-rep of
     ``source`` (a .step/.iges/.brep path or BREP text), using the CAD face ids of ``surface`` (its
     tessellation, e.g. Surface(*tessellate_file(...)), patch = 1-based CAD face) to decide which node
     goes onto a CAD face, edge (within edge_tolerance x its shortest boundary edge) or vertex; then
     untangles and optimises the interior with the boundary held (and lowers edge ratios above
-    max_edge_ratio, 0: none, as improve does). Returns (Mesh, report dict:
+    max_edge_ratio, 0: none, as improve does). ``face_only`` (one flag per node, or None): nodes that
+    go onto their nearest CAD face only, never an edge or vertex; an overlay run's
+    MeshRun.face_only, so that its mesh is snapped as `hexdom mesh` snaps it. Returns (Mesh, report dict:
     boundary_nodes, face_nodes, edge_nodes, vertex_nodes, max_before / mean_before / max_after /
     mean_after B-rep distances (max_distance = max_after), max_move, diagonal, inverted_snapped, inverted, worst_sj_before,
     worst_sj_snapped, worst_sj, seconds_project, seconds_restore, quality, kind and entity per node
@@ -364,7 +366,8 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
     m, report = _hexdom.snap_to_brep(text, mesh.V, mesh.cells, mesh.types, mesh.region, surface.V,
                                      surface.F, surface.patch, solid=int(solid),
                                      edge_tolerance=float(edge_tolerance), smooth=int(smooth),
-                                     optimize=int(optimize), max_edge_ratio=float(max_edge_ratio))
+                                     optimize=int(optimize), max_edge_ratio=float(max_edge_ratio),
+                                     face_only=[int(bool(x)) for x in (face_only if face_only is not None else [])])
     report = dict(report)
     report["max_distance"] = report["max_after"]
     return Mesh(*m), report
@@ -460,6 +463,7 @@ class MeshRun:
     tessellation_factor: float = 1.0  # mesh_part: the kept one's triangle size over the first's
     method: str = "polycube"  # the path that made the mesh: "polycube" or "overlay"
     polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
+    face_only: list = None    # overlay mesh: per node, 1 when it goes onto a CAD face only (snap_to_brep's face_only)
 
     @property
     def inverted(self):
@@ -473,7 +477,8 @@ def _mesh_run(r):
                    dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
                    keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
                    choice=str(r["choice"]), frame=dict(r["frame"]),
-                   method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")))
+                   method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")),
+                   face_only=list(r.get("face_only", [])))
 
 
 MESH_METHODS = ("auto", "polycube", "overlay")

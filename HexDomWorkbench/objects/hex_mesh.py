@@ -194,8 +194,11 @@ class HexMesh(BaseHexDomObject):
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:
                 brep, cad_surface = snap
+                # The overlay's nodes on smooth regions go onto their CAD faces only, as
+                # `hexdom mesh` snaps them (run.face_only).
                 mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface,
-                                     max_edge_ratio=core.TARGET_EDGE_RATIO)
+                                     max_edge_ratio=core.TARGET_EDGE_RATIO,
+                                     face_only=getattr(run, "face_only", None) or None)
                 self.brep_distance = float(info["max_distance"])
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
         return mesh

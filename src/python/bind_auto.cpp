@@ -86,6 +86,8 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["choice"] = pipeline::choice_text(r);
   d["method"] = pipeline::method_name(r.method);
   d["polycube_note"] = r.polycube_note;
+  const std::vector<char> face_only = pipeline::snap_face_only(r);
+  d["face_only"] = std::vector<int>(face_only.begin(), face_only.end());
   d["budget_passed"] = r.budget_passed;
   d["frame"] = frame_dict(r.frame);
   return d;

@@ -208,7 +208,7 @@ void bind_cad(py::module_& m) {
   m.def("snap_to_brep",
         [](const std::string& source, const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
            const std::optional<Eigen::VectorXi>& region, const RefV& sV, const RefF& sF, const RefI& face_id, int solid,
-           double edge_tolerance, int smooth, int optimize, double max_edge_ratio) {
+           double edge_tolerance, int smooth, int optimize, double max_edge_ratio, const std::vector<int>& face_only) {
           mesh::Mesh mesh = make_mesh(V, cells, types, region);
           const mesh::SurfaceMesh surface = surface_of(sV, sF, face_id);
           cad::SnapOptions opt;
@@ -216,6 +216,10 @@ void bind_cad(py::module_& m) {
           opt.smooth = smooth;
           opt.optimize = optimize;
           opt.max_edge_ratio = max_edge_ratio;
+          if (!face_only.empty() && static_cast<int>(face_only.size()) != mesh.num_nodes())
+            throw InputError("snap_to_brep: face_only has " + std::to_string(face_only.size()) + " entries for " +
+                             std::to_string(mesh.num_nodes()) + " nodes");
+          opt.face_only.assign(face_only.begin(), face_only.end());
           cad::SnapResult r;
           {
             py::gil_scoped_release nogil;
@@ -225,7 +229,8 @@ void bind_cad(py::module_& m) {
         },
         py::arg("source"), py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region"), py::arg("surface_V"),
         py::arg("surface_F"), py::arg("face_id"), py::arg("solid") = 0, py::arg("edge_tolerance") = 0.25,
-        py::arg("smooth") = 3, py::arg("optimize") = 20, py::arg("max_edge_ratio") = 0.0, kSnapDoc);
+        py::arg("smooth") = 3, py::arg("optimize") = 20, py::arg("max_edge_ratio") = 0.0,
+        py::arg("face_only") = std::vector<int>(), kSnapDoc);
 
   m.def("mesh_cad",
         [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,

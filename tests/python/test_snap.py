@@ -227,3 +227,27 @@ def test_cli_no_snap_leaves_the_tessellation(tmp_path, Part):
     shape = _solid(Part, part)
     d = _brep_distances(Part, shape, oracle.boundary_points(g))
     assert d.max() > 1e-5 * shape.BoundBox.DiagonalLength
+
+
+def test_an_overlay_mesh_is_snapped_alike_by_hexdom_mesh_and_by_snap_to_brep(core):
+    """The overlay's nodes on a smooth region go onto a CAD face only (some were let off a sharp
+    curve on purpose): `hexdom mesh` (mesh_part) and core.snap_to_brep with the run's face_only (the
+    workbench's Mesh object) snap them alike, to the same mesh."""
+    if not core.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    part = _cad("s15o_cylinder")
+    surface = core.Surface(*core.tessellate_file(part))
+    bare = core.mesh_part(part, snap=False, allow_inverted=True, method="overlay")
+    face_only = np.asarray(bare.face_only)
+    assert bare.method == "overlay" and len(face_only) == len(bare.mesh.V)
+    assert 0 < face_only.sum() < len(face_only)
+    mesh, rep = core.snap_to_brep(bare.mesh, part, surface, max_edge_ratio=core.TARGET_EDGE_RATIO,
+                                  face_only=bare.face_only)
+    assert np.all(rep["kind"][face_only == 1] == 1)  # onto a face, never an edge or vertex
+    snapped = core.mesh_part(part, allow_inverted=True, method="overlay")
+    assert np.array_equal(snapped.mesh.cells, mesh.cells)
+    assert np.abs(snapped.mesh.V - mesh.V).max() <= 1e-9 * rep["diagonal"]
+    with pytest.raises(core.InputError, match="face_only has 3 entries"):
+        core.snap_to_brep(bare.mesh, part, surface, face_only=[1, 0, 1])
+    # A polycube run has none.
+    assert core.mesh_part(part, snap=False, method="polycube").face_only == []

@@ -23,13 +23,8 @@ void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, c
   cad::SnapOptions so = opt.snap_options;
   so.max_edge_ratio = mo.target_edge_ratio;
   if (so.log && mo.log) so.log = mo.log;  // the run's own sink (choose_path keeps the overlay's messages)
-  // The overlay's nodes on smooth regions stay off the CAD edges: it let some off a sharp curve on
-  // purpose (the grid's staircase along it), and putting them back flattens their cells.
-  const std::vector<optimize::NodeKind>& kind = r.run.overlay.node_kind;
-  if (r.run.method == Method::Overlay && so.face_only.empty() && static_cast<int>(kind.size()) == r.run.mesh.num_nodes()) {
-    so.face_only.assign(kind.size(), 0);
-    for (size_t v = 0; v < kind.size(); ++v) so.face_only[v] = kind[v] == optimize::Surface;
-  }
+  // The overlay's nodes on smooth regions stay off the CAD edges (snap_face_only).
+  if (so.face_only.empty()) so.face_only = snap_face_only(r.run);
   cad::SnapResult sr = cad::snap_to_brep(shape, r.run.mesh, r.surface, so);
   r.unsnapped_mesh = std::move(r.run.mesh);
   r.unsnapped_quality = r.run.quality;

@@ -229,6 +229,15 @@ Method method_from_name(const std::string& name) {
   throw InputError("unknown meshing method '" + name + "': auto, polycube or overlay");
 }
 
+std::vector<char> snap_face_only(const MeshSurfaceRun& run) {
+  std::vector<char> out;
+  const std::vector<optimize::NodeKind>& kind = run.overlay.node_kind;
+  if (run.method != Method::Overlay || static_cast<int>(kind.size()) != run.mesh.num_nodes()) return out;
+  out.assign(kind.size(), 0);
+  for (size_t v = 0; v < kind.size(); ++v) out[v] = kind[v] == optimize::Surface;
+  return out;
+}
+
 Deadline polycube_deadline(const MeshSurfaceOptions& opt) {
   if (opt.deadline) return opt.deadline;
   return opt.method == Method::Auto ? Deadline::in(opt.polycube_seconds) : Deadline();

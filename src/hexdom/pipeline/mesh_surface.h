@@ -146,6 +146,12 @@ struct MeshSurfaceRun {
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
 
+/// The snap's SnapOptions::face_only for the mesh of `run`: for an overlay mesh, its nodes put on a
+/// smooth region (OverlayResult::node_kind Surface; some were let off a sharp curve on purpose, and
+/// putting them back on it flattens their cells); empty for a polycube mesh. The CLI's snap and the
+/// workbench's (through _hexdom) both take it from here.
+std::vector<char> snap_face_only(const MeshSurfaceRun& run);
+
 /// The polycube path's deadline for a call starting now: options.deadline when set; otherwise in
 /// Method::Auto polycube_seconds from now (none for 0); none for Polycube and Overlay.
 Deadline polycube_deadline(const MeshSurfaceOptions& options);
