@@ -26,7 +26,7 @@ Run:  /usr/bin/python3 bench/bench_corpus.py CORPUS_DIR [--extra ../shared/data/
           [--methods auto,polycube,overlay] [--timeout 60] [--jobs 1] [--parts GLOB] [--limit N]
           [--json OUT.json] [--surface SURFACE.k ...]
 The issue's sets, the corpus, the shared CAD parts and the paper's six raw surfaces, in one run:
-  bench_corpus.py CORPUS_DIR --extra ../shared/data/cad --methods auto --jobs 2 \
+  bench_corpus.py CORPUS_DIR --extra ../shared/data/cad --methods auto --jobs 1 \
       $(for m in rockerarm mount1 hepta fertility ant mountwithhole; do echo --surface ../shared/data/hexdom/$m/$m.k; done)
 --json is rewritten after every run (an interrupted bench keeps its runs; "complete" says whether
 it finished). CORPUS_DIR holds manifest.json and the STEP files (/usr/bin/python3 bench/make_corpus.py CORPUS_DIR).
@@ -34,7 +34,8 @@ The binary: --hexdom, else $HEXDOM_BUILD_DIR/bin/hexdom, else build/bin/hexdom o
 --limit N keeps N corpus parts spread evenly over the sorted names (every family appears once N >= 20
 or so); the extra folders' parts are always run. /usr/bin/python3 (FreeCAD's Python) is needed
 only for the reference volume of the extra folders' parts. With --jobs > 1 the runs share the
-cores, so their times are longer than alone. Prints, never asserts.
+cores, so their times are longer than alone: a run under auto uses both cores of this machine (the
+overlay beside the polycube), and the issue's times are those of --jobs 1. Prints, never asserts.
 """
 
 import argparse
