@@ -44,13 +44,6 @@ class Deadline {
   bool cancelled() const { return cancel_ && cancel_->load(); }
   /// Seconds until the moment: 0 once passed, infinity for none.
   double left() const;
-  /// The same budget with its moment `seconds` later (time spent on other work given back, as for
-  /// the overlay path's run between the polycube's candidates); none stays none.
-  Deadline extended(double seconds) const {
-    Deadline d = *this;
-    if (d.set_ && seconds > 0) d.end_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
-    return d;
-  }
   /// The budget it was made with (Deadline::in's seconds; 0 for none), for messages.
   double budget() const { return budget_; }
   /// Throws TimeoutError(where, budget()) when passed(): "<where>: stopped after the time budget of 5 s"

@@ -4,18 +4,32 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
-#include <vector>
 #include <exception>
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "hexdom/common/error.h"
 #include "hexdom/common/format.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::pipeline {
+
+/// Messages kept to be said later, in order (a path run beside another, whose lines are said as if
+/// it had run after it).
+struct KeptMessages {
+  std::vector<std::pair<int, std::string>> lines;
+  /// A log that keeps the lines here; none when `like` is none (nothing would be said).
+  LogCallback sink(const LogCallback& like) {
+    if (!like) return LogCallback();
+    return [this](int level, const std::string& m) { lines.emplace_back(level, m); };
+  }
+  void say(const LogCallback& log) const {
+    if (log)
+      for (const auto& [level, m] : lines) log(level, m);
+  }
+};
 
 /// Method::Auto on one surface, cheapest first:
 ///  1. the polycube path with its first candidate only (no further candidate: without the widths of
@@ -58,8 +72,8 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   MeshSurfaceOptions overlay = mo;
   overlay.method = Method::Overlay;
   overlay.deadline = Deadline::cancellable();
-  std::vector<std::pair<int, std::string>> overlay_said;
-  if (mo.log) overlay.log = [&overlay_said](int level, const std::string& m) { overlay_said.emplace_back(level, m); };
+  KeptMessages overlay_said;
+  overlay.log = overlay_said.sink(mo.log);
   bool have_grid = false;
   std::exception_ptr grid_error;
   // Step 3's deadline: the polycube's, called off by the overlay's thread (see below).
@@ -109,14 +123,14 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
                        (mo.try_without_widths || mo.try_hex_apexes || mo.refine_when_inverted);
   const bool reweigh = !have && labelling_failed && !weights.empty();
   std::string again_heading, again_failed;
-  std::vector<std::pair<int, std::string>> again_said;
+  KeptMessages again_said;
   Run again = blank(r);
   bool have_again = false;
   if ((further || reweigh) && !step3.passed()) {
     MeshSurfaceOptions full = mo;
     full.method = Method::Polycube;
     full.deadline = step3;
-    if (mo.log) full.log = [&again_said](int level, const std::string& m) { again_said.emplace_back(level, m); };
+    full.log = again_said.sink(mo.log);
     MeshSurfaceRun first;
     if (further) {
       again_heading = "the polycube again with its further candidates";
@@ -142,7 +156,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   }
   join.cancel = false;
   worker.join();
-  for (const auto& [level, m] : overlay_said) mo.log(level, m);
+  overlay_said.say(mo.log);
   if (grid_error) {
     try {
       std::rethrow_exception(grid_error);
@@ -167,7 +181,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
       say(again_heading + ": called off, the overlay mesh meets the targets");
     } else {
       say(again_heading);
-      for (const auto& [level, m] : again_said) mo.log(level, m);
+      again_said.say(mo.log);
       if (have_again) keep(again, "polycube");
       else say(again_failed);
     }

@@ -81,23 +81,9 @@ TEST(Deadline, CheckThrowsTimeoutErrorNamingThePlaceAndTheBudget) {
   EXPECT_STREQ(hexdom::TimeoutError("improve", 5).what(), "improve: stopped after the time budget of 5 s");
 }
 
-// extended: the moment moves later by the time given back, the budget in messages stays; none stays
-// none.
-TEST(Deadline, ExtendedMovesTheMomentAndKeepsTheBudget) {
-  const Deadline passed = Deadline::in(1e-9);
-  std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  ASSERT_TRUE(passed.passed());
-  const Deadline later = passed.extended(60.0);
-  EXPECT_FALSE(later.passed());
-  EXPECT_GT(later.left(), 50.0);
-  EXPECT_EQ(later.budget(), passed.budget());
-  EXPECT_TRUE(passed.extended(0.0).passed());
-  EXPECT_FALSE(Deadline().extended(5.0).is_set());
-}
-
 TEST(Deadline, ACancellableOnePassesOnceAnyCopyIsCancelledFromAnotherThread) {
   const Deadline d = Deadline::cancellable();
-  const Deadline copy = d, later = d.extended(10);
+  const Deadline copy = d, later = copy;
   EXPECT_TRUE(d.is_set());
   EXPECT_FALSE(d.passed());
   EXPECT_TRUE(std::isinf(d.left()));
