@@ -34,7 +34,7 @@ mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 
 }
 
 int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const std::vector<int>& copy,
-                     const SurfaceFeatures& feat, double depth) {
+                     const SurfaceFeatures& feat, const std::vector<double>& depth) {
   std::vector<Eigen::Vector3d> normal(m.num_nodes(), Eigen::Vector3d::Zero());
   for (const auto& q : outer) {
     const Eigen::Vector3d d1 = m.V.row(q[2]) - m.V.row(q[0]), d2 = m.V.row(q[3]) - m.V.row(q[1]);
@@ -47,7 +47,7 @@ int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer
     if (o < 0 || normal[o].norm() == 0) continue;
     const Eigen::Vector3d n = normal[o].normalized();
     const Eigen::Vector3d xo = m.V.row(o).transpose();
-    double d = depth;
+    double d = depth.size() == 1 ? depth[0] : depth[v];
     for (int halving = 0; halving < 4; ++halving, d *= 0.5) {
       Eigen::Vector3d nc;
       feat.project(xo - 1.5 * d * n, nullptr, &nc);

@@ -31,12 +31,13 @@ mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 
 
 /// Moves each core node that has an outer copy (`copy`, from add_buffer_layer, after the outer
 /// nodes were put on the surface) along the outer quads' mean normal n at its copy, so that it
-/// lies at least `depth` inside its copy: x -= (depth - (x_copy - x).n) n when that is positive.
+/// lies at least its `depth` (per node of m; a single value for all when depth has one entry)
+/// inside its copy: x -= (depth - (x_copy - x).n) n when that is positive.
 /// Where the solid is thinner (the point 1.5 depth inside the copy is nearer the surface's other
 /// side, whose normal faces against n), the depth is halved, at most 4 times, so that the two
 /// sides' layers leave a third of the thickness between them. Returns the number of nodes moved.
 int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const std::vector<int>& copy,
-                     const SurfaceFeatures& features, double depth);
+                     const SurfaceFeatures& features, const std::vector<double>& depth);
 
 /// Puts the outer nodes of `m` (those of `outer`) on the surface. Each outer quad takes the region
 /// nearest its centroid (then a quad whose neighbours mostly took another region takes theirs); a

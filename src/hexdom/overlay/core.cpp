@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <map>
 #include <unordered_map>
+
+#include "hexdom/mesh/adjacency.h"
+#include "hexdom/mesh/cell_faces.h"
 
 namespace hexdom::overlay {
 
@@ -164,6 +168,116 @@ mesh::Mesh core_mesh(const Grid& g, const Core& core, std::vector<int64_t>* grid
     V.row(static_cast<int>(n)) = g.position(static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)).transpose();
   }
   if (grid_node) *grid_node = nodes;
+  return b.finish(V);
+}
+
+namespace {
+
+int shared_nodes(const mesh::Mesh& m, int a, int b) {
+  int n = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) n += m.cells(a, i) == m.cells(b, j);
+  return n;
+}
+
+// Whether the cells `set` (of one node's star) are connected through shared faces.
+bool star_connected(const mesh::Mesh& m, const std::vector<int>& set) {
+  if (set.size() <= 1) return true;
+  std::vector<char> seen(set.size(), 0);
+  std::vector<size_t> stack{0};
+  seen[0] = 1;
+  size_t count = 1;
+  while (!stack.empty()) {
+    const size_t x = stack.back();
+    stack.pop_back();
+    for (size_t y = 0; y < set.size(); ++y)
+      if (!seen[y] && shared_nodes(m, set[x], set[y]) >= 3) {
+        seen[y] = 1;
+        ++count;
+        stack.push_back(y);
+      }
+  }
+  return count == set.size();
+}
+
+}  // namespace
+
+Core manifold_core(const mesh::Mesh& m, std::vector<char> keep, const std::vector<double>& safety) {
+  Core c;
+  c.keep = std::move(keep);
+  const mesh::NodeCells nc = mesh::node_cells(m);
+  std::vector<int> work;
+  for (int v = 0; v < m.num_nodes(); ++v) work.push_back(v);
+  std::vector<int> in, out;
+  while (!work.empty()) {
+    const int v = work.back();
+    work.pop_back();
+    in.clear();
+    out.clear();
+    for (int cell : nc[v]) (c.keep[cell] ? in : out).push_back(cell);
+    if (in.empty() || out.empty() || (star_connected(m, in) && star_connected(m, out))) continue;
+    int worst = in[0];
+    for (int cell : in)
+      if (safety[cell] < safety[worst]) worst = cell;
+    c.keep[worst] = 0;
+    ++c.dropped;
+    for (int i = 0; i < 8; ++i) work.push_back(m.cells(worst, i));
+  }
+  // Face-connected pieces of the kept cells; the largest kept.
+  const auto [faces, nf] = mesh::cell_faces(mesh::CellType::Hex);
+  std::map<std::array<int, 4>, int> first;
+  std::vector<int> parent(m.num_cells());
+  for (int x = 0; x < m.num_cells(); ++x) parent[x] = x;
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (int x = 0; x < m.num_cells(); ++x) {
+    if (!c.keep[x]) continue;
+    for (int f = 0; f < nf; ++f) {
+      std::array<int, 4> key;
+      for (int i = 0; i < 4; ++i) key[i] = m.cells(x, faces[f].v[i]);
+      std::sort(key.begin(), key.end());
+      auto [it, added] = first.emplace(key, x);
+      if (!added) parent[find(x)] = find(it->second);
+    }
+  }
+  std::unordered_map<int, int> size;
+  for (int x = 0; x < m.num_cells(); ++x)
+    if (c.keep[x]) ++size[find(x)];
+  c.components = static_cast<int>(size.size());
+  if (size.empty()) return c;
+  int largest = size.begin()->first;
+  for (const auto& [root, k] : size)
+    if (k > size[largest] || (k == size[largest] && root < largest)) largest = root;
+  for (int x = 0; x < m.num_cells(); ++x)
+    if (c.keep[x] && find(x) != largest) {
+      c.keep[x] = 0;
+      ++c.apart;
+    }
+  c.cells = size[largest];
+  return c;
+}
+
+mesh::Mesh core_mesh(const mesh::Mesh& m, const Core& core) {
+  std::vector<int> index(m.num_nodes(), -1);
+  std::vector<int> nodes;
+  mesh::MeshBuilder b;
+  for (int x = 0; x < m.num_cells(); ++x) {
+    if (!core.keep[x]) continue;
+    int v[8];
+    for (int i = 0; i < 8; ++i) {
+      int& k = index[m.cells(x, i)];
+      if (k < 0) {
+        k = static_cast<int>(nodes.size());
+        nodes.push_back(m.cells(x, i));
+      }
+      v[i] = k;
+    }
+    b.add(mesh::CellType::Hex, v, 1);
+  }
+  Eigen::MatrixXd V(static_cast<int>(nodes.size()), 3);
+  for (size_t n = 0; n < nodes.size(); ++n) V.row(static_cast<int>(n)) = m.V.row(nodes[n]);
   return b.finish(V);
 }
 

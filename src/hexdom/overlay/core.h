@@ -39,4 +39,14 @@ Core manifold_core(const Grid& grid, std::vector<char> keep, const std::vector<d
 /// each mesh node's grid node index.
 mesh::Mesh core_mesh(const Grid& grid, const Core& core, std::vector<int64_t>* grid_node = nullptr);
 
+/// manifold_core on an all-hex conforming mesh instead of a grid (octree_mesh's): the cells flagged
+/// in `keep`, less those that would make the boundary of their union other than a 2-manifold. At
+/// every node the kept cells around it and the empty ones must each be connected through the faces
+/// they share; where not, the kept cell of least `safety` there is dropped and its nodes checked
+/// again. Of the face-connected pieces left, only the largest is kept.
+Core manifold_core(const mesh::Mesh& cells, std::vector<char> keep, const std::vector<double>& safety);
+
+/// The kept cells of `cells` (region 1) over their own nodes.
+mesh::Mesh core_mesh(const mesh::Mesh& cells, const Core& core);
+
 }  // namespace hexdom::overlay

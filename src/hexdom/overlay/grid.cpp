@@ -145,4 +145,63 @@ NodeField classify_nodes(const Grid& g, const mesh::SurfaceMesh& s, double band)
   return out;
 }
 
+NodeField classify_points(const std::vector<Eigen::Vector3d>& points, const mesh::SurfaceMesh& s) {
+  NodeField out;
+  const size_t n = points.size();
+  out.inside.assign(n, 0);
+  out.distance.assign(n, std::numeric_limits<double>::infinity());
+  if (n == 0 || s.F.rows() == 0) return out;
+  // Triangles bucketed by their (y, z) boxes on a square grid of about 4 triangles per bucket row.
+  const double ylo = s.V.col(1).minCoeff(), yhi = s.V.col(1).maxCoeff(), zlo = s.V.col(2).minCoeff(), zhi = s.V.col(2).maxCoeff();
+  const int nb = std::max(1, std::min(1024, static_cast<int>(std::sqrt(double(s.F.rows())) / 2)));
+  const double by = std::max(yhi - ylo, 1e-300) / nb, bz = std::max(zhi - zlo, 1e-300) / nb;
+  auto bucket_y = [&](double y) { return std::clamp(static_cast<int>((y - ylo) / by), 0, nb - 1); };
+  auto bucket_z = [&](double z) { return std::clamp(static_cast<int>((z - zlo) / bz), 0, nb - 1); };
+  std::vector<std::vector<int>> bucket(size_t(nb) * nb);
+  for (int f = 0; f < s.F.rows(); ++f) {
+    double y0 = 1e300, y1 = -1e300, z0 = 1e300, z1 = -1e300;
+    for (int c = 0; c < 3; ++c) {
+      y0 = std::min(y0, s.V(s.F(f, c), 1));
+      y1 = std::max(y1, s.V(s.F(f, c), 1));
+      z0 = std::min(z0, s.V(s.F(f, c), 2));
+      z1 = std::max(z1, s.V(s.F(f, c), 2));
+    }
+    for (int k = bucket_z(z0); k <= bucket_z(z1); ++k)
+      for (int j = bucket_y(y0); j <= bucket_y(y1); ++j) bucket[size_t(j) + size_t(nb) * k].push_back(f);
+  }
+  const double e = 1e-7 * std::max({yhi - ylo, zhi - zlo, 1e-300}) / nb;
+  const mesh::TriangleProjector proj(s.V, s.F);
+  auto orient = [](double y0, double z0, double y1, double z1, double py, double pz) {
+    return (y1 - y0) * (pz - z0) - (z1 - z0) * (py - y0);
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& p = points[i];
+    int t = -1;
+    const Eigen::Vector3d q = proj.project(p, &t);
+    out.distance[i] = (q - p).norm();
+    const double py = p.y() + e * std::sqrt(2.0), pz = p.z() + e * std::sqrt(3.0);
+    int winding = 0, total = 0;
+    if (py >= ylo && py <= yhi && pz >= zlo && pz <= zhi)
+      for (int f : bucket[size_t(bucket_y(py)) + size_t(nb) * bucket_z(pz)]) {
+        const Eigen::Vector3d A = s.V.row(s.F(f, 0)), B = s.V.row(s.F(f, 1)), C = s.V.row(s.F(f, 2));
+        const double d = (B.y() - A.y()) * (C.z() - A.z()) - (B.z() - A.z()) * (C.y() - A.y());
+        if (d == 0) continue;
+        const double wa = orient(B.y(), B.z(), C.y(), C.z(), py, pz);
+        const double wb = orient(C.y(), C.z(), A.y(), A.z(), py, pz);
+        const double wc = orient(A.y(), A.z(), B.y(), B.z(), py, pz);
+        if (!(d > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0))) continue;
+        const int sign = d < 0 ? 1 : -1;
+        total += sign;
+        if ((wa * A.x() + wb * B.x() + wc * C.x()) / d < p.x()) winding += sign;
+      }
+    if (total == 0) {
+      out.inside[i] = winding > 0;
+    } else {
+      const Eigen::Vector3d A = s.V.row(s.F(t, 0)), B = s.V.row(s.F(t, 1)), C = s.V.row(s.F(t, 2));
+      out.inside[i] = (B - A).cross(C - A).dot(p - q) < 0;
+    }
+  }
+  return out;
+}
+
 }  // namespace hexdom::overlay

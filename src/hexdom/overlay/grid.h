@@ -58,4 +58,9 @@ struct NodeField {
 /// along it) takes its nodes' side from the nearest triangle's normal instead.
 NodeField classify_nodes(const Grid& grid, const mesh::SurfaceMesh& surface, double band);
 
+/// Per point: inside the closed surface or not, by the winding number of a ray in +x (shifted like
+/// classify_nodes' lines; a ray whose crossings do not cancel takes the nearest triangle's side), and
+/// its distance to the surface (every point's).
+NodeField classify_points(const std::vector<Eigen::Vector3d>& points, const mesh::SurfaceMesh& surface);
+
 }  // namespace hexdom::overlay

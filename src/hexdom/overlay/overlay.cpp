@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "hexdom/common/format.h"
@@ -10,6 +11,8 @@
 #include "hexdom/overlay/buffer.h"
 #include "hexdom/overlay/core.h"
 #include "hexdom/overlay/grid.h"
+#include "hexdom/overlay/octree.h"
+#include "hexdom/mesh/closest_point.h"
 #include "hexdom/quality/metrics.h"
 
 namespace hexdom::overlay {
@@ -40,21 +43,73 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
                             double(grid.num_cells()), opt.max_grid_cells));
   const double hmin = grid.h.minCoeff();
   const double margin = (opt.core_by_centres ? opt.centre_margin : opt.margin) * hmin;
-  const Core core = opt.core_by_centres
-                        ? core_cells_by_centres(grid, classify_nodes(cell_centres(grid), s, std::max(margin, hmin) * 1.001), margin)
-                        : core_cells(grid, classify_nodes(grid, s, margin * 1.001), margin);
-  if (core.cells == 0) throw GeometryError(fmt("no grid cell of spacing %g lies inside with its margin", h.maxCoeff()));
+  std::vector<std::array<int, 4>> outer;
+  std::vector<int> copy;
+  mesh::Mesh m;
+  std::vector<double> depth{opt.buffer_depth * hmin};
+  OctreeMesh tree;
+  if (opt.octree_levels > 0 && opt.core_by_centres) {
+    // Cells near the surface where the wall is thinner than wall_cells of them are split.
+    const mesh::TriangleProjector proj(s.V, s.F);
+    auto normal = [&](int t) {
+      const Eigen::Vector3d A = s.V.row(s.F(t, 0)), B = s.V.row(s.F(t, 1)), C = s.V.row(s.F(t, 2));
+      return Eigen::Vector3d((B - A).cross(C - A).normalized());
+    };
+    tree = octree_mesh(grid, opt.octree_levels, [&](const OctreeCell& c) {
+      const Eigen::Vector3d size = octree_cell_size(grid, c), centre = octree_cell_origin(grid, c) + size / 2;
+      int t = -1;
+      const Eigen::Vector3d q = proj.project(centre, &t);
+      if ((q - centre).norm() > size.norm() / 2) return false;
+      const Eigen::Vector3d n = normal(t);
+      const double r = opt.wall_cells * size.minCoeff() / 2;
+      const Eigen::Vector3d ball = q - r * n;
+      int t2 = -1;
+      const Eigen::Vector3d q2 = proj.project(ball, &t2);
+      return (q2 - ball).norm() < 0.9 * r && normal(t2).dot(n) < -0.5;
+    });
+  }
+  Core core;
+  if (tree.levels > 0) {
+    // The octree's cells whose centre is inside by the margin of their own size.
+    const mesh::Mesh& cells = tree.mesh;
+    std::vector<Eigen::Vector3d> centres(cells.num_cells());
+    std::vector<double> size(cells.num_cells());
+    for (int c = 0; c < cells.num_cells(); ++c) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int i = 0; i < 8; ++i) x += cells.V.row(cells.cells(c, i)).transpose() / 8;
+      centres[c] = x;
+      size[c] = hmin / std::pow(3.0, tree.level[c]) / (tree.plain[c] ? 1 : 3);
+    }
+    const NodeField f = classify_points(centres, s);
+    std::vector<char> keep(cells.num_cells(), 0);
+    for (int c = 0; c < cells.num_cells(); ++c) keep[c] = f.inside[c] && f.distance[c] >= opt.centre_margin * size[c];
+    core = manifold_core(cells, std::move(keep), f.distance);
+    if (core.cells == 0) throw GeometryError(fmt("no octree cell of spacing %g lies inside with its margin", h.maxCoeff()));
+    m = add_buffer_layer(core_mesh(cells, core), &outer, &copy);
+    // The buffer layer's depth from the size of the core cells at each node.
+    depth.assign(m.num_nodes(), std::numeric_limits<double>::infinity());
+    for (int c = 0; c < m.num_cells(); ++c) {
+      if (m.region(c) != 1) continue;
+      const double cs = std::cbrt(std::abs(quality::volume(mesh::CellType::Hex, quality::cell_points(m, c))));
+      for (int i = 0; i < 8; ++i) depth[m.cells(c, i)] = std::min(depth[m.cells(c, i)], opt.buffer_depth * cs);
+    }
+    r.octree_levels = tree.levels;
+    r.thinnest = hmin / std::pow(3.0, tree.levels);
+  } else {
+    core = opt.core_by_centres
+               ? core_cells_by_centres(grid, classify_nodes(cell_centres(grid), s, std::max(margin, hmin) * 1.001), margin)
+               : core_cells(grid, classify_nodes(grid, s, margin * 1.001), margin);
+    if (core.cells == 0) throw GeometryError(fmt("no grid cell of spacing %g lies inside with its margin", h.maxCoeff()));
+  }
   if (core.components > 1 && opt.log)
     opt.log(0, fmt("overlay: the cells of spacing %g inside fall into %.0f pieces; the largest kept, %.0f cells dropped",
                    h.maxCoeff(), core.components, core.apart));
   r.core_cells = core.cells;
   r.dropped = core.dropped;
-  std::vector<std::array<int, 4>> outer;
-  std::vector<int> copy;
-  mesh::Mesh m = add_buffer_layer(core_mesh(grid, core), &outer, &copy);
+  if (tree.levels == 0) m = add_buffer_layer(core_mesh(grid, core), &outer, &copy);
   r.buffer_cells = static_cast<int>(outer.size());
   Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
-  if (opt.core_by_centres) pull_inner_nodes(m, outer, copy, feat, opt.buffer_depth * hmin);
+  if (opt.core_by_centres) pull_inner_nodes(m, outer, copy, feat, depth);
   spread(m, outer, place_of, feat, opt.spread_passes, 0.25 * grid.h.minCoeff());
   r.curve_nodes = place_of.curve;
   r.corner_nodes = place_of.corner;
@@ -162,7 +217,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     OverlayResult r = mesh_with_grid(ss, *sfeat, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st);
     const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch);
     r.spacing = spacing.maxCoeff();
-    r.thinnest = spacing.minCoeff();
+    r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
     return r;
   };
   auto summary = [&](const OverlayResult& r) {
@@ -234,7 +289,8 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
 }
 
 std::string to_text(const OverlayResult& r) {
-  return fmt("overlay: spacing %g (thinnest %g), ", r.spacing, r.thinnest) + fmt("%.0f core + %.0f buffer cells (%.0f dropped for a manifold core), ",
+  return fmt("overlay: spacing %g (thinnest %g", r.spacing, r.thinnest) +
+         (r.octree_levels > 0 ? fmt(", %.0f octree levels), ", double(r.octree_levels)) : std::string("), ")) + fmt("%.0f core + %.0f buffer cells (%.0f dropped for a manifold core), ",
              double(r.core_cells), double(r.buffer_cells), double(r.dropped)) +
          fmt("%.0f curve and %.0f corner nodes (%.0f corners missed, %.0f staircase nodes let off their curve), ",
              double(r.curve_nodes), double(r.corner_nodes), double(r.corners_missed), double(r.demoted)) +

@@ -41,6 +41,13 @@ struct OverlayOptions {
   double centre_margin = 0.1;
   double buffer_depth = 0.5;
   double margin = 0.4;
+  /// Octree refinement of each grid (overlay::octree_mesh), up to this many levels, each dividing
+  /// the cells by 3, where the solid is thinner than `wall_cells` cells: a cell that the surface
+  /// passes near is split when the ball of diameter wall_cells times its size, touching the nearest
+  /// surface point from inside, reaches the other side of the wall (a triangle facing against the
+  /// first). 0: the grid's cells only.
+  int octree_levels = 0;
+  double wall_cells = 1;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;
   FeatureOptions features;
@@ -95,6 +102,7 @@ struct OverlayResult {
   /// (a staircase node, a loosened one).
   std::vector<optimize::NodeKind> node_kind;
   int grids = 0;                     ///< grids made
+  int octree_levels = 0;             ///< levels of octree refinement in the result's grid (0: none)
   segmentation::CubeFrame frame;
   double seconds = 0;
 };

@@ -224,3 +224,27 @@ TEST(Overlay, ACancelledDeadlineStopsIt) {
   }
   later.join();
 }
+
+// A hollow cube 40 wide with walls of 2, thinner than the default cells (2.3): with one level of
+// octree refinement the cells near the walls are split in 27 (transition templates between), and
+// the mesh is valid, on the surface, with the solid's volume.
+TEST(Overlay, OctreeRefinementMeshesThinWalls) {
+  std::vector<std::array<int, 3>> cells;
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i)
+        if (i == 0 || j == 0 || k == 0 || i == 19 || j == 19 || k == 19) cells.push_back({i, j, k});
+  const auto s = test::cell_surface(cells, 1, 2.0);
+  overlay::OverlayOptions o;
+  o.octree_levels = 1;
+  o.refinements = 0;
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  const double volume = 40.0 * 40 * 40 - 36.0 * 36 * 36;
+  EXPECT_EQ(r.octree_levels, 1);
+  EXPECT_NEAR(r.thinnest, r.spacing / 3, 1e-9);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GT(r.quality.hex.sj_min, 0.2);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
+  EXPECT_EQ(r.corner_nodes, 16);
+}
