@@ -263,6 +263,12 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     }
     const bool short_of = inverted(best.quality) > 0 || volume_off(best) || best.quality.hex.sj_min < opt.refine_below_sj;
     if (!short_of || k == opt.refinements) break;
+    // An octree grid is already refined where the part is thin: halving it as well would multiply
+    // its cells (up to a million) by 8.
+    if (best.octree_levels > 0) {
+      say("overlay: the octree's grid is kept; no halving after it");
+      break;
+    }
     // A finer grid for quality alone (the part is whole) costs 8 times the cells: not beyond
     // max_cells_for_quality, nor beyond max_cells_for_extra for the worst SJ alone.
     // A grid halved for the SJ alone that did no better ends the halvings.

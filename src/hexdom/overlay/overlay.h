@@ -45,7 +45,7 @@ struct OverlayOptions {
   /// the cells by 3, where the solid is thinner than `wall_cells` cells: a cell that the surface
   /// passes near is split when the ball of diameter wall_cells times its size, touching the nearest
   /// surface point from inside, reaches the other side of the wall (a triangle facing against the
-  /// first). 0: the grid's cells only.
+  /// first). A grid so refined is not halved further. 0: the grid's cells only.
   int octree_levels = 0;
   double wall_cells = 1;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
