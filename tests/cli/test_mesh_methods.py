@@ -108,3 +108,44 @@ def test_a_negative_polycube_budget_is_a_usage_error(hexdom_bin, tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 2, run.stderr
     assert not out.exists()
+
+
+def _box_triangles(lo, hi, inward):
+    c = np.array([[lo[0], lo[1], lo[2]], [hi[0], lo[1], lo[2]], [hi[0], hi[1], lo[2]], [lo[0], hi[1], lo[2]],
+                  [lo[0], lo[1], hi[2]], [hi[0], lo[1], hi[2]], [hi[0], hi[1], hi[2]], [lo[0], hi[1], hi[2]]], float)
+    tris = []
+    for q in [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]:
+        for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3])):
+            tris.append(c[list(t[::-1] if inward else t)])
+    return tris
+
+
+def test_octree_levels_refine_the_overlay_grid_at_thin_walls(hexdom_bin, tmp_path):
+    """A hollow cube 40 wide with walls of 2 (the default cells are 2.35): --octree-levels 1 splits the
+    cells at the walls in 27 (the log says so), and the mesh is valid with the solid's volume."""
+    stl = tmp_path / "hollow.stl"
+    with open(stl, "w") as f:
+        f.write("solid hollow\n")
+        for t in _box_triangles((0, 0, 0), (40, 40, 40), False) + _box_triangles((2, 2, 2), (38, 38, 38), True):
+            n = np.cross(t[1] - t[0], t[2] - t[0])
+            n /= np.linalg.norm(n)
+            f.write(f"facet normal {n[0]} {n[1]} {n[2]}\n outer loop\n")
+            f.write("".join(f"  vertex {p[0]} {p[1]} {p[2]}\n" for p in t) + " endloop\nendfacet\n")
+        f.write("endsolid hollow\n")
+    out = tmp_path / "hollow.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(stl), "-o", str(out), "--method", "overlay",
+                          "--octree-levels", "1"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "1 octree levels" in run.stderr
+    sj, volume = _verdict(out)
+    assert np.all(sj > 0), f"{int(np.sum(sj <= 0))} inverted cells"
+    assert volume == pytest.approx(40.0 ** 3 - 36.0 ** 3, rel=0.01)
+
+
+def test_octree_levels_out_of_range_is_refused(hexdom_bin, tmp_path):
+    out = tmp_path / "x.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--octree-levels", "4"],
+                         capture_output=True, text=True)
+    assert run.returncode != 0
+    assert "--octree-levels" in run.stderr
+    assert not out.exists()
