@@ -47,7 +47,7 @@ struct OverlayOptions {
   /// surface point from inside, reaches the other side of the wall (a triangle facing against the
   /// first). A grid so refined is not halved further. 0: the grid's cells only.
   int octree_levels = 0;
-  double wall_cells = 1;
+  double wall_cells = 2;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;
   FeatureOptions features;
