@@ -228,31 +228,30 @@ OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool
           for (int b = 0; b < 8; ++b)
             if (may_mark(c, b)) marked.insert(corner_key(c, b));
     // Marks made valid: completed where a cell may have all 8, then cut to the largest valid subset.
-    for (size_t c = 0; c < cells.size(); ++c) work.push_back(static_cast<int>(c));
-    while (!work.empty()) {
-      const OctreeCell c = cells[work.back()];
-      work.pop_back();
-      const int m = mask_of(c);
-      if (tt.kind[m] >= 0) continue;
-      bool all = true;
-      for (int b = 0; b < 8 && all; ++b) all = may_mark(c, b);
-      if (!all) continue;
+    // `fix` is called for each cell whose marks are not a valid pattern, until none is left to look at.
+    auto settle = [&](auto&& fix) {
+      for (size_t c = 0; c < cells.size(); ++c) work.push_back(static_cast<int>(c));
+      while (!work.empty()) {
+        const OctreeCell c = cells[work.back()];
+        work.pop_back();
+        const int m = mask_of(c);
+        if (tt.kind[m] < 0) fix(c, m);
+      }
+    };
+    settle([&](const OctreeCell& c, int) {
+      for (int b = 0; b < 8; ++b)
+        if (!may_mark(c, b)) return;
       for (int b = 0; b < 8; ++b)
         if (marked.insert(corner_key(c, b)).second) around(corner_key(c, b));
-    }
-    for (size_t c = 0; c < cells.size(); ++c) work.push_back(static_cast<int>(c));
-    while (!work.empty()) {
-      const OctreeCell c = cells[work.back()];
-      work.pop_back();
-      const int m = mask_of(c);
-      if (tt.kind[m] >= 0) continue;
+    });
+    settle([&](const OctreeCell& c, int m) {
       const int keep = tt.largest_valid_subset[m];
       for (int b = 0; b < 8; ++b)
         if ((m & ~keep) & (1 << b)) {
           marked.erase(corner_key(c, b));
           around(corner_key(c, b));
         }
-    }
+    });
     std::vector<OctreeCell> next;
     for (const OctreeCell& c : cells) {
       const int m = mask_of(c);
