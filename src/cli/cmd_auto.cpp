@@ -179,10 +179,8 @@ void add_mesh(CLI::App& app) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("-s,--level", a->opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
       ->capture_default_str()->check(CLI::Range(0, 6));
-  cmd->add_option("--octree-levels", a->opt.overlay.octree_levels,
-                  "overlay grid: cells split in 27, up to this many times, where a wall is thinner than a cell, with "
-                  "transition templates around them (experimental: thin shells get hundreds of thousands of cells); 0: off")
-      ->capture_default_str()->check(CLI::Range(0, 3));
+  cmd->add_option("--octree-levels", a->opt.overlay.octree_levels, "overlay grid: cells split in 27, up to this many "
+                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
   cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
   cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
   cmd->add_option("--sliver-ratio", a->opt.polycube.sliver_ratio,
