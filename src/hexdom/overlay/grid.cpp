@@ -50,6 +50,21 @@ Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double 
 
 namespace {
 
+// The crossing of the x-line through (py, pz) with triangle (A, B, C): 0 when the line misses it
+// (or the triangle is parallel to it), else +1 where the line enters the solid (the normal points
+// to -x), -1 where it leaves; `x` receives where.
+int x_line_crossing(const Eigen::Vector3d& A, const Eigen::Vector3d& B, const Eigen::Vector3d& C, double py, double pz,
+                    double* x) {
+  const double d = (B.y() - A.y()) * (C.z() - A.z()) - (B.z() - A.z()) * (C.y() - A.y());
+  if (d == 0) return 0;
+  auto orient = [py, pz](double y0, double z0, double y1, double z1) { return (y1 - y0) * (pz - z0) - (z1 - z0) * (py - y0); };
+  const double wa = orient(B.y(), B.z(), C.y(), C.z()), wb = orient(C.y(), C.z(), A.y(), A.z()),
+               wc = orient(A.y(), A.z(), B.y(), B.z());
+  if (!(d > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0))) return 0;
+  *x = (wa * A.x() + wb * B.x() + wc * C.x()) / d;
+  return d < 0 ? 1 : -1;
+}
+
 // Signed crossings of the x-lines of the grid: per line (j, k), the x of each triangle it crosses
 // and +1 where it enters the solid (normal pointing to -x), -1 where it leaves.
 std::vector<std::vector<std::pair<double, int>>> line_crossings(const Grid& g, const mesh::SurfaceMesh& s, double ey,
@@ -65,19 +80,11 @@ std::vector<std::vector<std::pair<double, int>>> line_crossings(const Grid& g, c
     const int j1 = std::min(g.ny, static_cast<int>(std::floor((yhi - g.origin.y() - ey) / g.h.y())));
     const int k0 = std::max(0, static_cast<int>(std::ceil((zlo - g.origin.z() - ez) / g.h.z())));
     const int k1 = std::min(g.nz, static_cast<int>(std::floor((zhi - g.origin.z() - ez) / g.h.z())));
-    auto orient = [](double y0, double z0, double y1, double z1, double py, double pz) {
-      return (y1 - y0) * (pz - z0) - (z1 - z0) * (py - y0);
-    };
     for (int k = k0; k <= k1; ++k)
       for (int j = j0; j <= j1; ++j) {
-        const double py = g.origin.y() + j * g.h.y() + ey, pz = g.origin.z() + k * g.h.z() + ez;
-        const double wa = orient(B.y(), B.z(), C.y(), C.z(), py, pz);
-        const double wb = orient(C.y(), C.z(), A.y(), A.z(), py, pz);
-        const double wc = orient(A.y(), A.z(), B.y(), B.z(), py, pz);
-        const bool in = d > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0);
-        if (!in) continue;
-        const double x = (wa * A.x() + wb * B.x() + wc * C.x()) / d;
-        lines[size_t(j) + size_t(g.ny + 1) * k].emplace_back(x, d < 0 ? 1 : -1);
+        double x = 0;
+        const int sign = x_line_crossing(A, B, C, g.origin.y() + j * g.h.y() + ey, g.origin.z() + k * g.h.z() + ez, &x);
+        if (sign != 0) lines[size_t(j) + size_t(g.ny + 1) * k].emplace_back(x, sign);
       }
   }
   return lines;
@@ -171,9 +178,6 @@ NodeField classify_points(const std::vector<Eigen::Vector3d>& points, const mesh
   }
   const double e = 1e-7 * std::max({yhi - ylo, zhi - zlo, 1e-300}) / nb;
   const mesh::TriangleProjector proj(s.V, s.F);
-  auto orient = [](double y0, double z0, double y1, double z1, double py, double pz) {
-    return (y1 - y0) * (pz - z0) - (z1 - z0) * (py - y0);
-  };
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& p = points[i];
     int t = -1;
@@ -183,16 +187,10 @@ NodeField classify_points(const std::vector<Eigen::Vector3d>& points, const mesh
     int winding = 0, total = 0;
     if (py >= ylo && py <= yhi && pz >= zlo && pz <= zhi)
       for (int f : bucket[size_t(bucket_y(py)) + size_t(nb) * bucket_z(pz)]) {
-        const Eigen::Vector3d A = s.V.row(s.F(f, 0)), B = s.V.row(s.F(f, 1)), C = s.V.row(s.F(f, 2));
-        const double d = (B.y() - A.y()) * (C.z() - A.z()) - (B.z() - A.z()) * (C.y() - A.y());
-        if (d == 0) continue;
-        const double wa = orient(B.y(), B.z(), C.y(), C.z(), py, pz);
-        const double wb = orient(C.y(), C.z(), A.y(), A.z(), py, pz);
-        const double wc = orient(A.y(), A.z(), B.y(), B.z(), py, pz);
-        if (!(d > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0))) continue;
-        const int sign = d < 0 ? 1 : -1;
+        double x = 0;
+        const int sign = x_line_crossing(s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2)), py, pz, &x);
         total += sign;
-        if ((wa * A.x() + wb * B.x() + wc * C.x()) / d < p.x()) winding += sign;
+        if (sign != 0 && x < p.x()) winding += sign;
       }
     if (total == 0) {
       out.inside[i] = winding > 0;

@@ -45,7 +45,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   const double margin = (opt.core_by_centres ? opt.centre_margin : opt.margin) * hmin;
   std::vector<std::array<int, 4>> outer;
   std::vector<int> copy;
-  mesh::Mesh m;
+  mesh::Mesh m;  // the core, then with its buffer layer
   std::vector<double> depth{opt.buffer_depth * hmin};
   OctreeMesh tree;
   if (opt.octree_levels > 0 && opt.core_by_centres) {
@@ -85,14 +85,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     for (int c = 0; c < cells.num_cells(); ++c) keep[c] = f.inside[c] && f.distance[c] >= opt.centre_margin * size[c];
     core = manifold_core(cells, std::move(keep), f.distance);
     if (core.cells == 0) throw GeometryError(fmt("no octree cell of spacing %g lies inside with its margin", h.maxCoeff()));
-    m = add_buffer_layer(core_mesh(cells, core), &outer, &copy);
-    // The buffer layer's depth from the size of the core cells at each node.
-    depth.assign(m.num_nodes(), std::numeric_limits<double>::infinity());
-    for (int c = 0; c < m.num_cells(); ++c) {
-      if (m.region(c) != 1) continue;
-      const double cs = std::cbrt(std::abs(quality::volume(mesh::CellType::Hex, quality::cell_points(m, c))));
-      for (int i = 0; i < 8; ++i) depth[m.cells(c, i)] = std::min(depth[m.cells(c, i)], opt.buffer_depth * cs);
-    }
+    m = core_mesh(cells, core);
     r.octree_levels = tree.levels;
     r.thinnest = hmin / std::pow(3.0, tree.levels);
   } else {
@@ -100,13 +93,23 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
                ? core_cells_by_centres(grid, classify_nodes(cell_centres(grid), s, std::max(margin, hmin) * 1.001), margin)
                : core_cells(grid, classify_nodes(grid, s, margin * 1.001), margin);
     if (core.cells == 0) throw GeometryError(fmt("no grid cell of spacing %g lies inside with its margin", h.maxCoeff()));
+    m = core_mesh(grid, core);
   }
   if (core.components > 1 && opt.log)
     opt.log(0, fmt("overlay: the cells of spacing %g inside fall into %.0f pieces; the largest kept, %.0f cells dropped",
                    h.maxCoeff(), core.components, core.apart));
   r.core_cells = core.cells;
   r.dropped = core.dropped;
-  if (tree.levels == 0) m = add_buffer_layer(core_mesh(grid, core), &outer, &copy);
+  m = add_buffer_layer(m, &outer, &copy);
+  if (tree.levels > 0) {
+    // The buffer layer's depth from the size of the core cells at each node.
+    depth.assign(m.num_nodes(), std::numeric_limits<double>::infinity());
+    for (int c = 0; c < m.num_cells(); ++c) {
+      if (m.region(c) != 1) continue;
+      const double cs = std::cbrt(std::abs(quality::volume(mesh::CellType::Hex, quality::cell_points(m, c))));
+      for (int i = 0; i < 8; ++i) depth[m.cells(c, i)] = std::min(depth[m.cells(c, i)], opt.buffer_depth * cs);
+    }
+  }
   r.buffer_cells = static_cast<int>(outer.size());
   Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
   if (opt.core_by_centres) pull_inner_nodes(m, outer, copy, feat, depth);
