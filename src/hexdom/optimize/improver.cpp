@@ -85,6 +85,25 @@ std::string Improver::worst_place() const {
   return fmt(" at (%.4g, %.4g, %.4g)", c(0), c(1), c(2));
 }
 
+Vec Improver::min_slopes(int v, double h) {
+  const double f0 = local_min(v);
+  // A cell further above f0 than this is not the lowest after a step h: its scaled Jacobian would
+  // have to fall by `window` over h, a slope of 100 per edge length.
+  const double window = 1e-2 * h / (1e-4 * edge_[v]);
+  Vec g = Vec::Constant(2.0);
+  const Vec x0 = m_.V.row(v).transpose();
+  for (int k = 0; k < 3; ++k) {
+    Vec x = x0;
+    x(k) += h;
+    m_.V.row(v) = x.transpose();
+    for (int q : t_.node_cells[v])
+      if (sj_[q] <= f0 + window) g(k) = std::min(g(k), cell_sj(m_, q));
+    g(k) = (g(k) - f0) / h;
+  }
+  m_.V.row(v) = x0.transpose();
+  return g;
+}
+
 double Improver::local_min(int v) const {
   double w = 2;
   for (int q : t_.node_cells[v]) w = std::min(w, sj_[q]);
@@ -131,14 +150,18 @@ bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
   double after = 2;
   trial_.clear();
   bool below_floor = false;
+  // A cell at or below this fails the move whatever the others give: the rest are not evaluated.
+  const double fails = allow_equal ? before - 1e-12 : before + 1e-12;
   for (int q : t_.node_cells[v]) {
     const double sj = cell_sj(m_, q);
     trial_.push_back(sj);
     after = std::min(after, sj);
     below_floor |= sj < sj_[q] && (sj < floor_[type_slot(q)] || crosses_keep(q, sj));
+    if (below_floor || sj < fails || (!allow_equal && sj <= fails)) break;
   }
   if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
-  if (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0)) {
+  if (trial_.size() == t_.node_cells[v].size() &&
+      (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0))) {
     for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
     mark_around(v);
     return true;
@@ -364,17 +387,7 @@ int Improver::optimize_round(double threshold) {
     const Vec x0 = m_.V.row(v).transpose();
     const double h = 1e-4 * edge_[v];
     if (!(h > 0)) continue;
-    const double f0 = local_min(v);
-    Vec g;
-    for (int k = 0; k < 3; ++k) {
-      Vec x = x0;
-      x(k) += h;
-      m_.V.row(v) = x.transpose();
-      double f = 2;
-      for (int q : t_.node_cells[v]) f = std::min(f, cell_sj(m_, q));
-      g(k) = (f - f0) / h;
-    }
-    m_.V.row(v) = x0.transpose();
+    const Vec g = min_slopes(v, h);
     bool done = false;
     if (g.norm() > 0) {
       const Vec d = g.normalized();
