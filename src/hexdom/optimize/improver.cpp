@@ -148,20 +148,29 @@ bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
   if (s_new < s_old && s_new < 0.2 * edge_[v]) return false;
   m_.V.row(v) = x.transpose();
   double after = 2;
-  trial_.clear();
+  const auto& cells = t_.node_cells[v];
+  const int n = static_cast<int>(cells.size());
+  trial_.assign(n, 0.0);
   bool below_floor = false;
   // A cell at or below this fails the move whatever the others give: the rest are not evaluated.
+  // The lowest cell, the likeliest to fail, goes first.
   const double fails = allow_equal ? before - 1e-12 : before + 1e-12;
-  for (int q : t_.node_cells[v]) {
+  int lowest = 0;
+  for (int i = 1; i < n; ++i)
+    if (sj_[cells[i]] < sj_[cells[lowest]]) lowest = i;
+  int evaluated = 0;
+  for (int k = 0; k < n; ++k) {
+    const int i = k == 0 ? lowest : k <= lowest ? k - 1 : k;
+    const int q = cells[i];
     const double sj = cell_sj(m_, q);
-    trial_.push_back(sj);
+    trial_[i] = sj;
+    ++evaluated;
     after = std::min(after, sj);
     below_floor |= sj < sj_[q] && (sj < floor_[type_slot(q)] || crosses_keep(q, sj));
     if (below_floor || sj < fails || (!allow_equal && sj <= fails)) break;
   }
   if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
-  if (trial_.size() == t_.node_cells[v].size() &&
-      (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0))) {
+  if (evaluated == n && (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0))) {
     for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
     mark_around(v);
     return true;
