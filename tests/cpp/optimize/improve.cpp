@@ -4,50 +4,20 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <random>
 #include <string>
 #include <thread>
 
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/quality/metrics.h"
+#include "hex_grid.h"
 #include "test_common.h"
 
 using namespace hexdom;
-using mesh::CellType;
 
 namespace {
 
-// Hexes (VTK order) of an nx x nx x nz grid of cells whose node (i, j, l) is row i + mx (j + my l) of V.
-mesh::Mesh grid_hexes(const Eigen::MatrixXd& V, int nx, int nz, int mx, int my) {
-  auto id = [&](int i, int j, int l) { return i + mx * (j + my * l); };
-  mesh::MeshBuilder b;
-  for (int l = 0; l < nz; ++l)
-    for (int j = 0; j < nx; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const int h[8] = {id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l),
-                          id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
-        b.add(CellType::Hex, h, 1);
-      }
-  return b.finish(V);
-}
-
-// n x n x n unit-cube grid of hexes, VTK order; interior nodes jittered by up to `jitter` cells.
-mesh::Mesh cube_grid(int n, double jitter, unsigned seed = 7) {
-  const int k = n + 1;
-  auto id = [&](int i, int j, int l) { return i + k * (j + k * l); };
-  Eigen::MatrixXd V(k * k * k, 3);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-jitter, jitter);
-  for (int l = 0; l < k; ++l)
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i) {
-        Eigen::RowVector3d p(i, j, l);
-        const bool interior = i > 0 && i < n && j > 0 && j < n && l > 0 && l < n;
-        if (interior) p += Eigen::RowVector3d(u(rng), u(rng), u(rng));
-        V.row(id(i, j, l)) = p / n;
-      }
-  return grid_hexes(V, n, n, n + 1, n + 1);
-}
+// n x n x n grid of hexes filling the unit cube; interior nodes jittered by up to `jitter` cells.
+mesh::Mesh cube_grid(int n, double jitter, unsigned seed = 7) { return test::jittered_cube_grid(n, jitter, seed, 1.0 / n); }
 
 Eigen::VectorXd sj_of(const mesh::Mesh& m) { return quality::compute_metrics(m).scaled_jacobian; }
 
@@ -65,7 +35,7 @@ mesh::Mesh polycube_cylinder(int n, int k) {
         const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
         V.row(id(i, j, l)) << x * std::sqrt(1 - y * y / 2), y * std::sqrt(1 - x * x / 2), static_cast<double>(l) / k;
       }
-  return grid_hexes(V, n, k, n + 1, n + 1);
+  return test::grid_cells(V, n, k, n + 1, n + 1);
 }
 
 }  // namespace

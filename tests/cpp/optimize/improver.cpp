@@ -4,54 +4,17 @@
 // to the last bit.
 #include "hexdom/optimize/improver.h"
 
-#include <random>
-
 #include "hexdom/optimize/node_kinds.h"
+#include "hex_grid.h"
 #include "test_common.h"
 
 using namespace hexdom;
-using mesh::CellType;
-
-namespace {
-
-// An n^3 grid of unit cubes, interior nodes moved by up to `jitter`; with `prism`, the last cube
-// is two prisms instead (VTK wedge order).
-mesh::Mesh jittered_grid(int n, double jitter, bool prism, unsigned seed) {
-  const int m = n + 1;
-  auto id = [&](int i, int j, int k) { return i + m * (j + m * k); };
-  Eigen::MatrixXd V(m * m * m, 3);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-jitter, jitter);
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        const bool inner = i > 0 && j > 0 && k > 0 && i < n && j < n && k < n;
-        V.row(id(i, j, k)) << i + (inner ? u(rng) : 0), j + (inner ? u(rng) : 0), k + (inner ? u(rng) : 0);
-      }
-  mesh::MeshBuilder b;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int h[8] = {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                          id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
-        if (prism && i == n - 1 && j == n - 1 && k == n - 1) {
-          const int w1[6] = {h[0], h[1], h[2], h[4], h[5], h[6]}, w2[6] = {h[0], h[2], h[3], h[4], h[6], h[7]};
-          b.add(CellType::Wedge, w1, 1);
-          b.add(CellType::Wedge, w2, 1);
-        } else {
-          b.add(CellType::Hex, h, 1);
-        }
-      }
-  return b.finish(V);
-}
-
-}  // namespace
 
 TEST(Improver, MinSlopesAreTheForwardDifferencesOverAllCells) {
   int compared = 0;
   for (unsigned seed : {1u, 2u, 3u})
     for (bool prism : {false, true}) {
-      mesh::Mesh m = jittered_grid(4, 0.35, prism, seed);
+      mesh::Mesh m = test::jittered_cube_grid(4, 0.35, seed, 1.0, prism);
       const optimize::NodeKinds kinds = optimize::node_kinds(m, 35.0, nullptr);
       const optimize::BoundaryConstraints cons = optimize::boundary_constraints(m, kinds, {});
       optimize::Improver imp(m, kinds, cons);

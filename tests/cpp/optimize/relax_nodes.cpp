@@ -4,6 +4,7 @@
 #include "hexdom/mesh/adjacency.h"
 #include "hexdom/optimize/relax_nodes.h"
 #include "hexdom/quality/metrics.h"
+#include "hex_grid.h"
 #include "test_common.h"
 
 using namespace hexdom;
@@ -17,27 +18,9 @@ namespace {
 struct Grid {
   int n;
   mesh::Mesh m;
-  int node(int i, int j, int k) const { return i + (n + 1) * (j + (n + 1) * k); }
-  bool on_boundary(int v) const {
-    const int i = v % (n + 1), j = v / (n + 1) % (n + 1), k = v / ((n + 1) * (n + 1));
-    return i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
-  }
-  explicit Grid(int cells) : n(cells) {
-    static const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-    mesh::MeshBuilder b;
-    for (int k = 0; k < n; ++k)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          int c[8];
-          for (int q = 0; q < 8; ++q) c[q] = node(i + corner[q][0], j + corner[q][1], k + corner[q][2]);
-          b.add(CellType::Hex, c, 1);
-        }
-    Eigen::MatrixXd V((n + 1) * (n + 1) * (n + 1), 3);
-    for (int k = 0; k <= n; ++k)
-      for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) V.row(node(i, j, k)) << i, j, k;
-    m = b.finish(V);
-  }
+  int node(int i, int j, int k) const { return test::grid_node(i, j, k, n + 1, n + 1); }
+  bool on_boundary(int v) const { return test::on_grid_boundary(v, n); }
+  explicit Grid(int cells) : n(cells), m(test::jittered_cube_grid(cells, 0.0, 0)) {}
   // Boundary nodes fixed, interior nodes free.
   NodeFreedom freedom() const {
     NodeFreedom F;
