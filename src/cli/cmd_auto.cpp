@@ -169,6 +169,7 @@ void add_mesh(CLI::App& app) {
                   "solid), or auto: the polycube, and the overlay grid too when the polycube fails or misses a target, "
                   "the better kept")
       ->capture_default_str()->check(CLI::IsMember({"auto", "polycube", "overlay"}));
+  cmd->add_option("--threads", a->opt.threads, "threads (0: one per core); same mesh whatever the number")->check(CLI::NonNegativeNumber);
   cmd->add_option("--polycube-seconds", a->opt.polycube_seconds,
                   "time budget of the polycube path in seconds (0: no limit). auto: once it has passed the polycube "
                   "path stops with the mesh it has, or fails, and the overlay grid runs (CAD parts: counted from the end of "

@@ -21,6 +21,8 @@ void add_improve(CLI::App& app) {
   cmd->add_option("--surface", a->surface, "surface the boundary must stay on (e.g. the patch file); default: the mesh's own boundary");
   cmd->add_flag("--pillow", a->opt.pillow, "insert one layer of cells along the boundary");
   cmd->add_option("--smooth", a->opt.smooth, "smoothing passes");
+  cmd->add_option("--threads", a->opt.threads, "threads (0: one per core); the mesh is the same whatever the number")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--optimize", a->opt.optimize, "Jacobian optimisation rounds");
   auto* sharp = cmd->add_option("--sharp", a->sharp, "sharp-feature node file (last integer per line: 0-based node index)");
   cmd->add_option("--feature-angle", a->opt.feature_angle, "boundary edges whose faces' normals differ by more than this many degrees are sharp")

@@ -3,7 +3,8 @@ made by examples/make_bracket_step.py): each path gives a valid mesh of the part
 log says which path made it, and `auto` keeps the polycube mesh where it meets every target. A method
 that does not exist is refused before anything is read or written. The polycube path's time budget
 (--polycube-seconds): under auto a tiny one gives the overlay mesh and says why; with --method
-polycube it is an error (exit 5) and nothing is written."""
+polycube it is an error (exit 5) and nothing is written. The file written is the same on one
+and on three threads (--threads)."""
 
 import subprocess
 from pathlib import Path
@@ -148,4 +149,28 @@ def test_octree_levels_out_of_range_is_refused(hexdom_bin, tmp_path):
                          capture_output=True, text=True)
     assert run.returncode != 0
     assert "--octree-levels" in run.stderr
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("method", ["polycube", "overlay"])
+def test_the_mesh_is_the_same_file_on_one_and_three_threads(hexdom_bin, tmp_path, method):
+    # The optimisers move nodes colour by colour and the snap's projections start from each node's
+    # own last point (optimize/improver.h, cad/snap.cpp): the threads change the time, never the mesh.
+    outs = []
+    for threads in (1, 3):
+        out = tmp_path / f"bracket_{method}_{threads}.vtu"
+        run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--method", method,
+                              "--threads", str(threads)], capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
+        outs.append(out.read_bytes())
+    assert len(outs[0]) > 10000
+    assert outs[0] == outs[1], "the mesh written depends on the number of threads"
+
+
+def test_a_negative_thread_count_is_a_usage_error(hexdom_bin, tmp_path):
+    out = tmp_path / "x.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--threads", "-2"],
+                         capture_output=True, text=True)
+    assert run.returncode == 2, run.stderr
+    assert "--threads" in run.stderr
     assert not out.exists()

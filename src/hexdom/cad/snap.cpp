@@ -9,11 +9,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
 #include <unordered_map>
 
@@ -189,6 +190,48 @@ class Projectors {
   std::vector<char> have_curve_;
 };
 
+/// Projectors for the threads of a restoration: a call takes one no other thread is using (a
+/// FaceProjector serves one thread at a time) and gives it back; more are built as needed. A
+/// projection's result depends only on the face or edge and its arguments, not on which projectors
+/// made it, so the mesh does not depend on the number of threads.
+class ProjectorPool {
+ public:
+  ProjectorPool(const Shape::Impl& s, Projectors& first) : s_(s), free_{&first} {}
+  /// One projectors object for the caller's use until the lease ends.
+  class Lease {
+   public:
+    explicit Lease(ProjectorPool& pool) : pool_(pool), p_(pool.take()) {}
+    ~Lease() { pool_.give(p_); }
+    Lease(const Lease&) = delete;
+    Lease& operator=(const Lease&) = delete;
+    Projectors& operator*() const { return *p_; }
+
+   private:
+    ProjectorPool& pool_;
+    Projectors* p_;
+  };
+
+ private:
+  Projectors* take() {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (free_.empty()) {
+      owned_.push_back(std::make_unique<Projectors>(s_));
+      return owned_.back().get();
+    }
+    Projectors* p = free_.back();
+    free_.pop_back();
+    return p;
+  }
+  void give(Projectors* p) {
+    std::lock_guard<std::mutex> lock(mu_);
+    free_.push_back(p);
+  }
+  const Shape::Impl& s_;
+  std::mutex mu_;
+  std::vector<Projectors*> free_;
+  std::vector<std::unique_ptr<Projectors>> owned_;
+};
+
 /// Vertices: a node whose CAD faces include three of a vertex's faces, within the tolerance of it;
 /// the nearest such node per vertex.
 void place_on_vertices(const Shape::Impl& s, const mesh::Mesh& m, const BoundaryNodes& b,
@@ -316,13 +359,16 @@ struct Restored {
 
 /// The restoration of the interior after the boundary nodes move to their targets: improve with
 /// the boundary held, or sliding on its CAD faces and edges (SnapOptions::slide). The faces and
-/// edge curves the sliding nodes project onto are built once, on first use, for all runs.
+/// edge curves the sliding nodes project onto are built once per thread, on first use, for all
+/// runs; each face node starts its projection from where its last one ended (its own entry).
 class Restoration {
  public:
   Restoration(const mesh::Mesh& m, const std::vector<int>& boundary, const Targets& target, const SnapOptions& opt,
               const Shape::Impl& s, Projectors& projectors)
-      : m_(m), boundary_(boundary), target_(target.point), r_(target.r), opt_(opt), s_(s), projectors_(projectors),
-        uv_(target.uv) {}
+      : m_(m), boundary_(boundary), target_(target.point), r_(target.r), opt_(opt), s_(s), projectors_(s, projectors),
+        uv_(m.num_nodes()), has_uv_(m.num_nodes(), 0) {
+    for (const auto& [v, uv] : target.uv) uv_[v] = uv, has_uv_[v] = 1;
+  }
 
   /// Whether the options ask for a restoration at all (otherwise the nodes only move).
   bool enabled() const { return opt_.smooth > 0 || opt_.optimize > 0; }
@@ -342,6 +388,7 @@ class Restoration {
       io.optimize = opt_.optimize;
       io.floor = floor;
       io.fixed_nodes = boundary_;
+      io.threads = opt_.threads;
       w = optimize::improve(w, io).mesh;
     }
     for (int v : boundary_) w.V.row(v) = target_.row(v);
@@ -353,13 +400,16 @@ class Restoration {
       io.floor = floor;
       io.mean_after = true;  // the smoothing costs the mean improve reached
       io.max_edge_ratio = opt_.max_edge_ratio;
+      io.threads = opt_.threads;
       for (int v : boundary_)
         if (!opt_.slide || r_.kind[v] == SnapKind::Vertex) io.fixed_nodes.push_back(v);
-      if (opt_.slide)
+      if (opt_.slide) {
         io.project = [this, &w](int v, const Eigen::Vector3d& x) -> Eigen::Vector3d {
           Eigen::Vector3d q;
           return project(v, x, q) ? q : Eigen::Vector3d(w.V.row(v).transpose());  // stays where it is
         };
+        io.project_concurrent = true;  // a pool of projectors, and each node's own starting point
+      }
       w = optimize::improve(w, io).mesh;
     }
     out.mesh = std::move(w);
@@ -381,14 +431,16 @@ class Restoration {
     double d = std::numeric_limits<double>::infinity();
     const int id = r_.entity[v];
     if (r_.kind[v] == SnapKind::Face) {
-      FaceProjector& face = projectors_.face(id);
+      const ProjectorPool::Lease projectors(projectors_);
+      FaceProjector& face = (*projectors).face(id);
       // From the node's last place on the face: the optimiser's candidates lie near it.
-      auto [last, fresh] = uv_.try_emplace(v);
-      if (fresh) face.nearest(p, q, d, last->second);
-      else face.nearest_from(p, last->second, q, d, last->second);
+      if (!has_uv_[v]) face.nearest(p, q, d, uv_[v]);
+      else face.nearest_from(p, uv_[v], q, d, uv_[v]);
+      has_uv_[v] = 1;
     } else if (r_.kind[v] == SnapKind::Edge) {
+      const ProjectorPool::Lease projectors(projectors_);
       double t;
-      if (!nearest_on_edge(projectors_.curve(id), p, q, t, d)) d = std::numeric_limits<double>::infinity();
+      if (!nearest_on_edge((*projectors).curve(id), p, q, t, d)) d = std::numeric_limits<double>::infinity();
     } else if (r_.kind[v] == SnapKind::Vertex) {
       q = BRep_Tool::Pnt(TopoDS::Vertex(s_.vertices(id)));
       d = 0;
@@ -404,8 +456,9 @@ class Restoration {
   const SnapResult& r_;
   const SnapOptions& opt_;
   const Shape::Impl& s_;
-  Projectors& projectors_;
-  std::unordered_map<int, gp_Pnt2d> uv_;  // face nodes: parameters of their last projection
+  ProjectorPool projectors_;
+  std::vector<gp_Pnt2d> uv_;  // face nodes: parameters of their last projection (has_uv_)
+  std::vector<char> has_uv_;
 };
 
 /// The restoration kept: the direct one; the progressive snap where the direct one costs quality

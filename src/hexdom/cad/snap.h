@@ -52,6 +52,9 @@ struct SnapOptions {
   /// never onto a CAD edge or vertex (the overlay path's nodes on a smooth region, some of which it
   /// let off a sharp curve on purpose so that a cell does not flatten along it).
   std::vector<char> face_only;
+  /// Threads of the restoration (optimize::ImproveOptions::threads; 0: one per core). The boundary
+  /// nodes sliding on their CAD faces move on the calling thread; the mesh does not depend on it.
+  int threads = 0;
   LogCallback log;
 };
 

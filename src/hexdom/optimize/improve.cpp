@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/parallel_for.h"
 #include "hexdom/optimize/improver.h"
 #include "hexdom/optimize/node_kinds.h"
 #include "hexdom/optimize/pillow.h"
@@ -93,6 +94,7 @@ class Run {
     }
     imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
     imp_->set_keep(opt.floor);
+    imp_->set_threads(thread_count(opt.threads));
     log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +
          ": worst scaled Jacobian " + std::to_string(imp_->worst()) + "; " + std::to_string(r_.feature_nodes) +
          " feature-curve nodes, " + std::to_string(r_.corner_nodes) + " corners");
@@ -262,6 +264,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   const NodeKinds t0 = node_kinds(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
   BoundaryConstraints cons = boundary_constraints(input, t0, opt.surface);
   cons.project = opt.project;
+  cons.project_concurrent = opt.project_concurrent;
   const QualityReport before = quality_report(input);
   const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
   const std::vector<char> layer = opt.kinds.empty() ? smooth_layer_faces(input, t0) : std::vector<char>();

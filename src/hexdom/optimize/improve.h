@@ -62,6 +62,12 @@ struct ImproveOptions {
   /// feature curves): returns where node `node` (0-based, input numbering) goes for a candidate
   /// position x, e.g. onto its exact CAD face or edge. Not used on a pillowed mesh.
   std::function<Eigen::Vector3d(int node, const Eigen::Vector3d& x)> project;
+  /// Whether `project` may be called from several threads at once for different nodes (it reads
+  /// shared data only). Otherwise the boundary nodes it places move on the calling thread.
+  bool project_concurrent = false;
+  /// Threads of the passes (0: one per core). The mesh is the same whatever their number
+  /// (Improver: nodes move colour by colour).
+  int threads = 0;
   /// A cell at or above this scaled Jacobian may not drop below it, not even while cells are
   /// inverted (untangling otherwise lets any cell drop to the level of the worst); cells below it
   /// move freely, so untangling them is not held back. E.g. after the snap to the B-rep, the cells

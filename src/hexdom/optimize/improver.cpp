@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/parallel_for.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/quality/metrics.h"
 
@@ -39,6 +40,16 @@ double centre_volume(CellType t, const CellPoints& P) {
   return volume(t, P);
 }
 
+// Each thread's buffer of trial scaled Jacobians (try_move and its kin).
+std::vector<double>& scratch() {
+  thread_local std::vector<double> trial;
+  return trial;
+}
+
+// A sweep's colour goes to the threads only when it has this many nodes that may run together:
+// below it, starting the threads costs more than the moves.
+constexpr size_t kMinConcurrent = 32;
+
 }  // namespace
 
 double cell_sj(const mesh::Mesh& m, int c) {
@@ -62,6 +73,60 @@ Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints&
     }
     edge_[v] = k ? s / k : 0.0;  // mean distance to the corners of incident cells
   }
+  // Greedy colouring in node order: each node takes the lowest colour no node of its cells has.
+  moved_.assign(m.num_nodes(), 0);
+  colour_.assign(m.num_nodes(), -1);
+  std::vector<int> taken_by;  // per colour: the last node that found it taken
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    for (int q : t.node_cells[v])
+      for (int i = 0; i < mesh::node_count(m.type(q)); ++i) {
+        const int c = colour_[m.cells(q, i)];
+        if (c >= 0) taken_by[c] = v;
+      }
+    int c = 0;
+    while (c < static_cast<int>(taken_by.size()) && taken_by[c] == v) ++c;
+    if (c == static_cast<int>(taken_by.size())) {
+      taken_by.push_back(-1);
+      colours_.emplace_back();
+    }
+    colour_[v] = c;
+    colours_[c].push_back(v);
+  }
+}
+
+bool Improver::concurrent(int v) const {
+  return !(c_.project && !c_.project_concurrent && (t_.kind[v] == Surface || t_.kind[v] == Curve));
+}
+
+template <class Visit>
+int Improver::sweep(const std::vector<int>* nodes, Visit&& visit) {
+  std::vector<std::vector<int>> listed;
+  if (nodes) {
+    listed.resize(colours_.size());
+    for (int v : *nodes) listed[colour_[v]].push_back(v);
+  }
+  int moved = 0;
+  std::vector<int> together, alone;
+  for (size_t c = 0; c < colours_.size(); ++c) {
+    const std::vector<int>& bucket = nodes ? listed[c] : colours_[c];
+    together.clear();
+    alone.clear();
+    for (int v : bucket) (concurrent(v) ? together : alone).push_back(v);
+    if (threads_ > 1 && together.size() >= kMinConcurrent) {
+      parallel_for(static_cast<int>(together.size()), threads_, [&](int i) { visit(together[i]); });
+    } else {
+      for (int v : together) visit(v);
+    }
+    for (int v : alone) visit(v);
+    // The moves of one colour touch disjoint cells: their neighbourhoods are marked once all are made.
+    for (int v : bucket)
+      if (moved_[v]) {
+        moved_[v] = 0;
+        mark_around(v);
+        ++moved;
+      }
+  }
+  return moved;
 }
 
 double Improver::worst_hex() const {
@@ -150,7 +215,8 @@ bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
   double after = 2;
   const auto& cells = t_.node_cells[v];
   const int n = static_cast<int>(cells.size());
-  trial_.assign(n, 0.0);
+  std::vector<double>& trial = scratch();
+  trial.assign(n, 0.0);
   bool below_floor = false;
   // A cell at or below this fails the move whatever the others give: the rest are not evaluated.
   // The lowest cell, the likeliest to fail, goes first.
@@ -163,7 +229,7 @@ bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
     const int i = k == 0 ? lowest : k <= lowest ? k - 1 : k;
     const int q = cells[i];
     const double sj = cell_sj(m_, q);
-    trial_[i] = sj;
+    trial[i] = sj;
     ++evaluated;
     after = std::min(after, sj);
     below_floor |= sj < sj_[q] && (sj < floor_[type_slot(q)] || crosses_keep(q, sj));
@@ -171,8 +237,8 @@ bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
   }
   if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
   if (evaluated == n && (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0))) {
-    for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
-    mark_around(v);
+    for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
+    moved_[v] = 1;
     return true;
   }
   m_.V.row(v) = old.transpose();
@@ -213,18 +279,15 @@ bool Improver::smoothing_target(int v, Vec* out) const {
 }
 
 int Improver::smooth_pass() {
-  int moved = 0;
-  for (int v = 0; v < m_.num_nodes(); ++v) {
-    if (!dirty_[v]) continue;
+  return sweep(nullptr, [&](int v) {
+    if (!dirty_[v]) return;
     dirty_[v] = 0;
     Vec target;
-    if (!smoothing_target(v, &target)) continue;
+    if (!smoothing_target(v, &target)) return;
     const Vec old = m_.V.row(v).transpose();
-    for (double step : {1.0, 0.5, 0.25}) {
-      if (try_move(v, constrain(v, old + step * (target - old)), true)) { ++moved; break; }
-    }
-  }
-  return moved;
+    for (double step : {1.0, 0.5, 0.25})
+      if (try_move(v, constrain(v, old + step * (target - old)), true)) return;
+  });
 }
 
 double Improver::local_sum(int v) const {
@@ -247,17 +310,18 @@ bool Improver::try_move_mean(int v, const Vec& x) {
   m_.V.row(v) = x.transpose();
   double before_sum = 0, after_sum = 0;
   bool ok = true;
-  trial_.clear();
+  std::vector<double>& trial = scratch();
+  trial.clear();
   for (int q : t_.node_cells[v]) {
     const double sj = cell_sj(m_, q);
-    trial_.push_back(sj);
+    trial.push_back(sj);
     before_sum += sj_[q];
     after_sum += sj;
     if (sj < sj_[q] && (sj < floor_[type_slot(q)] || sj <= 0 || crosses_keep(q, sj))) { ok = false; break; }
   }
   if (ok && after_sum > before_sum + 1e-7) {
-    for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
-    mark_around(v);
+    for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
+    moved_[v] = 1;
     return true;
   }
   m_.V.row(v) = old.transpose();
@@ -265,14 +329,13 @@ bool Improver::try_move_mean(int v, const Vec& x) {
 }
 
 int Improver::mean_pass() {
-  int moved = 0;
-  for (int v = 0; v < m_.num_nodes(); ++v) {
-    if (!dirty_[v]) continue;
+  return sweep(nullptr, [&](int v) {
+    if (!dirty_[v]) return;
     dirty_[v] = 0;
-    if (t_.kind[v] == Corner || t_.node_cells[v].empty()) continue;
+    if (t_.kind[v] == Corner || t_.node_cells[v].empty()) return;
     const Vec x0 = m_.V.row(v).transpose();
     const double h = 1e-4 * edge_[v];
-    if (!(h > 0)) continue;
+    if (!(h > 0)) return;
     const double f0 = local_sum(v);
     Vec g;
     for (int k = 0; k < 3; ++k) {
@@ -284,12 +347,11 @@ int Improver::mean_pass() {
       g(k) = (f - f0) / h;
     }
     m_.V.row(v) = x0.transpose();
-    if (!(g.norm() > 0)) continue;
+    if (!(g.norm() > 0)) return;
     const Vec d = g.normalized();
     for (double a : {0.1, 0.02})
-      if (try_move_mean(v, constrain(v, x0 + a * edge_[v] * d))) { ++moved; break; }
-  }
-  return moved;
+      if (try_move_mean(v, constrain(v, x0 + a * edge_[v] * d))) return;
+  });
 }
 
 double Improver::local_ratio(int v, const Vec& x) {
@@ -306,17 +368,18 @@ bool Improver::try_move_ratio(int v, const Vec& x, double ratio_now, const doubl
   const Vec old = m_.V.row(v).transpose();
   if (!(local_ratio(v, x) < ratio_now * (1 - 1e-6))) return false;
   m_.V.row(v) = x.transpose();
-  trial_.clear();
+  std::vector<double>& trial = scratch();
+  trial.clear();
   for (int q : t_.node_cells[v]) {
     const double sj = cell_sj(m_, q);
-    trial_.push_back(sj);
+    trial.push_back(sj);
     if (sj < sj_[q] && (sj <= 0 || sj < std::min(sj_[q], bar[type_slot(q)]) || crosses_keep(q, sj))) {
       m_.V.row(v) = old.transpose();
       return false;
     }
   }
-  for (size_t i = 0; i < trial_.size(); ++i) sj_[t_.node_cells[v][i]] = trial_[i];
-  mark_around(v);
+  for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
+  moved_[v] = 1;
   return true;
 }
 
@@ -330,11 +393,10 @@ int Improver::ratio_round(double target, const double bar[3]) {
       if (!mark[v] && t_.kind[v] != Corner) { mark[v] = 1; nodes.push_back(v); }
     }
   }
-  int moved = 0;
-  for (int v : nodes) {
+  return sweep(&nodes, [&](int v) {
     const Vec x0 = m_.V.row(v).transpose();
     const double h = 1e-4 * edge_[v];
-    if (!(h > 0)) continue;
+    if (!(h > 0)) return;
     const double f0 = local_ratio(v, x0);
     Vec g;
     for (int k = 0; k < 3; ++k) {
@@ -342,12 +404,11 @@ int Improver::ratio_round(double target, const double bar[3]) {
       x(k) += h;
       g(k) = (local_ratio(v, x) - f0) / h;
     }
-    if (!(g.norm() > 0) || !g.allFinite()) continue;
+    if (!(g.norm() > 0) || !g.allFinite()) return;
     const Vec d = -g.normalized();
     for (double a : {0.3, 0.15, 0.07, 0.03, 0.01})
-      if (try_move_ratio(v, constrain(v, x0 + a * edge_[v] * d), f0, bar)) { ++moved; break; }
-  }
-  return moved;
+      if (try_move_ratio(v, constrain(v, x0 + a * edge_[v] * d), f0, bar)) return;
+  });
 }
 
 double Improver::max_ratio() const {
@@ -388,37 +449,32 @@ int Improver::optimize_round(double threshold) {
       if (sj_[q] <= band)
         for (int i = 0; i < mesh::node_count(m_.type(q)); ++i) near_worst[m_.cells(q, i)] = 1;
   }
-  int moved = 0;
-  for (int v : nodes) {
+  return sweep(&nodes, [&](int v) {
     // A node that found no better place stays put until its neighbourhood changes.
-    if (!climb_[v]) continue;
+    if (!climb_[v]) return;
     climb_[v] = 0;
     const Vec x0 = m_.V.row(v).transpose();
     const double h = 1e-4 * edge_[v];
-    if (!(h > 0)) continue;
+    if (!(h > 0)) return;
     const Vec g = min_slopes(v, h);
-    bool done = false;
     if (g.norm() > 0) {
       const Vec d = g.normalized();
       for (double a : {0.3, 0.15, 0.07, 0.03, 0.01, 0.003})
-        if (try_move(v, constrain(v, x0 + a * edge_[v] * d), false)) { ++moved; done = true; break; }
+        if (try_move(v, constrain(v, x0 + a * edge_[v] * d), false)) return;
     }
-    if (done || near_worst.empty() || !near_worst[v]) continue;
+    if (near_worst.empty() || !near_worst[v]) return;
     // The numerical gradient of a minimum sees only the corner that is lowest now: where two
     // corners of the worst cell tie (a node between two faces on a round), every step along it
     // lowers the other, and the climb stalls. A pattern of the 26 directions of the unit cube,
     // at three step lengths, finds the moves that raise both.
-    for (double a : {0.1, 0.03, 0.01}) {
-      for (int dx = -1; dx <= 1 && !done; ++dx)
-        for (int dy = -1; dy <= 1 && !done; ++dy)
-          for (int dz = -1; dz <= 1 && !done; ++dz) {
+    for (double a : {0.1, 0.03, 0.01})
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
             if (!dx && !dy && !dz) continue;
-            if (try_move(v, constrain(v, x0 + a * edge_[v] * Vec(dx, dy, dz).normalized()), false)) { ++moved; done = true; }
+            if (try_move(v, constrain(v, x0 + a * edge_[v] * Vec(dx, dy, dz).normalized()), false)) return;
           }
-      if (done) break;
-    }
-  }
-  return moved;
+  });
 }
 
 }  // namespace hexdom::optimize

@@ -1,9 +1,16 @@
 // The node-move optimiser behind improve(): moves one node at a time, each move projected by the
 // node's kind (NodeKinds, BoundaryConstraints) and kept only when its cells' scaled Jacobians allow
 // it (see try_move and try_move_mean).
+//
+// Order and threads: every pass visits the nodes colour by colour (a greedy colouring in node order
+// in which no two nodes of one colour share a cell), in increasing order within a colour. Nodes of
+// one colour read and write nothing another of them reads or writes, so they may move at the same
+// time; the nodes moved are marked for the next passes once their colour is done. The meshes are
+// therefore the same whatever the number of threads (set_threads).
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -57,7 +64,8 @@ class Improver {
   // cell that gets worse ends below the floor of its type (set_floors; by default the type's
   // worst, so that raising a prism never costs the worst hex). A move
   // may not shorten the node's shortest edge below a quarter of its typical edge: scaled Jacobians
-  // ignore size, and collapsing an edge would buy angles with a useless element.
+  // ignore size, and collapsing an edge would buy angles with a useless element. A move taken sets
+  // v's moved flag; the sweep running marks v's neighbourhood once v's colour is done.
   bool try_move(int v, const Vec& x, bool allow_equal);
 
   // Smoothing target by kind: interior nodes toward the volume-weighted centre of their cells,
@@ -112,13 +120,30 @@ class Improver {
   // its numerical gradient (untangling inverted cells on the way).
   int optimize_round(double threshold);
 
+  /// Threads the passes share a colour's nodes among (1: the calling thread only). Boundary nodes
+  /// whose projection hook is not BoundaryConstraints::project_concurrent move on the calling thread.
+  void set_threads(int n) { threads_ = std::max(1, n); }
+  int colours() const { return static_cast<int>(colours_.size()); }
+  int colour(int v) const { return colour_[v]; }
+
  private:
   mesh::Mesh& m_;
   const NodeKinds& t_;
   const BoundaryConstraints& c_;
-  std::vector<double> sj_, edge_, trial_;
+  // Visits the nodes (all, or `nodes` in their order) colour by colour, calling visit(v) for each
+  // (together on the threads where concurrent(v)); a visit that moves v sets moved_[v]. Returns
+  // the number of nodes moved.
+  template <class Visit>
+  int sweep(const std::vector<int>* nodes, Visit&& visit);
+  bool concurrent(int v) const;
+
+  std::vector<double> sj_, edge_;
   std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
   std::vector<char> climb_;  // nodes worth another optimisation step
+  std::vector<char> moved_;  // nodes moved in the colour being swept
+  std::vector<int> colour_;  // per node
+  std::vector<std::vector<int>> colours_;  // per colour: its nodes, increasing
+  int threads_ = 1;
   double keep_ = -2;  // ImproveOptions::floor
   bool pattern_ = false;  // optimisation rounds also search a pattern of directions (optimize_round)
   double floor_[3] = {-2, -2, -2};  // lowest scaled Jacobian a worsened hex, prism, tet may reach

@@ -44,6 +44,8 @@ struct BoundaryConstraints {
   mesh::TriangleProjector surface, curves;
   /// Where set, replaces both projections for Surface and Curve nodes (ImproveOptions::project).
   std::function<Eigen::Vector3d(int, const Eigen::Vector3d&)> project;
+  /// Whether `project` may be called from several threads at once (for different nodes).
+  bool project_concurrent = false;
 };
 
 /// The constraints of `mesh` classified as `kinds`: the surface is `given` when it has triangles,

@@ -126,6 +126,8 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.kinds = place_of.kind;
   io.curve_neighbours = curve_neighbours(place_of, outer, feat);
   io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, feat, v, x); };
+  io.project_concurrent = true;  // closest points on the surface's regions and curves: reads only
+  io.threads = opt.threads;
   io.deadline = opt.deadline;
   optimize::ImproveResult ir = optimize::improve(m, io);
   opt.deadline.check("overlay");

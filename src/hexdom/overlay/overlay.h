@@ -26,6 +26,7 @@ namespace hexdom::overlay {
 
 struct OverlayOptions {
   double size = 0;      ///< grid spacing (element size); 0: the frame's bounding-box diagonal / 30
+  int threads = 0;      ///< threads of the optimiser (0: one per core); the mesh does not depend on it
   /// Along an axis the part is thin in (a plate, a rod), the spacing is made smaller so that its
   /// extent spans at least this many cells, and no cell is longer than max_cell_ratio times its
   /// shortest side (overlay::grid_spacing).

@@ -12,6 +12,7 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/common/format.h"
+#include "hexdom/common/parallel_for.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::pipeline {
@@ -53,6 +54,8 @@ struct KeptMessages {
 /// (empty when it was), its polycube_meshed whether step 1 gave a mesh. Throws the overlay's error
 /// when no path gives a mesh. `mesh_path` must be callable from two threads at once on different
 /// runs (the two paths share only what they read), and say its messages through the options' log.
+/// Each path's optimisers (and snap) get half of the options' threads, at least one: the paths
+/// already run beside each other, and the meshes do not depend on the number.
 template <class Run, class MeshPath, class RunOf, class Blank, class Unsnapped>
 void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank,
                  Unsnapped unsnapped, Run& r) {
@@ -60,6 +63,9 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   MeshSurfaceOptions quick = mo;
   quick.method = Method::Polycube;
   quick.deadline = polycube_deadline(mo);
+  // The two paths run beside each other: each gets half the threads (the mesh does not depend on it).
+  const int half = std::max(1, thread_count(mo.threads) / 2);
+  quick.threads = half;
   quick.try_without_widths = quick.try_hex_apexes = quick.refine_when_inverted = false;
   quick.retry_edge_weights.clear();
   // The edge weights step 3 segments with when step 1's labelling defeats the repair.
@@ -72,6 +78,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   MeshSurfaceOptions overlay = mo;
   overlay.method = Method::Overlay;
   overlay.deadline = Deadline::cancellable();
+  overlay.threads = half;
   KeptMessages overlay_said;
   overlay.log = overlay_said.sink(mo.log);
   bool have_grid = false;
@@ -130,6 +137,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     MeshSurfaceOptions full = mo;
     full.method = Method::Polycube;
     full.deadline = step3;
+    full.threads = half;
     full.log = again_said.sink(mo.log);
     MeshSurfaceRun first;
     if (further) {

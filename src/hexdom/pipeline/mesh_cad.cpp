@@ -22,6 +22,7 @@ void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, c
   const auto t0 = std::chrono::steady_clock::now();
   cad::SnapOptions so = opt.snap_options;
   so.max_edge_ratio = mo.target_edge_ratio;
+  so.threads = mo.threads;
   if (so.log && mo.log) so.log = mo.log;  // the run's own sink (choose_path keeps the overlay's messages)
   // The overlay's nodes on smooth regions stay off the CAD edges (snap_face_only).
   if (so.face_only.empty()) so.face_only = snap_face_only(r.run);

@@ -207,6 +207,7 @@ void run_overlay(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt
   oo.max_edge_ratio = opt.target_edge_ratio;
   oo.log = opt.verbose ? opt.log : LogCallback();
   oo.deadline = opt.deadline;
+  oo.threads = opt.threads;
   r.overlay = overlay::overlay_mesh(surface, oo);
   r.mesh = std::move(r.overlay.mesh);
   r.overlay.mesh = mesh::Mesh{};
@@ -393,6 +394,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   generation::GenerateOptions go;
   go.level = opt.level;
   go.relax_sweeps = opt.relax_sweeps;
+  go.threads = opt.threads;
   go.log = inner;
   r.generated = generation::generate(r.polycube.patches, r.polycube.structure, go);
   r.generated_quality = quality::quality_report(r.generated);
@@ -408,6 +410,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     io.max_edge_ratio = opt.target_edge_ratio;
     io.surface = r.polycube.patches;
     io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
+    io.threads = opt.threads;
     io.log = inner;
     optimize::ImproveResult ir = optimize::improve(r.generated, io);
     r.mesh = std::move(ir.mesh);

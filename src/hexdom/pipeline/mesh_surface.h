@@ -32,6 +32,10 @@ struct MeshSurfaceRun;
 
 struct MeshSurfaceOptions {
   Method method = Method::Auto;
+  /// Threads of the generation and of every optimiser run (polycube improvement, overlay, the snap's
+  /// restoration); 0: one per core. The meshes do not depend on it. (Under auto the two paths also
+  /// run beside each other.)
+  int threads = 0;
   /// The polycube path's time budget in Method::Auto, in seconds from the call (0: no limit), so
   /// that auto falls back to the overlay path quickly where the polycube path takes long. It is
   /// looked at between the segmentation's retries and between the stages, inside autopolycube (label

@@ -1,8 +1,12 @@
+// The passes' colouring: no two nodes of a colour share a cell, and improve() gives the same mesh
+// on 1, 2 and 3 threads.
 // Improver::min_slopes against the forward differences it stands in for: on jittered hex grids
 // (with and without prisms among the hexes), every interior node's slopes along the three axes are
 // those of moving the node by the step and taking the lowest scaled Jacobian of all its cells again,
 // to the last bit.
 #include "hexdom/optimize/improver.h"
+
+#include "hexdom/optimize/improve.h"
 
 #include "hexdom/optimize/node_kinds.h"
 #include "hex_grid.h"
@@ -35,4 +39,32 @@ TEST(Improver, MinSlopesAreTheForwardDifferencesOverAllCells) {
       }
     }
   EXPECT_GT(compared, 400);  // of the 27 interior nodes of each grid, nearly all count as Interior
+}
+
+TEST(Improver, NoTwoNodesOfAColourShareACell) {
+  mesh::Mesh m = test::jittered_cube_grid(5, 0.3, 4, 1.0, true);
+  const optimize::NodeKinds kinds = optimize::node_kinds(m, 35.0, nullptr);
+  const optimize::BoundaryConstraints cons = optimize::boundary_constraints(m, kinds, {});
+  optimize::Improver imp(m, kinds, cons);
+  EXPECT_GE(imp.colours(), 8);  // the 8 nodes of a hex differ in colour
+  EXPECT_LE(imp.colours(), 27);
+  for (int q = 0; q < m.num_cells(); ++q)
+    for (int i = 0; i < mesh::node_count(m.type(q)); ++i)
+      for (int j = i + 1; j < mesh::node_count(m.type(q)); ++j)
+        EXPECT_NE(imp.colour(m.cells(q, i)), imp.colour(m.cells(q, j))) << "cell " << q << " nodes " << i << ", " << j;
+}
+
+TEST(Improver, TheMeshIsTheSameOnOneTwoAndThreeThreads) {
+  // 12^3 cells, 2197 nodes: each colour has a few hundred, enough to be shared among the threads.
+  const mesh::Mesh m = test::jittered_cube_grid(12, 0.4, 9, 1.0, true);
+  optimize::ImproveOptions opt;
+  opt.threads = 1;
+  const optimize::ImproveResult one = optimize::improve(m, opt);
+  ASSERT_GT(one.after.hex.sj_min, one.before.hex.sj_min + 0.1) << "the run should move many nodes";
+  for (int threads : {2, 3}) {
+    opt.threads = threads;
+    const optimize::ImproveResult other = optimize::improve(m, opt);
+    EXPECT_TRUE(other.mesh.V == one.mesh.V) << threads << " threads";
+    EXPECT_EQ(other.rounds, one.rounds);
+  }
 }
