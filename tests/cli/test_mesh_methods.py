@@ -20,9 +20,9 @@ STEP = REPO / "examples" / "data" / "bracket.step"
 VTK_TYPE = {"hexahedron": oracles.HEX, "wedge": oracles.WEDGE, "tetra": oracles.TET}
 
 
-def _mesh(hexdom_bin, tmp_path, method):
-    out = tmp_path / f"bracket_{method}.vtu"
-    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--method", method],
+def _mesh(hexdom_bin, tmp_path, method, *extra, name=None):
+    out = tmp_path / f"bracket_{name or method}.vtu"
+    run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--method", method, *extra],
                          capture_output=True, text=True)
     return run, out
 
@@ -158,9 +158,7 @@ def test_the_mesh_is_the_same_file_on_one_and_three_threads(hexdom_bin, tmp_path
     # own last point (optimize/improver.h, cad/snap.cpp): the threads change the time, never the mesh.
     outs = []
     for threads in (1, 3):
-        out = tmp_path / f"bracket_{method}_{threads}.vtu"
-        run = subprocess.run([str(hexdom_bin), "mesh", str(STEP), "-o", str(out), "--method", method,
-                              "--threads", str(threads)], capture_output=True, text=True)
+        run, out = _mesh(hexdom_bin, tmp_path, method, "--threads", str(threads), name=f"{method}_{threads}")
         assert run.returncode == 0, run.stderr
         outs.append(out.read_bytes())
     assert len(outs[0]) > 10000

@@ -205,6 +205,11 @@ void Improver::mark_all() {
   std::fill(climb_.begin(), climb_.end(), 1);
 }
 
+void Improver::accept(int v, const std::vector<double>& trial) {
+  for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
+  moved_[v] = 1;
+}
+
 bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
   if (negligible(v, x)) return false;
   const double before = local_min(v);
@@ -237,8 +242,7 @@ bool Improver::try_move(int v, const Vec& x, bool allow_equal) {
   }
   if (below_floor) after = -3;  // would lower the worst cell of a type: never taken
   if (evaluated == n && (after > before + 1e-12 || (allow_equal && after >= before - 1e-12 && after > 0))) {
-    for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
-    moved_[v] = 1;
+    accept(v, trial);
     return true;
   }
   m_.V.row(v) = old.transpose();
@@ -320,8 +324,7 @@ bool Improver::try_move_mean(int v, const Vec& x) {
     if (sj < sj_[q] && (sj < floor_[type_slot(q)] || sj <= 0 || crosses_keep(q, sj))) { ok = false; break; }
   }
   if (ok && after_sum > before_sum + 1e-7) {
-    for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
-    moved_[v] = 1;
+    accept(v, trial);
     return true;
   }
   m_.V.row(v) = old.transpose();
@@ -378,8 +381,7 @@ bool Improver::try_move_ratio(int v, const Vec& x, double ratio_now, const doubl
       return false;
     }
   }
-  for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
-  moved_[v] = 1;
+  accept(v, trial);
   return true;
 }
 

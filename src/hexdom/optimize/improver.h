@@ -136,6 +136,9 @@ class Improver {
   template <class Visit>
   int sweep(const std::vector<int>* nodes, Visit&& visit);
   bool concurrent(int v) const;
+  // Takes node v's move: its cells' scaled Jacobians become `trial` (in node_cells order) and v is
+  // marked moved for the sweep.
+  void accept(int v, const std::vector<double>& trial);
 
   std::vector<double> sj_, edge_;
   std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
