@@ -43,6 +43,10 @@ Error = _hexdom.Error
 InputError = _hexdom.InputError
 GeometryError = _hexdom.GeometryError
 MeshingError = _hexdom.MeshingError
+# A stop flag for core calls (``with interrupt:`` on the calling thread, ``interrupt.cancel()`` from
+# another), and what an interrupted call raises (not an Error).
+Interrupt = _hexdom.Interrupt
+Interrupted = _hexdom.Interrupted
 
 TRIANGLE, QUAD, TET, HEX, WEDGE = 5, 9, 10, 12, 13
 TYPE_NAMES = {TRIANGLE: "triangle", QUAD: "quad", TET: "tet", HEX: "hex", WEDGE: "prism"}

@@ -9,9 +9,10 @@ function in a worker thread (the bindings release the GIL around every long call
 thread keeps processing events. Progress blocks nest: a command's Progress spans the recompute,
 and the objects' own Progress blocks inside it share its dialog and its Cancel state.
 
-Cancel takes effect at the next stage boundary: the core has no hook to stop a running call, so
-the dialog says it is cancelling, waits for that call to return, discards its result and raises
-Cancelled; every later ``run`` in the same Progress raises Cancelled before it starts. The
+Cancel stops the running core call within a fraction of a second: the worker runs it under the
+session's core.Interrupt, which Cancel raises; the call ends with core.Interrupted, leaving its
+inputs as they were, and ``run`` raises Cancelled (a call that returned meanwhile has its result
+discarded); every later ``run`` in the same Progress raises Cancelled before it starts. The
 document is never left half-written, because objects store results only after ``run`` returns.
 """
 
@@ -48,6 +49,7 @@ class Progress:
         self.title, self.steps, self.bar = title, steps, None
         self.dialog = None
         self.cancelled = False
+        self.interrupt = core.Interrupt()  # raised by cancel(); the worker's core calls stop on it
         self.stage = ""
         self._outer = None
 
@@ -93,9 +95,10 @@ class Progress:
         s = self.session
         if not s.cancelled:
             s.cancelled = True
-            _log("{}: cancelling; waiting for '{}' to return".format(s.title, s.stage))
+            s.interrupt.cancel()
+            _log("{}: cancelling; stopping '{}'".format(s.title, s.stage))
             if s.dialog is not None:
-                s.dialog.setLabelText("Cancelling: waiting for {} to finish...".format(s.stage))
+                s.dialog.setLabelText("Cancelling {}...".format(s.stage))
                 s.dialog.button.setEnabled(False)
 
     # Steps ---------------------------------------------------------------------------------------
@@ -123,7 +126,8 @@ class Progress:
 
         def work():
             try:
-                outcome["value"] = fn(*args, **kwargs)
+                with s.interrupt:
+                    outcome["value"] = fn(*args, **kwargs)
             except BaseException as e:  # handed to the GUI thread, which raises it
                 outcome["error"] = e
 
@@ -135,11 +139,11 @@ class Progress:
             app.processEvents(QtCore.QEventLoop.AllEvents, 50)
             worker.join(0.02)
         app.processEvents()
-        if "error" in outcome:
-            raise outcome["error"]
         if s.cancelled:
             raise Cancelled("{}: cancelled by the user during {} (its result was discarded)"
                             .format(s.title, text))
+        if "error" in outcome:
+            raise outcome["error"]
         return outcome["value"]
 
     def _show_dialog(self):

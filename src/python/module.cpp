@@ -1,5 +1,8 @@
 // _hexdom: numpy arrays in, numpy arrays out, over the HexDom core. Kept thin: every function
 // converts, calls one core function with the GIL released, and converts back.
+#include <memory>
+#include <vector>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -7,6 +10,7 @@
 #include "bindings.h"
 #include "convert.h"
 #include "hexdom/common/error.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/optimize/improve.h"
 #include "hexdom/io/k_file.h"
@@ -29,9 +33,13 @@ void register_errors(py::module_& m) {
   static py::exception<MeshingError> meshing_error(m, "MeshingError", error.ptr());
   // _hexdom.TimeoutError (not Python's builtin of that name): a time budget passed before a result.
   static py::exception<TimeoutError> timeout_error(m, "TimeoutError", error.ptr());
+  // _hexdom.Interrupted: a call stopped through an Interrupt; not an Error (see common/interrupt.h).
+  static py::exception<InterruptedError> interrupted(m, "Interrupted", PyExc_Exception);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const InterruptedError& e) {
+      PyErr_SetString(interrupted.ptr(), e.what());
     } catch (const InputError& e) {
       PyErr_SetString(input_error.ptr(), e.what());
     } catch (const GeometryError& e) {
@@ -45,6 +53,28 @@ void register_errors(py::module_& m) {
     }
   });
 }
+
+// The scopes opened by `with interrupt:` on each thread, innermost last.
+thread_local std::vector<std::unique_ptr<InterruptScope>> open_scopes;
+
+void bind_interrupt(py::module_& m) {
+  py::class_<Interrupt>(m, "Interrupt",
+                        "A stop flag for core calls: the calls a thread makes inside `with interrupt:` raise "
+                        "_hexdom.Interrupted within a fraction of a second once another thread calls "
+                        "interrupt.cancel(); their inputs are left as they were.")
+      .def(py::init<>())
+      .def("cancel", &Interrupt::raise, "Stops the calls running under this interrupt (any thread).")
+      .def_property_readonly("cancelled", &Interrupt::raised)
+      .def("clear", &Interrupt::clear, "Lowers the flag for the next calls.")
+      .def("__enter__", [](py::object self) {
+        open_scopes.push_back(std::make_unique<InterruptScope>(&self.cast<const Interrupt&>()));
+        return self;
+      })
+      .def("__exit__", [](const Interrupt&, py::args) {
+        if (!open_scopes.empty()) open_scopes.pop_back();
+        return false;
+      });
+}
 }  // namespace
 
 PYBIND11_MODULE(_hexdom, m) {
@@ -52,6 +82,7 @@ PYBIND11_MODULE(_hexdom, m) {
   m.attr("__version__") = HEXDOM_VERSION;
 
   register_errors(m);
+  bind_interrupt(m);
 
   m.def("read_mesh", [](const std::string& path) {
     mesh::Mesh r;

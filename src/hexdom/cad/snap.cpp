@@ -21,6 +21,7 @@
 #include "hexdom/cad/face_projector.h"
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/shape_impl.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/optimize/improve.h"
@@ -280,6 +281,7 @@ void place_on_edges(const Shape& shape, const mesh::Mesh& m, const BoundaryNodes
   }
   std::vector<double> best(m.num_nodes(), std::numeric_limits<double>::infinity());
   for (const auto& [e, nodes] : per_edge) {
+    check_interrupt("snap");
     Eigen::MatrixXd P(nodes.size(), 3);
     for (size_t i = 0; i < nodes.size(); ++i) P.row(i) = m.V.row(nodes[i]);
     const Projection pr = project_to_edge(shape, e, P);
@@ -329,6 +331,7 @@ void place_on_faces(const mesh::Mesh& m, const BoundaryNodes& b, Projectors& pro
     gp_Pnt previous_q;
     gp_Pnt2d previous_uv;
     for (int v : nodes) {
+      check_interrupt("snap");
       const gp_Pnt p(m.V(v, 0), m.V(v, 1), m.V(v, 2));
       gp_Pnt q;
       gp_Pnt2d uv;

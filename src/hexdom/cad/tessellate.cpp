@@ -29,6 +29,7 @@
 #include "hexdom/cad/tessellate_merge.h"
 #include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::cad {
@@ -372,7 +373,9 @@ void run_brepmesh(const WorkShape& w, const Sizes& z, const std::string& source)
   mp.Relative = Standard_False;
   mp.InParallel = Standard_False;
   mp.MinSize = 0.25 * z.min_size;
+  check_interrupt("tessellate");
   BRepMesh_IncrementalMesh mesher(w.shape, mp);
+  check_interrupt("tessellate");
   if (!mesher.IsDone()) throw MeshingError(source + ": BRepMesh failed");
 }
 

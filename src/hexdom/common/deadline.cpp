@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "hexdom/common/error.h"
+#include "hexdom/common/interrupt.h"
 
 namespace hexdom {
 
@@ -28,14 +29,17 @@ Deadline Deadline::cancellable(const Deadline& base) {
 
 Deadline Deadline::cancellable() { return cancellable(Deadline()); }
 
+bool Deadline::passed() const { return interrupted() || cancelled() || (set_ && Clock::now() >= end_); }
+
 double Deadline::left() const {
-  if (cancelled()) return 0.0;
+  if (cancelled() || interrupted()) return 0.0;
   if (!set_) return std::numeric_limits<double>::infinity();
   const double s = std::chrono::duration<double>(end_ - Clock::now()).count();
   return s > 0 ? s : 0.0;
 }
 
 void Deadline::check(const std::string& where) const {
+  check_interrupt(where.c_str());
   if (cancelled()) throw TimeoutError(where, budget_, true);
   if (passed()) throw TimeoutError(where, budget_);
 }

@@ -11,6 +11,10 @@
 // A cancellable Deadline (Deadline::cancellable) also passes once cancel() is called on any of its
 // copies, from any thread: the auto method runs the overlay path beside the polycube's first
 // candidate and calls it off when that candidate is kept.
+//
+// Every Deadline, none included, also passes once the calling thread's interrupt (interrupt.h) is
+// raised, and check() then throws InterruptedError: the stages that stop early on their budget stop
+// on the user's Cancel too, and the call's caller sees that it was interrupted.
 #pragma once
 
 #include <atomic>
@@ -32,11 +36,13 @@ class Deadline {
   static Deadline cancellable(const Deadline& base);
   static Deadline cancellable();  ///< no moment: only cancel() ends it
 
-  /// Whether there is a limit at all (a moment, or a cancellation).
+  /// Whether there is a limit at all (a moment, or a cancellation); the calling thread's interrupt
+  /// counts in passed() and check() whatever this says.
   bool is_set() const { return set_ || cancel_; }
   explicit operator bool() const { return is_set(); }
-  /// Whether the moment has come or the deadline was cancelled (false for none).
-  bool passed() const { return cancelled() || (set_ && Clock::now() >= end_); }
+  /// Whether the moment has come, the deadline was cancelled or the calling thread's interrupt is
+  /// raised.
+  bool passed() const;
   /// Ends a cancellable deadline and every copy of it at once (thread-safe); nothing otherwise.
   void cancel() const {
     if (cancel_) cancel_->store(true);
@@ -46,7 +52,8 @@ class Deadline {
   double left() const;
   /// The budget it was made with (Deadline::in's seconds; 0 for none), for messages.
   double budget() const { return budget_; }
-  /// Throws TimeoutError(where, budget()) when passed(): "<where>: stopped after the time budget of 5 s"
+  /// Throws InterruptedError(where) when the calling thread's interrupt is raised, else
+  /// TimeoutError(where, budget()) when passed(): "<where>: stopped after the time budget of 5 s"
   /// ("<where>: cancelled" once cancelled).
   void check(const std::string& where) const;
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <queue>
 
+#include "hexdom/common/interrupt.h"
+
 namespace hexdom::mesh::remesh {
 
 namespace {
@@ -434,6 +436,7 @@ bool SurfaceRemesher::relax_vertex(int v) {
 int SurfaceRemesher::split_long_edges() {
   int total = 0;
   for (int pass = 0; pass < 12; ++pass) {
+    check_interrupt("tessellate (remesh)");
     std::vector<std::pair<double, std::pair<int, int>>> todo;
     for (auto [a, b] : edges()) {
       const double r = (V_[a].p - V_[b].p).norm() / target(a, b);
@@ -456,6 +459,7 @@ int SurfaceRemesher::split_long_edges() {
 int SurfaceRemesher::collapse_short_edges(bool strict_length) {
   int total = 0;
   for (int pass = 0; pass < 4; ++pass) {
+    check_interrupt("tessellate (remesh)");
     std::vector<std::pair<double, std::pair<int, int>>> todo;
     for (auto [a, b] : edges()) {
       const double r = (V_[a].p - V_[b].p).norm() / target(a, b);
@@ -485,6 +489,7 @@ int SurfaceRemesher::collapse_short_edges(bool strict_length) {
 int SurfaceRemesher::flip_edges() {
   int total = 0;
   for (int pass = 0; pass < 20; ++pass) {
+    check_interrupt("tessellate (remesh)");
     int n = 0;
     for (auto [a, b] : edges())
       if (flip_improves(a, b, 1e-3)) {
@@ -498,6 +503,7 @@ int SurfaceRemesher::flip_edges() {
 }
 
 void SurfaceRemesher::relax() {
+  check_interrupt("tessellate (remesh)");
   for (int v = 0; v < static_cast<int>(V_.size()); ++v)
     if (V_[v].alive) relax_vertex(v);
 }
@@ -565,6 +571,7 @@ void SurfaceRemesher::run() {
   if (params_.iterations <= 0) return;  // BRepMesh's triangles as they are
   grade_sizes();
   for (int it = 0; it < params_.iterations; ++it) {
+    check_interrupt("tessellate (remesh)");
     const int s = split_long_edges();
     grade_sizes();
     const int c = collapse_short_edges(true);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/common/parallel_for.h"
 #include "hexdom/optimize/improver.h"
 #include "hexdom/optimize/node_kinds.h"
@@ -342,6 +343,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     r = best.finish();
     r.stopped = r.stopped || opt.deadline.passed();
   }
+  check_interrupt("improve");  // stopped early by an interrupt: no result
   r.before = before;
   return r;
 }

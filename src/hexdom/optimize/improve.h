@@ -97,7 +97,8 @@ struct ImproveResult {
 /// smoothing and optimisation move keeps or raises the worst scaled Jacobian of the cells it
 /// touches (inverted cells are untangled first) and, once nothing is inverted, does not push a
 /// cell below the worst of its type; mean passes then raise the sum of the scaled Jacobians without
-/// lowering any type's worst. Throws GeometryError for a mesh that is not a conforming volume mesh.
+/// lowering any type's worst. Throws GeometryError for a mesh that is not a conforming volume mesh,
+/// InterruptedError when the calling thread's interrupt is raised (common/interrupt.h).
 ImproveResult improve(const mesh::Mesh& mesh, const ImproveOptions& options = {});
 
 }  // namespace hexdom::optimize

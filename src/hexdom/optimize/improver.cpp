@@ -1,5 +1,7 @@
 #include "hexdom/optimize/improver.h"
 
+#include "hexdom/common/interrupt.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -108,6 +110,7 @@ int Improver::sweep(const std::vector<int>* nodes, Visit&& visit) {
   int moved = 0;
   std::vector<int> together, alone;
   for (size_t c = 0; c < colours_.size(); ++c) {
+    check_interrupt("optimise");
     const std::vector<int>& bucket = nodes ? listed[c] : colours_[c];
     together.clear();
     alone.clear();

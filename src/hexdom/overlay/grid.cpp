@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/closest_point.h"
 
 namespace hexdom::overlay {
@@ -132,6 +133,7 @@ NodeField classify_nodes(const Grid& g, const mesh::SurfaceMesh& s, double band)
   }
   // Distances within the band: each triangle's box, widened by the band, over the nodes it covers.
   for (int f = 0; f < s.F.rows(); ++f) {
+    if ((f & 255) == 0) check_interrupt("overlay");
     const Eigen::Vector3d A = s.V.row(s.F(f, 0)), B = s.V.row(s.F(f, 1)), C = s.V.row(s.F(f, 2));
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -179,6 +181,7 @@ NodeField classify_points(const std::vector<Eigen::Vector3d>& points, const mesh
   const double e = 1e-7 * std::max({yhi - ylo, zhi - zlo, 1e-300}) / nb;
   const mesh::TriangleProjector proj(s.V, s.F);
   for (size_t i = 0; i < n; ++i) {
+    if ((i & 1023) == 0) check_interrupt("overlay");
     const Eigen::Vector3d& p = points[i];
     int t = -1;
     const Eigen::Vector3d q = proj.project(p, &t);

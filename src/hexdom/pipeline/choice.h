@@ -12,6 +12,7 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/common/parallel_for.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
@@ -85,7 +86,9 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   std::exception_ptr grid_error;
   // Step 3's deadline: the polycube's, called off by the overlay's thread (see below).
   const Deadline step3 = Deadline::cancellable(quick.deadline);
+  const Interrupt* interrupt = current_interrupt();  // the overlay's thread runs under the caller's
   std::thread worker([&] {
+    const InterruptScope scope(interrupt);
     try {
       mesh_path(overlay, grid);
       have_grid = true;
@@ -164,6 +167,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   }
   join.cancel = false;
   worker.join();
+  check_interrupt("auto");
   overlay_said.say(mo.log);
   if (grid_error) {
     try {

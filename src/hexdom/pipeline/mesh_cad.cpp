@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/pipeline/choice.h"
 #include "hexdom/segmentation/cube_frame.h"
 
@@ -152,6 +153,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
     if (done()) break;
   }
   if (!meshed) std::rethrow_exception(first_error);
+  check_interrupt("mesh");  // interrupted after the stages' last look: no result
   return r;
 }
 

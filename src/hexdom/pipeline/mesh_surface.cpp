@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/pipeline/choice.h"
 
@@ -254,22 +255,24 @@ std::string polycube_failure_note(const Error& e, const std::string& stage) {
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
-  if (opt.method == Method::Overlay) {
-    run_overlay(surface, opt, r);
-    return r;
-  }
   MeshSurfaceOptions po = opt;  // the polycube path's options: its deadline fixed now
   po.deadline = polycube_deadline(opt);
-  if (opt.method == Method::Polycube) return mesh_polycube(surface, po, &r);
-  const double reference = mesh::enclosed_volume(surface.V, surface.F);
-  choose_path(
-      opt, reference,
-      [&](const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
-        if (o.method == Method::Overlay) run_overlay(surface, o, run);
-        else mesh_polycube(surface, o, &run);
-      },
-      [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; },
-      [](const MeshSurfaceRun& run) { return run; }, r);
+  if (opt.method == Method::Overlay) {
+    run_overlay(surface, opt, r);
+  } else if (opt.method == Method::Polycube) {
+    mesh_polycube(surface, po, &r);
+  } else {
+    const double reference = mesh::enclosed_volume(surface.V, surface.F);
+    choose_path(
+        opt, reference,
+        [&](const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
+          if (o.method == Method::Overlay) run_overlay(surface, o, run);
+          else mesh_polycube(surface, o, &run);
+        },
+        [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; },
+        [](const MeshSurfaceRun& run) { return run; }, r);
+  }
+  check_interrupt("mesh");  // interrupted after the stages' last look: no result
   return r;
 }
 

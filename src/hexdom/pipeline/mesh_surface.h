@@ -146,7 +146,9 @@ struct MeshSurfaceRun {
 /// patch ids are CAD faces when there are several, see CvtOptions::respect_faces). When `progress`
 /// is given it holds, also when this throws, what the finished stages produced. Inverted cells that
 /// remain are reported in `quality`, not thrown. Throws what the stages throw; with Method::Polycube
-/// and a deadline (see polycube_seconds) TimeoutError when it passes before a mesh exists.
+/// and a deadline (see polycube_seconds) TimeoutError when it passes before a mesh exists;
+/// InterruptedError, within a fraction of a second, once the calling thread's interrupt is raised
+/// (common/interrupt.h; both paths under auto stop).
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
 

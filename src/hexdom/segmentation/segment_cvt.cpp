@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "hexdom/common/interrupt.h"
 #include "hexdom/segmentation/axis_labels.h"
 #include "hexdom/segmentation/cube_frame.h"
 #include "hexdom/mesh/triangle_adjacency.h"
@@ -158,6 +159,7 @@ void classical_pass(const Sweep& sw, const CvtOptions& opt, Segmentation& out) {
   };
   for (int l = 1; l <= 6; ++l) update_generator(l);
   for (int sweep = 0; sweep < opt.classical_sweeps; ++sweep) {
+    check_interrupt("segment");
     int moves = 0;
     for (int f = 0; f < nf; ++f) {
       if (sw.fixed[f] || !sw.on_boundary(f)) continue;
@@ -195,6 +197,7 @@ void edge_weighted_pass(const Sweep& sw, const CvtOptions& opt, const std::vecto
   build_rings(sw.TT, opt.ring, face, start, ring);
   const double two_lambda = 2.0 * opt.edge_weight;
   for (int sweep = 0; sweep < opt.edge_sweeps; ++sweep) {
+    check_interrupt("segment");
     int moves = 0;
     for (int f = 0; f < nf; ++f) {
       if (sw.fixed[f] || !sw.on_boundary(f)) continue;

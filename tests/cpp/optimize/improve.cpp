@@ -7,6 +7,7 @@
 #include <string>
 #include <thread>
 
+#include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/quality/metrics.h"
 #include "hex_grid.h"
@@ -310,4 +311,33 @@ TEST(Improve, EdgeRatioTargetOpensASqueezedLayerWithoutLoweringTheWorst) {
   EXPECT_GT(max_ratio(plain.mesh), 4.0) << "the sequence alone mends the ratio: the test would not tell";
   EXPECT_GE(sj_with.minCoeff(), sj_plain.minCoeff() - 1e-12);
   EXPECT_NEAR(quality::compute_metrics(with.mesh).volume.sum(), 1.0, 1e-9);
+}
+
+// The user's Cancel: another thread raises the interrupt the call runs under (common/interrupt.h)
+// 0.2 s into an optimisation that takes several seconds; the call throws InterruptedError soon
+// after (the bound is generous, the latency itself is bench/bench_cancel.py's), and the input mesh
+// is as it was.
+TEST(Improve, AnInterruptFromAnotherThreadStopsALongRun) {
+  const mesh::Mesh m = test::jittered_cube_grid(40, 0.45, 7);
+  const mesh::Mesh copy = m;
+  const Interrupt interrupt;
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    interrupt.raise();
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  bool stopped = false;
+  try {
+    const InterruptScope scope(&interrupt);
+    optimize::ImproveOptions opt;
+    opt.threads = 2;
+    optimize::improve(m, opt);
+  } catch (const InterruptedError&) {
+    stopped = true;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  canceller.join();
+  EXPECT_TRUE(stopped) << "the optimisation ended in " << seconds << " s, before the interrupt: a larger grid is needed";
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_TRUE(copy.V == m.V && copy.cells == m.cells);
 }

@@ -20,6 +20,9 @@
    the Segmentation and the Polycube are kept, the Mesh no longer uses the Polycube; Edit Patches
    opens on the Segmentation, Build Polycube on the Polycube (against its own Segmentation) with no
    problem and OK keeps its blocks, the overlay mesh stays valid.
+6. Cancel inside a long core call: Mesh Part on a sphere at a fine size, Cancel clicked 1.5 s into
+   the choice of path (the core then meshes on two threads): Mesh Part returns within 3 s of the
+   click (the latency is printed), with no message box, and the Surface it made stays valid.
 Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
 """
 
@@ -327,6 +330,40 @@ def run():
     check(mesh.MeshingPath == "overlay" and (mesh.HexCount, mesh.PrismCount, mesh.TetCount) == counts,
           "editing the Polycube leaves the overlay mesh as it was")
     check(not errors, "no message box while editing: {}".format(errors))
+    FreeCAD.closeDocument(doc.Name)
+
+    # 6. Cancel stops a running core call, not only the next stage.
+    doc = FreeCAD.newDocument("MeshPartCancelInside")
+    sphere = doc.addObject("Part::Feature", "Sphere")
+    sphere.Shape = Part.makeSphere(40)
+    doc.recompute()
+    shown, click_at = {}, []
+
+    def click_late():  # 1.5 s after the choice's dialog shows
+        if click_at:
+            return
+        for w in QtGui.QApplication.topLevelWidgets():
+            if w.objectName() == "HexDomProgress" and w.isVisible() and "Choosing" in w.label.text():
+                shown.setdefault("t", time.time())
+                button = w.findChild(QtGui.QPushButton, "HexDomProgressCancel")
+                if time.time() - shown["t"] > 1.5 and button is not None and button.isEnabled():
+                    click_at.append(time.time())
+                    button.click()
+
+    errors.clear()
+    canceller = QtCore.QTimer()
+    canceller.timeout.connect(click_late)
+    canceller.start(10)
+    objs = commands._MeshPart().mesh_part(sphere, size=1.5)
+    returned = time.time()
+    canceller.stop()
+    latency = returned - click_at[0] if click_at else float("nan")
+    print("  cancel inside the core: returned {:.3f} s after the click".format(latency))
+    check(bool(click_at) and latency < 3.0, "Mesh Part returns within 3 s of Cancel ({:.3f} s)".format(latency))
+    check(not errors, "no message box after Cancel: {}".format(errors))
+    surfaces = [o for o in doc.Objects if getattr(getattr(o, "Proxy", None), "Type", "") == "HexDom::Surface"]
+    check(len(surfaces) == 1 and "Invalid" not in surfaces[0].State and len(surfaces[0].Triangles) > 0,
+          "the Surface made before Cancel stays valid")
     FreeCAD.closeDocument(doc.Name)
 
 

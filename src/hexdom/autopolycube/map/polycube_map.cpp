@@ -10,6 +10,7 @@
 #include <set>
 
 #include "hexdom/autopolycube/map/untangle_plane_map.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/parametrization/harmonic_map.h"
 #include "hexdom/segmentation/axis_labels.h"
 
@@ -435,6 +436,7 @@ void settle_planes(const MapInputs& in, const Segments& segs, const Centroids& c
   m.plane = Eigen::VectorXi::Zero(pg.num_groups());
   std::map<std::pair<int, int>, std::pair<int, size_t>> added;  // (lo, hi) -> (axis, index in order[axis])
   for (int round = 0;; ++round) {
+    check_interrupt("autopolycube (quantisation)");
     m.pushed = 0;
     for (int a = 0; a < 3; ++a) quantize_axis(a, order[a], pg, m, weight, opt.cell, g);
     int fresh = 0;

@@ -1,5 +1,7 @@
 #include "hexdom/autopolycube/map/untangle_plane_map.h"
 
+#include "hexdom/common/interrupt.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -77,6 +79,7 @@ int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations) {
   double E = P.eval(x, eps, &g, nullptr, nullptr);
   const double g0 = g.norm();
   for (int it = 0; it < iterations; ++it) {
+    check_interrupt("autopolycube (chart maps)");
     if (g.norm() <= 1e-8 * std::max(g0, 1e-300)) break;
     // Two-loop recursion.
     Eigen::VectorXd q = g;
