@@ -6,6 +6,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "hexdom/common/interrupt.h"
+
 namespace hexdom::overlay {
 
 mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer, std::vector<int>* copy_out) {
@@ -228,6 +230,7 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
   std::vector<std::tuple<double, int, int>> pairs;  // distance, corner, node
   const auto& corners = feat.corners();
   for (size_t c = 0; c < corners.size(); ++c) {
+    check_interrupt("overlay");
     const Eigen::Vector3d X = feat.corner_position(static_cast<int>(c));
     const auto& rc = feat.corner_regions()[c];
     for (int v = 0; v < nn; ++v) {
@@ -285,7 +288,10 @@ int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, con
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   int freed = 0;
   for (int v : nodes) {
-    if (p.kind[v] == optimize::Curve) {
+    if (p.kind[v] == optimize::Surface && p.a[v] >= 0) {
+      p.a[v] = -1;
+      ++freed;
+    } else if (p.kind[v] == optimize::Curve) {
       p.kind[v] = optimize::Surface;
       p.b[v] = -1;
       --p.curve, ++p.surface;
@@ -309,7 +315,7 @@ int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, con
 
 Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& feat, int v, const Eigen::Vector3d& x) {
   switch (p.kind[v]) {
-    case optimize::Surface: return feat.project_region(p.a[v], x);
+    case optimize::Surface: return p.a[v] >= 0 ? feat.project_region(p.a[v], x) : feat.project(x);
     case optimize::Curve: return feat.project_curve(p.a[v], p.b[v], x);
     case optimize::Corner: return feat.corner_position(p.a[v]);
     default: return x;

@@ -12,7 +12,7 @@
 namespace hexdom::overlay {
 
 /// What each node of the meshed part was put on: kind Interior (core nodes), Surface (`a` the
-/// region), Curve (the curve between regions `a` < `b`) or Corner (`a` the feature corner's index
+/// region; -1: the nearest point of the whole surface, for a node let off its region), Curve (the curve between regions `a` < `b`) or Corner (`a` the feature corner's index
 /// in SurfaceFeatures::corners()).
 struct Placement {
   std::vector<optimize::NodeKind> kind;
@@ -60,10 +60,11 @@ void spread(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const P
 std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& outer,
                                                const SurfaceFeatures& features);
 
-/// Lets the nodes of `cells` of m off one level of feature: a node on a curve goes onto the first
-/// of its two regions, a corner onto one of its curves (the first pair of its regions that shares
-/// one). For cells the optimiser could not make valid with their nodes held on sharp features.
-/// Returns the number of nodes let off.
+/// Lets the nodes of `cells` of m off one level of feature: a node on a region goes anywhere on the
+/// surface (its nearest point), a node on a curve onto the first of its two regions, a corner onto
+/// one of its curves (the first pair of its regions that shares one). For cells the optimiser could
+/// not make valid with their nodes held on sharp features or on one face. Returns the number of
+/// nodes let off.
 int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& features);
 
 /// Where node v of a placement goes for a candidate position x (its region, curve or corner).

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
 #include "hexdom/overlay/buffer.h"
@@ -111,6 +112,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     }
   }
   r.buffer_cells = static_cast<int>(outer.size());
+  check_interrupt("overlay");
   Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
   if (opt.core_by_centres) pull_inner_nodes(m, outer, copy, feat, depth);
   spread(m, outer, place_of, feat, opt.spread_passes, 0.25 * grid.h.minCoeff());
@@ -118,6 +120,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   r.corner_nodes = place_of.corner;
   r.corners_missed = place_of.corners_missed;
   r.demoted = place_of.demoted;
+  check_interrupt("overlay");
   optimize::ImproveOptions io;
   io.max_rounds = opt.max_rounds;
   io.max_edge_ratio = opt.max_edge_ratio;
@@ -131,9 +134,10 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.deadline = opt.deadline;
   optimize::ImproveResult ir = optimize::improve(m, io);
   opt.deadline.check("overlay");
-  // Cells the optimiser could not make valid with their nodes held on curves and corners: those
-  // nodes let off one level (loosen), the optimiser again, the better kept; twice at most.
-  for (int round = 0; round < 2 && inverted(ir.after) > 0; ++round) {
+  // Cells the optimiser could not make valid with their nodes held on curves, corners and regions:
+  // those nodes let off one level (loosen), the optimiser again, the better kept; three times at
+  // most (a corner node can end anywhere on the surface).
+  for (int round = 0; round < 3 && inverted(ir.after) > 0; ++round) {
     const quality::CellMetrics metrics = quality::compute_metrics(ir.mesh);
     std::vector<int> bad;
     for (int c = 0; c < ir.mesh.num_cells(); ++c)
