@@ -7,16 +7,23 @@
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <Extrema_LocateExtPC.hxx>
+#include <Extrema_POnCurv.hxx>
+#include <GeomAdaptor_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <ShapeAnalysis_Surface.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
 #include <gp_Pnt2d.hxx>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "hexdom/cad/shape_impl.h"
@@ -26,6 +33,10 @@ namespace hexdom::cad {
 struct EdgeCurve {
   Handle(Geom_Curve) curve;
   double first = 0, last = 0;
+  Bnd_Box box;  ///< holds the whole edge (from its curve, not its polygon), with its tolerance
+
+  /// No point of the edge is nearer to p than this.
+  double lower_bound(const gp_Pnt& p) const { return box.IsVoid() ? 0.0 : box.Distance(Bnd_Box(p.XYZ(), p.XYZ())); }
 };
 
 /// Nearest point of one edge's 3D curve within its range (ends included).
@@ -33,9 +44,34 @@ inline bool nearest_on_edge(const EdgeCurve& e, const gp_Pnt& p, gp_Pnt& q, doub
   return nearest_on_curve(e.curve, e.first, e.last, p, q, t, d);
 }
 
+/// nearest_on_edge for a point near one whose nearest point had parameter `start` (a node sliding
+/// along the edge): the local minimum of the distance from there (Newton's method) when it lies in
+/// the range and no end of the edge is nearer; otherwise the whole edge is searched.
+inline bool nearest_on_edge_from(const EdgeCurve& e, const gp_Pnt& p, double start, gp_Pnt& q, double& t, double& d) {
+  if (e.curve.IsNull()) return false;
+  const GeomAdaptor_Curve c(e.curve, e.first, e.last);
+  const double tol = 1e-9 * std::max(1.0, std::abs(e.last - e.first));
+  Extrema_LocateExtPC local(p, c, std::clamp(start, e.first, e.last), tol);
+  if (local.IsDone() && local.IsMin()) {
+    const Extrema_POnCurv& x = local.Point();
+    const double u = x.Parameter(), dist = std::sqrt(local.SquareDistance());
+    const bool inside = u >= e.first && u <= e.last;
+    if (inside && dist <= p.Distance(e.curve->Value(e.first)) && dist <= p.Distance(e.curve->Value(e.last))) {
+      q = x.Value();
+      t = u;
+      d = dist;
+      return true;
+    }
+  }
+  return nearest_on_edge(e, p, q, t, d);
+}
+
 inline EdgeCurve edge_curve(const TopoDS_Edge& edge) {
   EdgeCurve e;
-  if (!BRep_Tool::Degenerated(edge)) e.curve = BRep_Tool::Curve(edge, e.first, e.last);
+  if (!BRep_Tool::Degenerated(edge)) {
+    e.curve = BRep_Tool::Curve(edge, e.first, e.last);
+    BRepBndLib::Add(edge, e.box, false);
+  }
   return e;
 }
 
@@ -69,11 +105,17 @@ class FaceProjector {
       const double d = proj.Distance(i);
       if (d < best_d) best_d = d, best = proj.Point(i), best_uv = gp_Pnt2d(u, v);
     }
+    // The boundary edges, nearest box first; an edge whose box is no nearer than the best point so
+    // far cannot hold a nearer one (most queries lie inside the face, away from its edges).
+    by_box_.clear();
+    for (size_t i = 0; i < edges_.size(); ++i) by_box_.emplace_back(edges_[i].lower_bound(p), static_cast<int>(i));
+    std::sort(by_box_.begin(), by_box_.end());
     bool on_edge = false;
-    for (const EdgeCurve& e : edges_) {
+    for (const auto& [bound, i] : by_box_) {
+      if (bound >= best_d) break;
       gp_Pnt q;
       double t, d;
-      if (nearest_on_edge(e, p, q, t, d) && d < best_d) best_d = d, best = q, on_edge = true;
+      if (nearest_on_edge(edges_[i], p, q, t, d) && d < best_d) best_d = d, best = q, on_edge = true;
     }
     if (on_edge) best_uv = analysis_->ValueOfUV(best, tol_);
   }
@@ -103,6 +145,7 @@ class FaceProjector {
   Handle(ShapeAnalysis_Surface) analysis_;
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier_;
   std::vector<EdgeCurve> edges_;
+  mutable std::vector<std::pair<double, int>> by_box_;  // nearest()'s scratch: edges by box distance
   Bnd_Box box_;
   mutable GeomAPI_ProjectPointOnSurf proj_;  // not for use from two threads at once
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, tol_ = 1e-7;

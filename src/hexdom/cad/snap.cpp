@@ -363,13 +363,13 @@ struct Restored {
 /// The restoration of the interior after the boundary nodes move to their targets: improve with
 /// the boundary held, or sliding on its CAD faces and edges (SnapOptions::slide). The faces and
 /// edge curves the sliding nodes project onto are built once per thread, on first use, for all
-/// runs; each face node starts its projection from where its last one ended (its own entry).
+/// runs; each face or edge node starts its projection from where its last one ended (its own entry).
 class Restoration {
  public:
   Restoration(const mesh::Mesh& m, const std::vector<int>& boundary, const Targets& target, const SnapOptions& opt,
               const Shape::Impl& s, Projectors& projectors)
       : m_(m), boundary_(boundary), target_(target.point), r_(target.r), opt_(opt), s_(s), projectors_(s, projectors),
-        uv_(m.num_nodes()), has_uv_(m.num_nodes(), 0) {
+        uv_(m.num_nodes()), has_uv_(m.num_nodes(), 0), t_(m.num_nodes(), 0.0), has_t_(m.num_nodes(), 0) {
     for (const auto& [v, uv] : target.uv) uv_[v] = uv, has_uv_[v] = 1;
   }
 
@@ -442,8 +442,10 @@ class Restoration {
       has_uv_[v] = 1;
     } else if (r_.kind[v] == SnapKind::Edge) {
       const ProjectorPool::Lease projectors(projectors_);
-      double t;
-      if (!nearest_on_edge((*projectors).curve(id), p, q, t, d)) d = std::numeric_limits<double>::infinity();
+      const EdgeCurve& curve = (*projectors).curve(id);
+      const bool found = has_t_[v] ? nearest_on_edge_from(curve, p, t_[v], q, t_[v], d) : nearest_on_edge(curve, p, q, t_[v], d);
+      if (!found) d = std::numeric_limits<double>::infinity();
+      has_t_[v] = found;
     } else if (r_.kind[v] == SnapKind::Vertex) {
       q = BRep_Tool::Pnt(TopoDS::Vertex(s_.vertices(id)));
       d = 0;
@@ -462,6 +464,8 @@ class Restoration {
   ProjectorPool projectors_;
   std::vector<gp_Pnt2d> uv_;  // face nodes: parameters of their last projection (has_uv_)
   std::vector<char> has_uv_;
+  std::vector<double> t_;  // edge nodes: parameter of their last projection (has_t_)
+  std::vector<char> has_t_;
 };
 
 /// The restoration kept: the direct one; the progressive snap where the direct one costs quality

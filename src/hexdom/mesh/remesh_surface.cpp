@@ -488,14 +488,33 @@ int SurfaceRemesher::collapse_short_edges(bool strict_length) {
 
 int SurfaceRemesher::flip_edges() {
   int total = 0;
+  // The vertices stay where they are here, so the test of edge (x, y) (flip_improves) changes its
+  // answer only when a flip changes one of its two triangles or the degree of x or y (a flip whose
+  // four vertices include x or y), or takes away the edge between its opposite vertices c, d (a flip
+  // of edge (c, d), whose end points have x and y as neighbours); a new edge (c, d) only turns a yes
+  // into a no. So an edge whose last test said no is tested again only when, since the pass before,
+  // x or y was in a flip or both were neighbours of a flipped edge's end points. The flips made are
+  // the same as when every edge is tested in every pass.
+  std::vector<int> in_flip(V_.size(), -2), beside_flip(V_.size(), -2);  // the last pass of each
+  std::vector<int> ring;
   for (int pass = 0; pass < 20; ++pass) {
     check_interrupt("tessellate (remesh)");
+    auto recent = [&](const std::vector<int>& when, int v) { return when[v] >= pass - 1; };
     int n = 0;
-    for (auto [a, b] : edges())
-      if (flip_improves(a, b, 1e-3)) {
-        flip(a, b);
-        ++n;
+    for (auto [a, b] : edges()) {
+      if (pass > 0 && !recent(in_flip, a) && !recent(in_flip, b) && !(recent(beside_flip, a) && recent(beside_flip, b)))
+        continue;
+      if (!flip_improves(a, b, 1e-3)) continue;
+      int t1, t2;
+      edge_tris(a, b, t1, t2);
+      for (int v : {a, b, third(t1, a, b), third(t2, a, b)}) in_flip[v] = pass;
+      for (int v : {a, b}) {
+        neighbours(v, ring);
+        for (int w : ring) beside_flip[w] = pass;
       }
+      flip(a, b);
+      ++n;
+    }
     total += n;
     if (n == 0) break;
   }

@@ -114,3 +114,60 @@ TEST(ProjectToShape, NamesTheNearestFace) {
   EXPECT_NEAR(r.distance(2), 1, 1e-9);
 }
 #endif
+
+#ifdef HEXDOM_WITH_CAD
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <gp_Circ.hxx>
+
+#include "hexdom/cad/face_projector.h"
+
+// A node sliding along an edge (the snap's restoration) is projected from its last parameter
+// (nearest_on_edge_from): on a circular arc and on a wavy B-spline, points stepping along the edge
+// 0.3 off it get the same nearest point as the whole-edge search, and a point beyond an end gets
+// that end.
+TEST(ProjectToEdge, FromTheLastParameterMatchesTheWholeEdgeSearch) {
+  TColgp_Array1OfPnt pts(1, 12);
+  for (int i = 1; i <= 12; ++i) pts(i) = gp_Pnt(3.0 * i, 2.0 * std::sin(0.8 * i), 0.5 * std::cos(1.3 * i));
+  const TopoDS_Edge spline = BRepBuilderAPI_MakeEdge(Handle(Geom_Curve)(GeomAPI_PointsToBSpline(pts).Curve()));
+  const TopoDS_Edge arc = BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0), 0.2, 2.5);
+  for (const TopoDS_Edge& edge : {spline, arc}) {
+    const cad::EdgeCurve e = cad::edge_curve(edge);
+    ASSERT_FALSE(e.curve.IsNull());
+    double t_last = 0;
+    bool have = false;
+    int checked = 0;
+    for (int k = 0; k <= 200; ++k) {
+      const double u = e.first + (e.last - e.first) * k / 200.0;
+      gp_Pnt on;
+      gp_Vec tangent;
+      e.curve->D1(u, on, tangent);
+      gp_Vec side = tangent.Crossed(gp_Vec(0, 0, 1));
+      if (side.Magnitude() < 1e-9) continue;
+      const gp_Pnt p = on.Translated(side.Normalized() * 0.3);
+      gp_Pnt qg, ql;
+      double tg, tl, dg, dl;
+      ASSERT_TRUE(cad::nearest_on_edge(e, p, qg, tg, dg));
+      ASSERT_TRUE(have ? cad::nearest_on_edge_from(e, p, t_last, ql, tl, dl) : cad::nearest_on_edge(e, p, ql, tl, dl));
+      EXPECT_LT(ql.Distance(qg), 1e-7) << "k " << k;
+      EXPECT_NEAR(dl, dg, 1e-9);
+      t_last = tl;
+      have = true;
+      ++checked;
+    }
+    EXPECT_GT(checked, 150);
+    // Beyond the last end: that end, from a parameter near it.
+    gp_Pnt end;
+    gp_Vec tangent;
+    e.curve->D1(e.last, end, tangent);
+    const gp_Pnt beyond = end.Translated(tangent.Normalized() * 2.0);
+    gp_Pnt q;
+    double t, d;
+    ASSERT_TRUE(cad::nearest_on_edge_from(e, beyond, e.last - 0.01 * (e.last - e.first), q, t, d));
+    EXPECT_LT(q.Distance(end), 1e-7);
+    EXPECT_NEAR(d, 2.0, 1e-6);
+  }
+}
+#endif
