@@ -21,6 +21,8 @@ from .core import (  # noqa: F401
     Error,
     GeometryError,
     InputError,
+    Interrupt,
+    Interrupted,
     Mesh,
     MeshingError,
     Surface,
