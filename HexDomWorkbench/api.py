@@ -73,12 +73,12 @@ from .logic.triangles import (  # noqa: F401
 from .part_meshing import (  # noqa: F401
     MESH_PART_STAGES,
     MeshPartError,
-    check_choice,
     check_mesh_part,
-    choose_mesh_part,
+    fill_mesh_part,
     make_mesh_part,
     mesh_part,
     part_size,
+    run_pipeline,
 )
 from .progress import Cancelled, Progress  # noqa: F401
 from .shape_tessellation import (  # noqa: F401

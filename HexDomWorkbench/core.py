@@ -124,10 +124,24 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
                                   structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
+def mesh_options():
+    """The defaults of `hexdom mesh`'s options, from the core's header (pipeline::MeshCadOptions,
+    the CLI's defaults too), by the keyword names of mesh_part and mesh_surface: size, level,
+    method, improve, align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps,
+    threads, target_sj, target_volume, target_edge_ratio."""
+    if hasattr(_hexdom, "mesh_options"):
+        return dict(_hexdom.mesh_options())
+    return dict(size=0.0, level=1, method="auto", improve=True, align=True, snap=True,
+                polycube_seconds=20.0, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
+                threads=0, target_sj=0.3, target_volume=0.01, target_edge_ratio=10.0)
+
+
+MESH_OPTIONS = mesh_options()
+
 # The largest edge ratio the pipeline aims at (pipeline::MeshSurfaceOptions::target_edge_ratio): its
 # improvement and snap pass it as max_edge_ratio (the Mesh object does the same through improve and
 # snap_to_brep, which by themselves, as `hexdom improve`, leave edge ratios alone).
-TARGET_EDGE_RATIO = 10.0
+TARGET_EDGE_RATIO = float(MESH_OPTIONS["target_edge_ratio"])
 
 
 def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angle=35.0,
@@ -465,6 +479,7 @@ class MeshRun:
     surface: Surface = None  # mesh_part: the tessellation meshed
     tessellations: int = 1   # mesh_part: tessellations made (see cad::MeshCadOptions::retessellate)
     tessellation_factor: float = 1.0  # mesh_part: the kept one's triangle size over the first's
+    tessellation_size: float = 0.0   # mesh_part: the kept one's target triangle size (its chords within size / 50)
     method: str = "polycube"  # the path that made the mesh: "polycube" or "overlay"
     polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
     face_only: list = None    # overlay mesh: per node, 1 when it goes onto a CAD face only (snap_to_brep's face_only)
@@ -485,6 +500,36 @@ def _mesh_run(r):
                    face_only=list(r.get("face_only", [])))
 
 
+def _cad_run(r):
+    """A MeshRun of the dict _hexdom.mesh_cad returns."""
+    run = _mesh_run(r["run"])
+    run.surface = Surface(*r["surface"])
+    run.seconds = {"tessellate": float(r["tessellate_seconds"]), **run.seconds}
+    run.tessellations = int(r["tessellations"])
+    run.tessellation_factor = float(r["tessellation_factor"])
+    run.tessellation_size = float(r.get("tessellation_size", 0.0))
+    if r.get("snap") is not None:
+        run.snap = dict(r["snap"])
+        run.snap["max_distance"] = run.snap["max_after"]
+        run.quality = run.snap["quality"]  # the same report (the run's is after the snap too)
+        run.seconds["snap"] = float(r["snap_seconds"])
+    return run
+
+
+def _attach_partial(error, convert):
+    """Sets ``error.run`` (a MeshRun of what the finished stages made, from the dict the core put
+    on the error as ``partial``; None without one) and ``error.stage`` (the stage that failed,
+    "" if unknown)."""
+    partial = getattr(error, "partial", None)
+    error.run, error.stage = None, ""
+    if isinstance(partial, dict):
+        try:
+            error.run = convert(partial)
+        except (KeyError, TypeError, ValueError):
+            error.run = None
+        error.stage = str(partial.get("stage", ""))
+
+
 MESH_METHODS = ("auto", "polycube", "overlay")
 
 
@@ -499,9 +544,11 @@ def _method_args(method, polycube_seconds=None):
     return args
 
 
-def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
-                 improve=True, allow_inverted=False, align=True, frame=None, method="auto",
-                 polycube_seconds=None):
+def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"],
+                 edge_weight=MESH_OPTIONS["edge_weight"], max_relabels=MESH_OPTIONS["max_relabels"],
+                 relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
+                 allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
+                 method=MESH_OPTIONS["method"], polycube_seconds=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -513,12 +560,17 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
     5 s under "auto", no limit under "polycube"; 0: no limit; see _hexdom.mesh_surface); with
     "polycube", _hexdom.TimeoutError (an Error) when it passes before there is a mesh. Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
-    them). Returns a MeshRun."""
-    r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
-                             float(edge_weight), int(max_relabels), int(relax_sweeps), bool(improve),
-                             bool(align),
-                             None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
-                             **_method_args(method, polycube_seconds))
+    them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
+    stages made, or None) and ``stage`` (the stage that failed)."""
+    try:
+        r = _hexdom.mesh_surface(surface.V, surface.F, surface.patch, float(size), int(level),
+                                 float(edge_weight), int(max_relabels), int(relax_sweeps),
+                                 bool(improve), bool(align),
+                                 None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
+                                 **_method_args(method, polycube_seconds))
+    except Error as e:
+        _attach_partial(e, _mesh_run)
+        raise
     run = _mesh_run(r)
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
@@ -526,7 +578,8 @@ def mesh_surface(surface, size=0.0, level=1, edge_weight=0.1, max_relabels=200, 
     return run
 
 
-def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=False, **kwargs):
+def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], solid=0,
+              snap=MESH_OPTIONS["snap"], allow_inverted=False, **kwargs):
     """The CAD part's mesh as `hexdom mesh` makes it: a .step/.stp, .iges/.igs or .brep/.brp path or
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
@@ -537,7 +590,8 @@ def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=Fals
     (``tessellations``, ``tessellation_factor`` of the MeshRun). Needs _hexdom built with
     OpenCASCADE. Raises MeshingError when inverted cells remain, unless allow_inverted. Returns a
     MeshRun whose seconds include "tessellate" and "snap", ``snap`` the snap report and
-    ``surface`` the tessellation meshed."""
+    ``surface`` the tessellation meshed. An Error raised carries ``run`` (a MeshRun of what the
+    finished stages made, or None) and ``stage`` (the stage that failed)."""
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
@@ -547,19 +601,15 @@ def mesh_part(source, size=0.0, level=1, solid=0, snap=True, allow_inverted=Fals
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
     frame = kwargs.pop("frame", None)
     kwargs.update(_method_args(kwargs.pop("method", "auto"), kwargs.pop("polycube_seconds", None)))
-    r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap), level=int(level),
-                         frame=None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
-                         **kwargs)
-    run = _mesh_run(r["run"])
-    run.surface = Surface(*r["surface"])
-    run.seconds = {"tessellate": float(r["tessellate_seconds"]), **run.seconds}
-    run.tessellations = int(r["tessellations"])
-    run.tessellation_factor = float(r["tessellation_factor"])
-    if snap:
-        run.snap = dict(r["snap"])
-        run.snap["max_distance"] = run.snap["max_after"]
-        run.quality = run.snap["quality"]  # the same report (the run's is after the snap too)
-        run.seconds["snap"] = float(r["snap_seconds"])
+    try:
+        r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
+                             level=int(level),
+                             frame=None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
+                             **kwargs)
+    except Error as e:
+        _attach_partial(e, _cad_run)
+        raise
+    run = _cad_run(r)
     if run.inverted and not allow_inverted:
         raise MeshingError(f"{run.inverted} inverted cells remain after improvement "
                            "(allow_inverted=True returns the mesh anyway)")

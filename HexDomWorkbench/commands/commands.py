@@ -322,14 +322,12 @@ class _ImproveQuality(CommandManager):
 
 class _MeshPart(CommandManager):
     menutext = "Mesh part"
-    tooltip = ("Meshes the selected Part solid with no manual step: a HexDom Surface "
-               "(tessellation), Segmentation (automatic), Polycube (automatic) and Mesh "
-               "(generated and improved), all kept and editable; element size = bounding-box "
-               "diagonal / 30, level 1 or 0 and the polycube's options chosen as `hexdom mesh` "
-               "chooses them (change Size, Level, KeepWidths, TetApexes on the Polycube and "
-               "recompute); where the polycube fails or misses a target the overlay grid's mesh "
-               "may be kept instead (the Mesh's MeshingPath and PolycubeNote say so, its Method "
-               "forces a path)")
+    tooltip = ("Meshes the selected Part solid with no manual step, as `hexdom mesh` does: the "
+               "HexDom Mesh runs its pipeline once (element size = bounding-box diagonal / 30, "
+               "the polycube or, where it fails or misses a target, the overlay grid) and fills "
+               "a Surface, a Segmentation and a Polycube with the stages it made, all kept and "
+               "editable. Change the Mesh's Size, Level or Method and recompute to mesh again; "
+               "edit a stage and the mesh is rebuilt from the stages")
     is_active = "with_part"
 
     def Activated(self):
@@ -350,15 +348,13 @@ class _MeshPart(CommandManager):
         doc.openTransaction("Mesh part")
         cancelled = False
         try:
-            with api.Progress("Meshing " + part.Label, 3) as bar:
+            with api.Progress("Meshing " + part.Label, 2) as bar:
                 FreeCADGui.addModule("HexDomWorkbench.api")
                 FreeCADGui.doCommand(
                     "_objs = HexDomWorkbench.api.make_mesh_part(App.ActiveDocument, {}, "
                     "size={!r}, level={})".format(_doc_expr(part), float(size), int(level)))
                 bar.step("objects created")
-                # `hexdom mesh`'s choice of candidate, set on the Segmentation and the Polycube
-                FreeCADGui.doCommand("HexDomWorkbench.api.choose_mesh_part(_objs)")
-                bar.step("polycube chosen")
+                # The Mesh runs `hexdom mesh`'s pipeline once and fills the three others.
                 FreeCADGui.doCommand("App.ActiveDocument.recompute()")
                 bar.step("recomputed")
                 cancelled = bar.is_cancelled()

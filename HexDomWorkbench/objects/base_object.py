@@ -1,6 +1,7 @@
 """Boilerplate shared by HexDom document-object proxies."""
 
 from ..version import __version__
+from .chain import filling, restoring, stage_edited
 
 
 def _version():
@@ -27,6 +28,26 @@ class BaseHexDomObject:
             obj.addProperty("App::PropertyString", "Version", "Base",
                             "HexDom version that last wrote this object")
         obj.setEditorMode("Version", 1)
+
+    # Input properties of a stage object (Surface, Segmentation, Polycube) whose edit makes it an
+    # ordinary stage again after Mesh Part's pipeline filled it (see add_pipeline_flag).
+    STAGE_INPUTS = ()
+
+    def add_pipeline_flag(self, obj):
+        """Adds FromPipeline: the object holds what Mesh Part's pipeline (`hexdom mesh`, run by
+        the HexDom Mesh downstream) made, and its recompute keeps it; editing one of its
+        STAGE_INPUTS clears it, and the object (and the Mesh after it) then computes as a stage."""
+        if not hasattr(obj, "FromPipeline"):
+            obj.addProperty("App::PropertyBool", "FromPipeline", "Base",
+                            "Filled by Mesh Part's pipeline (`hexdom mesh`, run by the HexDom Mesh "
+                            "downstream): recompute keeps it; editing an input of this object "
+                            "makes it (and the Mesh) compute stage by stage again")
+        obj.setEditorMode("FromPipeline", 1)
+
+    def onChanged(self, obj, prop):
+        if (prop in self.STAGE_INPUTS and getattr(obj, "FromPipeline", False)
+                and not filling.active() and not restoring(obj)):
+            stage_edited(obj)
 
     def onDocumentRestored(self, obj):
         self.add_properties(obj)

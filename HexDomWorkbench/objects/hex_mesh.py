@@ -13,12 +13,18 @@ that ``execute`` stores:
   true), the final boundary nodes are moved onto the CAD faces, so that FEM constraints on those
   faces find them (BrepDistance reports the largest distance left);
 - Method chooses the path: "polycube" the above; "overlay" a grid laid over the Segmentation's
-  Surface (core.mesh_surface(method="overlay"): no polycube needed; the Polycube's Size, else the
-  Surface's, as element size), snapped as above; "auto" (the default) the polycube when a Polycube
+  Surface (core.mesh_surface(method="overlay"): no polycube needed; the Mesh's Size as element
+  size, 0 the pipeline's default), snapped as above; "auto" (the default) the polycube when a Polycube
   is linked, else the overlay when the last run made the mesh with it (MeshingPath: Mesh Part's
   choice unlinks the Polycube when it keeps the overlay mesh), else the polycube (which then asks
   for the missing link). MeshingPath says which path made the mesh, PolycubeNote why the core's
   automatic choice tried the overlay (set by Mesh Part);
+- Pipeline (Mesh Part): recompute runs `hexdom mesh`'s pipeline once (core.mesh_part on the
+  Part the Surface tessellates, with Size, Level, Method, Improve, SnapToCAD and PolycubeSeconds:
+  the options of `hexdom mesh --size --level --method --no-improve --no-snap --polycube-seconds`) and fills the Surface, the
+  Segmentation and the Polycube with what it made (part_meshing.fill_mesh_part; they hold it,
+  FromPipeline). Once one of them is edited (an input property, a patch or block edit) the Mesh
+  leaves Pipeline and is built from them stage by stage, as above;
 - with BaseMesh linked (another FEM mesh): a copy of it, improved when Improve is true;
 - with no input (an imported mesh): None, the stored mesh stays.
 """
@@ -31,7 +37,7 @@ from .. import core
 from ..convert import femmesh
 from ..logic.stages import core_has
 from ..progress import Progress
-from . import polycube, segmentation, tessellation
+from . import chain, pipeline, polycube, segmentation, tessellation
 from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Mesh"
@@ -114,6 +120,24 @@ class HexMesh(BaseHexDomObject):
                             "Why the core's automatic choice (Mesh Part, Method auto) tried the "
                             "overlay grid: the polycube path failed or its mesh missed a target; "
                             "empty when it did not")
+        if not hasattr(obj, "Pipeline"):
+            obj.addProperty("App::PropertyBool", "Pipeline", "HexDom",
+                            "Mesh Part: recompute runs `hexdom mesh` (the core's pipeline) on the "
+                            "Part the Surface tessellates, with Size, Level, Method, Improve and "
+                            "SnapToCAD, and fills the Surface, Segmentation and Polycube from it; "
+                            "false once one of them is edited: the mesh is built from them")
+        if not hasattr(obj, "Size"):
+            obj.addProperty("App::PropertyLength", "Size", "HexDom",
+                            "Pipeline: the target element size (`hexdom mesh --size`); 0: the "
+                            "bounding-box diagonal / 30 (of the box square to the axes the faces "
+                            "fit)")
+        if not hasattr(obj, "PolycubeSeconds"):
+            obj.addProperty("App::PropertyFloat", "PolycubeSeconds", "HexDom",
+                            "Pipeline, Method auto: the polycube path's time budget in seconds "
+                            "(`hexdom mesh --polycube-seconds`; 0: no limit), after which the "
+                            "overlay grid's mesh is taken if the polycube has none that meets the "
+                            "targets")
+            obj.PolycubeSeconds = float(core.MESH_OPTIONS["polycube_seconds"])
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
@@ -140,6 +164,15 @@ class HexMesh(BaseHexDomObject):
                     mesh = bar.run("improve", core.improve, mesh, max_edge_ratio=core.TARGET_EDGE_RATIO)
                     bar.step("improved")
             return mesh
+        if getattr(obj, "Pipeline", False):
+            objs = chain.objects_of(obj)
+            if pipeline.held_by_pipeline(objs):
+                run = pipeline.run_pipeline(objs)
+                self.path = run.method
+                if run.snap:
+                    self.brep_distance = float(run.snap["max_distance"])
+                return run.mesh
+            pipeline.leave_pipeline(objs)
         self.path = meshing_path(obj)
         if self.path == "overlay":
             return self.overlay(obj)
@@ -173,6 +206,16 @@ class HexMesh(BaseHexDomObject):
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
         return mesh
 
+    def onChanged(self, obj, prop):
+        # Pipeline set by the user: the stage objects are to be filled by the pipeline again;
+        # cleared: they compute as stages from now on.
+        if prop != "Pipeline" or chain.restoring(obj) or chain.filling.active():
+            return
+        if getattr(obj, "Pipeline", False):
+            pipeline.enter_pipeline(chain.objects_of(obj))
+        else:
+            chain.stage_edited(obj)
+
     def overlay(self, obj):
         """The overlay path: core.mesh_surface(method="overlay") on the Segmentation's Surface,
         then snapped onto the CAD faces as the polycube path's mesh is."""
@@ -183,7 +226,10 @@ class HexMesh(BaseHexDomObject):
                              "one".format(obj.Label))
         surface = tessellation.get_surface(surface_obj)
         poly = getattr(obj, "Polycube", None)
-        size = float(poly.Size.Value) if poly is not None else float(surface_obj.Size.Value)
+        if hasattr(obj, "Size"):  # the element size the pipeline takes (0: its default)
+            size = float(obj.Size.Value)
+        else:  # a document older than Size
+            size = float(poly.Size.Value) if poly is not None else float(surface_obj.Size.Value)
         # Laid in the frame the faces fit when the Segmentation has one (as Mesh Part's choice).
         align = segmentation.frame_matrix(seg) is not None
         snap = snap_source(obj)
@@ -231,10 +277,7 @@ def meshing_path(obj):
     return "polycube"
 
 
-def polycubes_of(seg):
-    """The HexDom Polycubes built on Segmentation ``seg`` (their Segmentation links it)."""
-    return [o for o in getattr(seg, "InList", []) if polycube.is_polycube(o)
-            and getattr(o, "Segmentation", None) == seg]
+polycubes_of = chain.polycubes_of  # The HexDom Polycubes built on a Segmentation
 
 
 def snap_source(obj):

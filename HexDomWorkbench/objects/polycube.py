@@ -15,6 +15,8 @@ one patch per boundary square: PatchPoints, PatchTriangles, PatchIds), which the
 generates from instead of the Segmentation's patches. Mode "Manual" keeps the stored blocks (and
 that patch surface, if any) as they are: the Build Polycube panel switches an automatic Polycube
 to Manual when its OK writes edited blocks, and setting Mode back to Automatic recomputes them.
+A Polycube Mesh Part's pipeline filled (FromPipeline) keeps its blocks until one of its inputs is
+edited.
 """
 
 import os
@@ -56,9 +58,12 @@ class Polycube(BaseHexDomObject):
     """Proxy of a HexDom Polycube object (App::FeaturePython)."""
 
     Type = TYPE
+    STAGE_INPUTS = ("SourceFile", "Points", "Blocks", "BlockTypes", "Mode", "Segmentation", "Size",
+                    "Level", "KeepWidths", "TetApexes")
 
     def add_properties(self, obj):
         super().add_properties(obj)
+        self.add_pipeline_flag(obj)
         if not hasattr(obj, "SourceFile"):
             obj.addProperty("App::PropertyFile", "SourceFile", "Input",
                             "Structure file (.k, LS-DYNA *ELEMENT_SOLID blocks) the blocks "
@@ -121,6 +126,8 @@ class Polycube(BaseHexDomObject):
             obj.setEditorMode(name, 2)
 
     def execute(self, obj):
+        if getattr(obj, "FromPipeline", False):
+            return  # Mesh Part's pipeline fills it
         if getattr(obj, "Mode", "Manual") == "Automatic":
             build_automatic(obj)
             return

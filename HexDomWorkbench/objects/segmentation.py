@@ -16,7 +16,8 @@ Labels are numbered as in the core: 1 +X, 2 -X, 3 +Y, 4 -Y, 5 +Z, 6 -Z. User edi
 their new label, and join a neighbouring patch of that label. Patch edits (EditedPatchTriangles[i]
 gets patch id EditedPatchIds[i], written by the Edit Patches panel for what labels cannot say: a
 new patch beside one of the same label, a split, a merge) are applied after them. Labels, Patches
-and the edits live in integer-list properties, so they are saved with the document.
+and the edits live in integer-list properties, so they are saved with the document. A Segmentation
+Mesh Part's pipeline filled (FromPipeline) keeps its labels until one of its inputs is edited.
 """
 
 import numpy as np
@@ -43,9 +44,12 @@ class Segmentation(BaseHexDomObject):
     """Proxy of a HexDom Segmentation object (App::FeaturePython)."""
 
     Type = TYPE
+    STAGE_INPUTS = ("Surface", "Method", "EdgeWeight", "Frame", "PatchFile", "EditedTriangles",
+                    "EditedLabels", "EditedPatchTriangles", "EditedPatchIds")
 
     def add_properties(self, obj):
         super().add_properties(obj)
+        self.add_pipeline_flag(obj)
         if not hasattr(obj, "Surface"):
             obj.addProperty("App::PropertyLink", "Surface", "Input",
                             "HexDom Surface whose triangles are labelled")
@@ -101,6 +105,8 @@ class Segmentation(BaseHexDomObject):
             obj.setEditorMode(name, 2)
 
     def execute(self, obj):
+        if getattr(obj, "FromPipeline", False):
+            return  # Mesh Part's pipeline fills it
         if obj.Surface is None or not tessellation.is_surface(obj.Surface):
             raise ValueError("{}: link a HexDom Surface (property Surface)".format(obj.Label))
         surface = tessellation.get_surface(obj.Surface)

@@ -5,7 +5,8 @@ triangle: 1-based, triangle t lies on Face<FaceId[t]> of the source shape), so t
 them and the segmentation reads them back as a core.Surface. The source is a Part object
 (Source, tessellated with Size / Deflection / Angle by shape_tessellation.tessellate) or, when Source is
 empty, a triangle file (SourceFile: .k shells with part id per triangle, .stl, .obj, .vtk; the
-part ids become FaceId). With neither, the object keeps the triangles it was given.
+part ids become FaceId). With neither, the object keeps the triangles it was given; so does a
+Surface Mesh Part's pipeline filled (FromPipeline, see base_object.BaseHexDomObject).
 """
 
 import numpy as np
@@ -28,9 +29,11 @@ class Surface(BaseHexDomObject):
     """Proxy of a HexDom Surface object (App::FeaturePython)."""
 
     Type = TYPE
+    STAGE_INPUTS = ("Source", "SourceFile", "Size", "Deflection", "Angle")
 
     def add_properties(self, obj):
         super().add_properties(obj)
+        self.add_pipeline_flag(obj)
         if not hasattr(obj, "Source"):
             obj.addProperty("App::PropertyLink", "Source", "Input",
                             "Part object (a solid) whose faces are tessellated")
@@ -72,6 +75,8 @@ class Surface(BaseHexDomObject):
             obj.setEditorMode(name, 2)  # hidden: one entry per point / triangle
 
     def execute(self, obj):
+        if getattr(obj, "FromPipeline", False):
+            return  # Mesh Part's pipeline fills it
         surface = compute_surface(obj)
         if surface is not None:
             store_surface(obj, surface)

@@ -58,8 +58,9 @@ const char* kMeshSurfaceDoc =
     "method: \"polycube\", \"overlay\" (a grid laid over the part, which meshes any closed surface) or \"auto\"\n"
     "(the polycube, and the overlay too when the polycube fails or misses a target; the better kept). The\n"
     "dict's method names the path that made the mesh, polycube_note why the overlay was tried (empty when it\n"
-    "was not), budget_passed whether the polycube path's time budget cut it short. Inverted cells left are\n"
-    "reported, not raised.\n";
+    "was not), budget_passed whether the polycube path's time budget cut it short, stage the stage that ran\n"
+    "last. Inverted cells left are reported, not raised; an error raised carries what the finished stages\n"
+    "made as its attribute partial (this dict).\n";
 
 }  // namespace
 
@@ -90,6 +91,7 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["face_only"] = std::vector<int>(face_only.begin(), face_only.end());
   d["budget_passed"] = r.budget_passed;
   d["frame"] = frame_dict(r.frame);
+  d["stage"] = r.stage;
   return d;
 }
 
@@ -143,23 +145,29 @@ void bind_auto(py::module_& m) {
         py::arg("untangle_rounds") = 50, py::arg("keep_widths") = true, py::arg("collapse_apexes") = true,
         py::arg("frame") = py::none(), kAutopolycubeDoc);
 
+  const py::handle module = m;
+  using pipeline::method_name;
+  const pipeline::MeshSurfaceOptions defaults;  // the keywords' defaults: `hexdom mesh`'s
   m.def("mesh_surface",
-        [](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
+        [module](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           const pipeline::MeshSurfaceOptions opt = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps,
                                                                         improve, align, frame, method, polycube_seconds);
           pipeline::MeshSurfaceRun r;
-          {
+          try {
             py::gil_scoped_release nogil;
             pipeline::mesh_surface(s, opt, &r);
+          } catch (const Error& e) {
+            raise_with(module, e, "partial", run_dict(r));  // what the finished stages made
           }
           return run_dict(r);
         },
-        py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = 0.0, py::arg("level") = 1,
-        py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
-        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), py::arg("method") = "auto",
+        py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = defaults.size, py::arg("level") = defaults.level,
+        py::arg("edge_weight") = defaults.segment.edge_weight, py::arg("max_relabels") = defaults.polycube.max_relabels,
+        py::arg("relax_sweeps") = defaults.relax_sweeps, py::arg("improve") = defaults.improve,
+        py::arg("align") = defaults.align, py::arg("frame") = py::none(), py::arg("method") = method_name(defaults.method),
         py::arg("polycube_seconds") = py::none(), (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc).c_str());
 }
 

@@ -105,13 +105,86 @@ std::string mesh_cad_doc() {
       "inverted cells; the polycube grid kept)\n"
       "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
       "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
-      "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor. Raises the first\n"
-      "tessellation's error when none gives a mesh.\n") + kPolycubeSecondsDoc +
+      "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor, tessellation_size (its target triangle size). Raises the first\n"
+      "tessellation's error when none gives a mesh, with what the finished stages made as its attribute\n"
+      "partial (this dict; partial[\"stage\"] the stage that failed).\n") + kPolycubeSecondsDoc +
       " The budget covers the polycube path on every tessellation of the call; once it has passed, no\n"
       "further tessellation is tried for the polycube.";
 }
 
 }  // namespace
+
+py::dict cad_run_dict(const pipeline::MeshCadRun& r) {
+  py::dict d;
+  d["surface"] = surface_tuple(r.surface);
+  d["run"] = run_dict(r.run);
+  d["stage"] = r.run.stage;
+  d["snap"] = r.snapped ? py::object(snap_dict(r.snap)) : py::object(py::none());
+  d["tessellate_seconds"] = r.stats.seconds;
+  d["snap_seconds"] = r.snap_seconds;
+  d["tessellations"] = r.tessellations;
+  d["tessellation_factor"] = r.tessellation_factor;
+  d["tessellation_size"] = r.stats.size;
+  return d;
+}
+
+// `hexdom mesh`: mesh_options (its defaults) and mesh_cad (its whole pipeline on a CAD part).
+void bind_mesh_cad(py::module_& m) {
+  const py::handle module = m;
+  const pipeline::MeshCadOptions defaults;  // `hexdom mesh`'s: the keywords' defaults, mesh_options()
+  m.def("mesh_options",
+        [defaults] {
+          const pipeline::MeshSurfaceOptions& o = defaults.mesh;
+          py::dict d;
+          d["size"] = o.size;
+          d["level"] = o.level;
+          d["method"] = pipeline::method_name(o.method);
+          d["improve"] = o.improve;
+          d["align"] = o.align;
+          d["snap"] = defaults.snap;
+          d["polycube_seconds"] = o.polycube_seconds;
+          d["edge_weight"] = o.segment.edge_weight;
+          d["max_relabels"] = o.polycube.max_relabels;
+          d["relax_sweeps"] = o.relax_sweeps;
+          d["threads"] = o.threads;
+          d["target_sj"] = o.target_sj;
+          d["target_volume"] = o.target_volume;
+          d["target_edge_ratio"] = o.target_edge_ratio;
+          return d;
+        },
+        "The defaults of `hexdom mesh`'s options (pipeline::MeshCadOptions, the CLI's defaults), by the keyword\n"
+        "names of mesh_cad and mesh_surface: size (0: the bounding-box diagonal / 30), level, method, improve,\n"
+        "align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps, threads (0: one per core), and\n"
+        "the targets the candidates are measured against: target_sj, target_volume, target_edge_ratio.");
+  m.def("mesh_cad",
+        [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
+           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
+           std::optional<double> polycube_seconds) {
+          pipeline::MeshCadOptions opt;
+          opt.tessellation.size = size;
+          opt.tessellation.size_in_frame = align;
+          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
+                                          polycube_seconds);
+          opt.snap = snap;
+          pipeline::MeshCadRun r;
+          try {
+            py::gil_scoped_release nogil;
+            pipeline::mesh_cad_part(read_source(source, solid), opt, &r);
+          } catch (const Error& e) {
+            // Raised with what the finished stages made (error.partial: this dict, its run's
+            // stage the one that failed), for the front ends that show the stages.
+            raise_with(module, e, "partial", cad_run_dict(r));
+          }
+          return cad_run_dict(r);
+        },
+        py::arg("source"), py::arg("size") = defaults.mesh.size, py::arg("solid") = 0, py::arg("snap") = defaults.snap,
+        py::arg("level") = defaults.mesh.level, py::arg("edge_weight") = defaults.mesh.segment.edge_weight,
+        py::arg("max_relabels") = defaults.mesh.polycube.max_relabels, py::arg("relax_sweeps") = defaults.mesh.relax_sweeps,
+        py::arg("improve") = defaults.mesh.improve, py::arg("align") = defaults.mesh.align, py::arg("frame") = py::none(),
+        py::arg("method") = pipeline::method_name(defaults.mesh.method),
+        py::arg("polycube_seconds") = py::none(),
+        mesh_cad_doc().c_str());
+}
 
 void bind_cad(py::module_& m) {
   m.def("has_opencascade", &cad::has_opencascade, "True when _hexdom was built with OpenCASCADE (CAD import).");
@@ -232,36 +305,7 @@ void bind_cad(py::module_& m) {
         py::arg("smooth") = 3, py::arg("optimize") = 20, py::arg("max_edge_ratio") = 0.0,
         py::arg("face_only") = std::vector<int>(), kSnapDoc);
 
-  m.def("mesh_cad",
-        [](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
-           int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
-           std::optional<double> polycube_seconds) {
-          pipeline::MeshCadOptions opt;
-          opt.tessellation.size = size;
-          opt.tessellation.size_in_frame = align;
-          opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                          polycube_seconds);
-          opt.snap = snap;
-          pipeline::MeshCadRun r;
-          {
-            py::gil_scoped_release nogil;
-            pipeline::mesh_cad_part(read_source(source, solid), opt, &r);
-          }
-          py::dict d;
-          d["surface"] = surface_tuple(r.surface);
-          d["run"] = run_dict(r.run);
-          d["snap"] = r.snapped ? py::object(snap_dict(r.snap)) : py::object(py::none());
-          d["tessellate_seconds"] = r.stats.seconds;
-          d["snap_seconds"] = r.snap_seconds;
-          d["tessellations"] = r.tessellations;
-          d["tessellation_factor"] = r.tessellation_factor;
-          return d;
-        },
-        py::arg("source"), py::arg("size") = 0.0, py::arg("solid") = 0, py::arg("snap") = true, py::arg("level") = 1,
-        py::arg("edge_weight") = 0.1, py::arg("max_relabels") = 200, py::arg("relax_sweeps") = 10,
-        py::arg("improve") = true, py::arg("align") = true, py::arg("frame") = py::none(), py::arg("method") = "auto",
-        py::arg("polycube_seconds") = py::none(),
-        mesh_cad_doc().c_str());
+  bind_mesh_cad(m);
 }
 
 }  // namespace hexdom::python

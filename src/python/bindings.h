@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <optional>
 
+#include "hexdom/common/error.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::python {
@@ -19,6 +20,9 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       const std::optional<Eigen::Matrix3d>& frame,
                                                   const std::string& method = "auto",
                                                   std::optional<double> polycube_seconds = std::nullopt);
+/// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
+/// `value` (what the finished stages made, for a front end that shows them).
+[[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);
 /// The text of the polycube_seconds= keyword's documentation, shared by mesh_surface and mesh_cad.
 extern const char* const kPolycubeSecondsDoc;
 void bind_segmentation(pybind11::module_& m);

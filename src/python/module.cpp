@@ -54,6 +54,22 @@ void register_errors(py::module_& m) {
   });
 }
 
+}  // namespace
+
+[[noreturn]] void python::raise_with(py::handle module, const Error& e, const char* name, py::object value) {
+  const char* cls = dynamic_cast<const InputError*>(&e)      ? "InputError"
+                    : dynamic_cast<const GeometryError*>(&e) ? "GeometryError"
+                    : dynamic_cast<const MeshingError*>(&e)  ? "MeshingError"
+                    : dynamic_cast<const TimeoutError*>(&e)  ? "TimeoutError"
+                                                             : "Error";
+  py::object type = module.attr(cls);
+  py::object error = type(e.what());
+  error.attr(name) = std::move(value);
+  PyErr_SetObject(type.ptr(), error.ptr());
+  throw py::error_already_set();
+}
+
+namespace {
 // The scopes opened by `with interrupt:` on each thread, innermost last.
 thread_local std::vector<std::unique_ptr<InterruptScope>> open_scopes;
 

@@ -30,8 +30,10 @@ rm -f "$ARTIFACTS"/*.png "$ARTIFACTS"/*.log "$ARTIFACTS"/*.txt
 
 "$REPO/scripts/install-freecad.sh" "$BUILD_DIR" "$FC_HOME/.local/share/FreeCAD/Mod/HexDom"
 
-# The workbench must find everything in the installed copy, not in the build tree.
+# The workbench must find everything in the installed copy, not in the build tree; the tests that
+# compare it with `hexdom mesh` get the program's path.
 export HOME=$FC_HOME
+if [ -x "$BUILD_DIR/bin/hexdom" ]; then export HEXDOM_CLI="$BUILD_DIR/bin/hexdom"; fi
 unset HEXDOM_BUILD_DIR
 export HEXDOM_FC_TEST_DIR=$HERE HEXDOM_FC_ARTIFACTS=$ARTIFACTS
 export HEXDOM_DATA=${HEXDOM_DATA:-$(cd "$REPO/.." && pwd)/shared/data}
@@ -46,7 +48,7 @@ record() { NAMES+=("$1"); RESULTS+=("$2"); }
 if [ -z "${HEXDOM_FC_SKIP_APP:-}" ]; then
   echo "== App tests (freecadcmd + pytest) =="
   set +e
-  (cd "$FC_HOME" && timeout 600 freecadcmd "$HERE/run_app_tests.py") 2>&1 | tee "$ARTIFACTS/app.log"
+  (cd "$FC_HOME" && timeout 900 freecadcmd "$HERE/run_app_tests.py") 2>&1 | tee "$ARTIFACTS/app.log"
   rc=${PIPESTATUS[0]}
   set -e
   app_summary=$(grep -aE "^=+ .*(passed|failed|error|skipped).* =+$" "$ARTIFACTS/app.log" | tail -1 || true)

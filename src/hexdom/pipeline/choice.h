@@ -199,6 +199,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     }
   }
   const bool polycube_kept = have;
+  if (have_grid) keep_polycube_attempt(run_of(r), run_of(grid));
   if (have_grid && !keep(grid, "overlay") && polycube_kept)
     say("kept the polycube mesh: the overlay mesh is no better (" + run_summary(run_of(grid), reference) + ")");
   run_of(r).polycube_note = note;

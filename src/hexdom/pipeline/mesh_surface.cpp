@@ -223,6 +223,15 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
 
 }  // namespace
 
+void keep_polycube_attempt(const MeshSurfaceRun& attempt, MeshSurfaceRun& overlay) {
+  overlay.labels = attempt.labels;
+  overlay.polycube = attempt.polycube;
+  overlay.edge_weight = attempt.edge_weight;
+  overlay.level = attempt.level;
+  overlay.keep_widths = attempt.keep_widths;
+  overlay.collapse_apexes = attempt.collapse_apexes;
+}
+
 std::string method_name(Method m) { return m == Method::Auto ? "auto" : m == Method::Polycube ? "polycube" : "overlay"; }
 
 Method method_from_name(const std::string& name) {

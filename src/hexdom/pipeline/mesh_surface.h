@@ -109,6 +109,10 @@ struct MeshSurfaceOptions {
   bool verbose = false;
 };
 
+/// With Method::Overlay under Method::Auto, `labels`, `polycube`, `edge_weight`, `level`,
+/// `keep_widths` and `collapse_apexes` are the polycube path's attempt (what its finished stages
+/// made, possibly nothing), so that a front end can show the stages the overlay mesh was preferred
+/// to; `generated`, `mesh` and the qualities are the overlay's.
 struct MeshSurfaceRun {
   Method method = Method::Polycube;   ///< the path that made `mesh` (Polycube or Overlay)
   overlay::OverlayResult overlay;     ///< the overlay path's figures when it made `mesh` (its mesh moved out)
@@ -151,6 +155,10 @@ struct MeshSurfaceRun {
 /// (common/interrupt.h; both paths under auto stop).
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
+
+/// Copies the stages of the polycube path's run `attempt` (labels, polycube and the options that
+/// rebuild them; see MeshSurfaceRun) into the overlay's run `overlay`.
+void keep_polycube_attempt(const MeshSurfaceRun& attempt, MeshSurfaceRun& overlay);
 
 /// The snap's SnapOptions::face_only for the mesh of `run`: for an overlay mesh, its nodes put on a
 /// smooth region (OverlayResult::node_kind Surface; some were let off a sharp curve on purpose, and

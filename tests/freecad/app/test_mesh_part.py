@@ -131,7 +131,8 @@ def test_mesh_part_wedge_like_features(doc, tmp_path, make):
 
 
 def test_level_follows_the_polycube(doc):
-    """The Mesh's Level is an expression of the Polycube's: the blocks are made for it."""
+    """Once a stage is edited (the Mesh leaves Pipeline), the Mesh's Level is an expression of
+    the Polycube's: the blocks are made for it."""
     objs = api.make_mesh_part(doc, _box(doc), level=2)
     assert objs["polycube"].Level == 2
     objs["polycube"].Level = 1
@@ -163,12 +164,17 @@ def test_save_reopen_and_switch_to_manual(doc, tmp_path):
         assert list(o["segmentation"].Labels) == labels
         assert (o["mesh"].HexCount, o["mesh"].PrismCount, o["mesh"].TetCount) == counts
         assert o["mesh"].FemMesh.NodeCount == nodes
-        assert [e for p, e in o["mesh"].ExpressionEngine if p == "Level"] == [
-            names["polycube"] + ".Level"]
-        # Manual: the blocks stay even if the segmentation changes.
+        # The pipeline's Level is the Mesh's own (`hexdom mesh --level`).
+        assert o["mesh"].Pipeline and not [e for p, e in o["mesh"].ExpressionEngine
+                                           if p == "Level"]
+        # Manual: the blocks stay even if the segmentation changes; the Mesh is built from the
+        # stages from now on, its Level following the Polycube's.
         o["polycube"].Mode = "Manual"
         o["segmentation"].touch()
         api.recompute_document(doc2)
+        assert not o["mesh"].Pipeline and not o["polycube"].FromPipeline
+        assert [e for p, e in o["mesh"].ExpressionEngine if p == "Level"] == [
+            names["polycube"] + ".Level"]
         np.testing.assert_array_equal(polycube.get_structure(o["polycube"]).cells, structure.cells)
         assert polycube.has_patch_surface(o["polycube"])
         assert (o["mesh"].HexCount, o["mesh"].PrismCount, o["mesh"].TetCount) == counts
@@ -210,7 +216,7 @@ def test_failure_names_the_stage_and_keeps_the_objects(doc):
     assert len(doc.Objects) == before + 4
     assert set(e.objects) == {"surface", "segmentation", "polycube", "mesh"}
     assert e.stage == "automatic polycube"
-    assert "failed at automatic polycube (Tet_polycube)" in str(e)
+    assert "Tet failed at automatic polycube (Tet_mesh)" in str(e)
     assert "chart" in str(e)  # the core's reason names the chart at fault
     for key in ("surface", "segmentation"):
         assert "Invalid" not in e.objects[key].State, e.objects[key].getStatusString()
@@ -308,7 +314,11 @@ def test_snap_to_brep_wiring(doc, monkeypatch):
     monkeypatch.setattr(core, "snap_to_brep", fake_snap, raising=False)
     monkeypatch.setattr(core._hexdom, "snap_to_brep", fake_snap, raising=False)
     assert api.core_has("snap_to_brep")
-    objs = hexdom.mesh_part(doc, box, size=5.0, level=1)
+    # Stage by stage (the pipeline snaps inside the core): the Mesh out of Pipeline.
+    objs = api.make_mesh_part(doc, box, size=5.0, level=1)
+    objs["mesh"].Pipeline = False
+    objs["surface"].Size = objs["polycube"].Size = 5.0
+    api.recompute_document(doc, list(objs.values()))
     mesh = objs["mesh"]
     assert len(calls) == 1
     assert ratios == [core.TARGET_EDGE_RATIO]  # the pipeline's edge-ratio target, as `hexdom mesh` snaps

@@ -62,7 +62,7 @@ def test_mesh_part_i11o_is_the_mesh_hexdom_mesh_chooses(doc):
     objs = hexdom.mesh_part(doc, part)
     mesh = objs["mesh"]
     # `hexdom mesh`'s path in _hexdom on the same shape, at the same element size.
-    run = core.mesh_part(shape.exportBrepToString(), size=size, allow_inverted=True)
+    run = core.mesh_part(shape.exportBrepToString(), allow_inverted=True)
     grid = oracles.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types)
     sj_cli, _ = oracles.verdict_metrics(grid)
     types_cli = np.asarray(run.mesh.types)
@@ -129,7 +129,10 @@ def test_an_old_document_without_the_new_properties_recomputes_as_before(doc, tm
     pyramid that is the tet candidate, as Mesh Part gave before it made the choice."""
     part = _pyramid_part(doc)
     objs = api.make_mesh_part(doc, part)
-    api.recompute_document(doc, list(objs.values()))  # no choice: the objects' defaults
+    objs["mesh"].Pipeline = False  # stage by stage: the objects' defaults, no choice
+    objs["surface"].Size = objs["polycube"].Size = part.Shape.BoundBox.DiagonalLength / 30.0
+    objs["surface"].Deflection = objs["surface"].Size / 50.0
+    api.recompute_document(doc, list(objs.values()))
     old = (objs["mesh"].HexCount, objs["mesh"].PrismCount, objs["mesh"].TetCount)
     assert old[2] > 0  # tets at the tip
     names = {k: o.Name for k, o in objs.items()}

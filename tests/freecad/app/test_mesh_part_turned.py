@@ -120,6 +120,7 @@ def test_the_frame_reaches_segment_and_autopolycube(doc, monkeypatch):
     monkeypatch.setattr(core, "segment", spy_segment)
     monkeypatch.setattr(core, "autopolycube", spy_auto)
     seg = objs["segmentation"]
+    objs["mesh"].Pipeline = False  # stage by stage: the objects call the core's stages
     seg.touch()
     api.recompute_document(doc, [o for k, o in objs.items() if k != "part"])
     assert seen == [("segment", True), ("autopolycube", True)]

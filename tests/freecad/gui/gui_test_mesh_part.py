@@ -7,11 +7,10 @@
    ticking; the longest gap is printed and checked). Screenshot of the mesh coloured by cell type
    (artifacts/mesh_part_bracket.png): hex blue must show; one of the patches
    (mesh_part_patches.png) too.
-2. Cancel: on a box, the progress dialog's Cancel button is clicked as soon as a stage after the
-   tessellation runs. The
-   command keeps the objects, shows no message box, the stage that was running is marked failed
-   with "cancelled", no later stage ran (the Mesh holds no node); a plain recompute afterwards
-   makes every object valid: the document was left consistent.
+2. Cancel: on a box, the progress dialog's Cancel button is clicked as soon as the pipeline (the
+   Mesh's `hexdom mesh`) runs. The command keeps the objects, shows no message box, the Mesh is
+   marked failed with "cancelled" and holds no node; a plain recompute afterwards makes every
+   object valid: the document was left consistent.
 3. Cancel during HexDom_GenerateMesh: the command's transaction is aborted, nothing is added.
 4. Mesh Part on a 15 degree knife edge: the automatic Polycube has prism blocks; Build Polycube opens
    on it with no problem and OK keeps them (hex, prism, tet counts and corner positions).
@@ -21,8 +20,8 @@
    opens on the Segmentation, Build Polycube on the Polycube (against its own Segmentation) with no
    problem and OK keeps its blocks, the overlay mesh stays valid.
 6. Cancel inside a long core call: Mesh Part on a sphere at a fine size, Cancel clicked 1.5 s into
-   the choice of path (the core then meshes on two threads): Mesh Part returns within 3 s of the
-   click (the latency is printed), with no message box, and the Surface it made stays valid.
+   the pipeline (the core then meshes on two threads): Mesh Part returns within 3 s of the click
+   (the latency is printed), with no message box, and the Surface stays valid.
 Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
 """
 
@@ -339,11 +338,11 @@ def run():
     doc.recompute()
     shown, click_at = {}, []
 
-    def click_late():  # 1.5 s after the choice's dialog shows
+    def click_late():  # 1.5 s after the pipeline's dialog shows
         if click_at:
             return
         for w in QtGui.QApplication.topLevelWidgets():
-            if w.objectName() == "HexDomProgress" and w.isVisible() and "Choosing" in w.label.text():
+            if w.objectName() == "HexDomProgress" and w.isVisible() and "hexdom mesh" in w.label.text():
                 shown.setdefault("t", time.time())
                 button = w.findChild(QtGui.QPushButton, "HexDomProgressCancel")
                 if time.time() - shown["t"] > 1.5 and button is not None and button.isEnabled():
@@ -362,8 +361,8 @@ def run():
     check(bool(click_at) and latency < 3.0, "Mesh Part returns within 3 s of Cancel ({:.3f} s)".format(latency))
     check(not errors, "no message box after Cancel: {}".format(errors))
     surfaces = [o for o in doc.Objects if getattr(getattr(o, "Proxy", None), "Type", "") == "HexDom::Surface"]
-    check(len(surfaces) == 1 and "Invalid" not in surfaces[0].State and len(surfaces[0].Triangles) > 0,
-          "the Surface made before Cancel stays valid")
+    check(len(surfaces) == 1 and "Invalid" not in surfaces[0].State,
+          "the Surface stays valid (empty: the pipeline was stopped before it filled it)")
     FreeCAD.closeDocument(doc.Name)
 
 
