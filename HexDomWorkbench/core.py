@@ -124,6 +124,16 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
                                   structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
+def check_surface(surface, name="the surface", self_intersection=True):
+    """The checks every meshing path makes on its input first: closed and 2-manifold, consistently
+    oriented, no two triangles crossing, one solid (cavities nested one deep). Returns (Surface with
+    every shell facing out of the solid, list of warnings: one per shell turned around, e.g. an
+    inside-out export); raises GeometryError naming an edge, two crossing triangles and a point, or
+    the separate solids (``name`` prefixes the messages)."""
+    r = _hexdom.check_surface(surface.V, surface.F, surface.patch, str(name), bool(self_intersection))
+    return Surface(*r["surface"]), list(r["warnings"])
+
+
 def mesh_options():
     """The defaults of `hexdom mesh`'s options, from the core's header (pipeline::MeshCadOptions,
     the CLI's defaults too), by the keyword names of mesh_part and mesh_surface: size, level,

@@ -10,6 +10,7 @@ PACKAGES=(
   libocct-foundation-dev libocct-ocaf-dev libocct-visualization-dev libtbb-dev
   python3-dev python3-numpy python3-pytest python3-vtk9 python3-meshio
   freecad-python3 calculix-ccx xvfb xauth
+  gmsh python3-gmsh
 )
 
 missing=()

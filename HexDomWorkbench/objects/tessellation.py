@@ -9,6 +9,8 @@ part ids become FaceId). With neither, the object keeps the triangles it was giv
 Surface Mesh Part's pipeline filled (FromPipeline, see base_object.BaseHexDomObject).
 """
 
+import os
+
 import numpy as np
 
 from .. import core
@@ -97,6 +99,13 @@ def compute_surface(obj):
         return surface
     if obj.SourceFile:
         surface = core.read_surface(obj.SourceFile)
+        if hasattr(getattr(core, "_hexdom", None), "check_surface"):
+            # Checked as every meshing path checks its input: an inside-out shell turned around
+            # (with a warning), a surface that crosses itself refused naming two triangles.
+            import FreeCAD
+            surface, warnings = core.check_surface(surface, os.path.basename(obj.SourceFile))
+            for w in warnings:
+                FreeCAD.Console.PrintWarning("HexDom: {}: {}\n".format(obj.Label, w))
         obj.Method = "file"
         return surface
     if not obj.Method:

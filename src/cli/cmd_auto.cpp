@@ -120,6 +120,17 @@ std::string stem_of(const std::string& path) {
   return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? path : path.substr(0, dot);
 }
 
+// The snap's line of `hexdom mesh`'s log.
+void print_snap(const cad::SnapReport& q, double seconds) {
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "snap: %d boundary nodes onto %d faces, %d edges, %d vertices; B-rep distance max %.3g -> %.3g "
+                "(%.2e of the diagonal); worst SJ %.3f -> %.3f, %d inverted, in %.2f s",
+                q.boundary_nodes, q.face_nodes, q.edge_nodes, q.vertex_nodes, q.max_before, q.max_after,
+                q.diagonal > 0 ? q.max_after / q.diagonal : 0.0, q.worst_sj_before, q.worst_sj, q.inverted, seconds);
+  print_log(0, line);
+}
+
 const char* const kMeshHelp =
       "Hex mesh of a closed surface or a CAD part with no manual step, by one of two paths (--method): the\n"
       "polycube (segment -> autopolycube -> generate -> improve; aligned with the part, the coarsest mesh) or\n"
@@ -207,6 +218,7 @@ void add_mesh(CLI::App& app) {
     a->opt.improve = !a->no_improve;
     a->opt.align = !a->no_align;
     a->opt.method = pipeline::method_from_name(a->method);
+    a->opt.input_name = a->in;  // the input checks' messages name the file
     // --method polycube honours the budget only when it is given; it starts now, before reading.
     if (a->opt.method == pipeline::Method::Polycube && cmd->count("--polycube-seconds") > 0)
       a->opt.deadline = Deadline::in(a->opt.polycube_seconds);
@@ -230,8 +242,9 @@ void add_mesh(CLI::App& app) {
     };
     auto failed = [&] {
       write_intermediate(true);
-      print_log(1, "stage " + run.stage + " failed; wrote " + stem + "_labels.k" +
-                       (run.polycube.polycube.F.rows() ? " and " + stem + "_polycube.vtk" : std::string()) + " for inspection");
+      if (run.labels.F.rows() > 0)  // (none when the input check refused the surface)
+        print_log(1, "stage " + run.stage + " failed; wrote " + stem + "_labels.k" +
+                         (run.polycube.polycube.F.rows() ? " and " + stem + "_polycube.vtk" : std::string()) + " for inspection");
     };
     if (is_cad_file(a->in)) {
       cad::ReadOptions ro;
@@ -275,16 +288,7 @@ void add_mesh(CLI::App& app) {
     }
     if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
     print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
-    if (snapped) {
-      const cad::SnapReport& q = snap;
-      char line[400];
-      std::snprintf(line, sizeof line,
-                    "snap: %d boundary nodes onto %d faces, %d edges, %d vertices; B-rep distance max %.3g -> %.3g "
-                    "(%.2e of the diagonal); worst SJ %.3f -> %.3f, %d inverted, in %.2f s",
-                    q.boundary_nodes, q.face_nodes, q.edge_nodes, q.vertex_nodes, q.max_before, q.max_after,
-                    q.diagonal > 0 ? q.max_after / q.diagonal : 0.0, q.worst_sj_before, q.worst_sj, q.inverted, snap_seconds);
-      print_log(0, line);
-    }
+    if (snapped) print_snap(snap, snap_seconds);
     if (a->keep) write_intermediate(true);
     io::write_mesh(a->out, run.mesh);
     if (!a->report.empty())

@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "convert.h"
 #include "hexdom/autopolycube/autopolycube.h"
+#include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace py = pybind11;
@@ -144,6 +145,32 @@ void bind_auto(py::module_& m) {
         py::arg("max_relabels") = 200, py::arg("max_attempts") = 20, py::arg("max_relabel_area") = 0.03,
         py::arg("untangle_rounds") = 50, py::arg("keep_widths") = true, py::arg("collapse_apexes") = true,
         py::arg("frame") = py::none(), kAutopolycubeDoc);
+
+  m.def("check_surface",
+        [](const RefV& V, const RefF& F, const RefI& patch, const std::string& name, bool self_intersection) {
+          mesh::SurfaceMesh s = surface_of(V, F, patch);
+          mesh::SurfaceCheckOptions opt;
+          opt.self_intersection = self_intersection;
+          mesh::SurfaceCheck r;
+          {
+            py::gil_scoped_release nogil;
+            r = mesh::check_solid_surface(s, name, opt);
+          }
+          py::dict d;
+          d["surface"] = surface_tuple(s);
+          d["shells"] = r.shells;
+          d["cavities"] = r.cavities;
+          d["flipped_shells"] = r.flipped_shells;
+          d["warnings"] = r.warnings;
+          return d;
+        },
+        py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("name") = "the surface", py::arg("self_intersection") = true,
+        "The checks every meshing path makes on its input surface first (mesh::check_solid_surface): closed and\n"
+        "2-manifold, consistently oriented, no two triangles crossing, one solid (its cavities nested one deep).\n"
+        "A shell facing the wrong way (an inside-out export, a cavity facing out of it) is turned around. Returns\n"
+        "a dict: surface (V, F, patch with those shells turned), shells, cavities, flipped_shells, warnings (one\n"
+        "line per shell turned). Raises GeometryError naming an edge, or two crossing triangles and a point\n"
+        "(1-based), or the separate solids; `name` prefixes the messages.");
 
   const py::handle module = m;
   using pipeline::method_name;

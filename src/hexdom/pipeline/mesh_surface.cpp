@@ -1,5 +1,6 @@
 #include "hexdom/pipeline/mesh_surface.h"
 
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
 #include "hexdom/generation/generate.h"
+#include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
 
 namespace hexdom::pipeline {
@@ -261,9 +263,18 @@ std::string polycube_failure_note(const Error& e, const std::string& stage) {
   return "the polycube path failed at stage " + stage + ": " + what.substr(0, what.find('\n'));
 }
 
-MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
+MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
+  r.stage = "check";
+  // The input checked before any stage: closed, one orientation, facing out of the solid (an
+  // inside-out shell turned around, with a warning), not crossing itself.
+  mesh::SurfaceMesh surface = input;
+  if (opt.check_input) {
+    const mesh::SurfaceCheck check = mesh::check_solid_surface(surface, opt.input_name);
+    for (const std::string& w : check.warnings)
+      if (opt.log) opt.log(1, w);
+  }
   MeshSurfaceOptions po = opt;  // the polycube path's options: its deadline fixed now
   po.deadline = polycube_deadline(opt);
   if (opt.method == Method::Overlay) {

@@ -104,6 +104,11 @@ struct MeshSurfaceOptions {
   /// is given (not the identity): that frame is used. Every output is in the input's coordinates.
   bool align = true;
   segmentation::CubeFrameOptions frame_options;
+  /// Check the input first (mesh::check_solid_surface: closed, consistently oriented, no
+  /// crossing triangles, shells facing out of the solid; a shell facing the wrong way is turned
+  /// around with a warning, level 1); `input_name` names the input in its messages.
+  bool check_input = true;
+  std::string input_name = "the surface";
   /// One line per stage (level 0); with `verbose` also the stages' own messages.
   LogCallback log;
   bool verbose = false;

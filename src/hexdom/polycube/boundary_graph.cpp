@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "hexdom/common/error.h"
+#include "hexdom/mesh/surface_check.h"
 #include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::polycube {
@@ -184,41 +185,10 @@ void chain_loops(const std::vector<Directed>& directed, const std::vector<int>& 
 
 }  // namespace
 
-void check_closed_manifold(const mesh::SurfaceMesh& s) {
-  const int nf = static_cast<int>(s.F.rows());
-  if (nf == 0) throw GeometryError("the surface has no triangles");
-  std::unordered_map<EdgeKey, int> count;
-  count.reserve(3 * nf);
-  for (int f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      if (a < 0 || a >= s.V.rows()) throw GeometryError("triangle " + std::to_string(f + 1) + " refers to a missing vertex");
-      if (a == b) throw GeometryError("triangle " + std::to_string(f + 1) + " is degenerate (repeats vertex " + std::to_string(a + 1) + ")");
-      count[key(a, b)]++;
-    }
-  }
-  for (const auto& [k, c] : count) {
-    if (c != 2) {
-      int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
-      throw GeometryError(std::string(c == 1 ? "open surface: boundary" : "non-manifold") + " edge (" +
-                          std::to_string(a + 1) + ", " + std::to_string(b + 1) + ") is shared by " +
-                          std::to_string(c) + " triangle" + (c == 1 ? "" : "s") + " (a closed surface needs 2)");
-    }
-  }
-  // With two triangles per edge, a directed edge used twice means the two disagree on orientation.
-  std::unordered_map<EdgeKey, int> directed;
-  directed.reserve(3 * nf);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      if (++directed[dkey(a, b)] > 1)
-        throw GeometryError("triangles next to edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) +
-                            ") are inconsistently oriented (triangle " + std::to_string(f + 1) + ")");
-    }
-}
+void check_closed_manifold(const mesh::SurfaceMesh& s) { mesh::check_closed_manifold(s); }
 
 BoundaryGraph boundary_graph(const mesh::SurfaceMesh& s) {
-  check_closed_manifold(s);
+  mesh::check_closed_manifold(s);
   const int nf = static_cast<int>(s.F.rows());
   if (s.patch.rows() != nf)
     throw GeometryError("the surface has " + std::to_string(nf) + " triangles but " + std::to_string(s.patch.rows()) + " patch ids");

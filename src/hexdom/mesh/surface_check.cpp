@@ -1,0 +1,312 @@
+#include "hexdom/mesh/surface_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "hexdom/common/error.h"
+#include "hexdom/common/format.h"
+#include "hexdom/common/interrupt.h"
+
+namespace hexdom::mesh {
+
+namespace {
+
+using Vec = Eigen::Vector3d;
+using EdgeKey = long long;
+
+EdgeKey undirected(int a, int b) { return (static_cast<EdgeKey>(std::min(a, b)) << 32) | static_cast<unsigned>(std::max(a, b)); }
+EdgeKey directed(int a, int b) { return (static_cast<EdgeKey>(a) << 32) | static_cast<unsigned>(b); }
+
+Vec vertex(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
+
+// Where segment (p, q) crosses the plane of triangle (a, b, c), its ends farther than `tol` from
+// it on either side, at a point of the triangle (its edges included: two surfaces crossing along a
+// line often do so through the other's edges): the crossing point. An end within `tol` of the plane
+// is a touch, not a crossing (scanned and remeshed surfaces come within 1e-8 of themselves).
+std::optional<Vec> segment_crosses(const Vec& p, const Vec& q, const Vec& a, const Vec& b, const Vec& c, double tol,
+                                   double* depth) {
+  const Vec n = (b - a).cross(c - a);
+  const double nn = n.norm();
+  if (!(nn > 0)) return std::nullopt;
+  const double dp = n.dot(p - a) / nn, dq = n.dot(q - a) / nn;
+  if (!((dp > tol && dq < -tol) || (dp < -tol && dq > tol))) return std::nullopt;
+  const Vec x = p + (q - p) * (dp / (dp - dq));
+  *depth = std::min(std::abs(dp), std::abs(dq)) / (q - p).norm();
+  const double n2 = nn * nn, slack = -1e-9;
+  if ((c - b).cross(x - b).dot(n) / n2 < slack || (a - c).cross(x - c).dot(n) / n2 < slack ||
+      (b - a).cross(x - a).dot(n) / n2 < slack)
+    return std::nullopt;
+  return x;
+}
+
+struct Box {
+  Vec lo = Vec::Constant(INFINITY), hi = Vec::Constant(-INFINITY);
+  void add(const Vec& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+  void add(const Box& b) { lo = lo.cwiseMin(b.lo); hi = hi.cwiseMax(b.hi); }
+  bool meets(const Box& b) const { return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all(); }
+};
+
+// A crossing whose edge reaches this share of its length past the other triangle's plane on both
+// sides is deep: bodies overlapping. Shallower ones are local folds (a scanned or remeshed surface
+// folding over itself by a fraction of its triangles), which the meshing paths take as they are.
+constexpr double kDeep = 0.1;
+
+// A bounding-box tree over the triangles, searched against itself for crossing pairs.
+class CrossingSearch {
+ public:
+  CrossingSearch(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) : V_(V), F_(F) {
+    const int n = static_cast<int>(F.rows());
+    box_.resize(n);
+    order_.resize(n);
+    std::iota(order_.begin(), order_.end(), 0);
+    Box all;
+    for (int f = 0; f < n; ++f) {
+      for (int k = 0; k < 3; ++k) box_[f].add(vertex(V, F(f, k)));
+      all.add(box_[f]);
+    }
+    tol_ = 1e-6 * (n > 0 ? (all.hi - all.lo).norm() : 0.0);
+    if (n > 0) build(0, n);
+  }
+
+  // The first deep crossing, else the deepest shallow one (see Crossing::deep).
+  std::optional<Crossing> find() {
+    if (!nodes_.empty()) pairs(0, 0);
+    return found_ ? found_ : shallow_;
+  }
+  int shallow_pairs() const { return shallow_count_; }
+
+ private:
+  struct Node {
+    Box box;
+    int left = -1, right = -1, begin = 0, end = 0;
+  };
+
+  int build(int begin, int end) {
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.push_back({});
+    Box b;
+    for (int i = begin; i < end; ++i) b.add(box_[order_[i]]);
+    nodes_[id].box = b;
+    nodes_[id].begin = begin;
+    nodes_[id].end = end;
+    if (end - begin <= 8) return id;
+    int axis;
+    (b.hi - b.lo).maxCoeff(&axis);
+    const int mid = (begin + end) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int x, int y) {
+      return box_[x].lo(axis) + box_[x].hi(axis) < box_[y].lo(axis) + box_[y].hi(axis);
+    });
+    const int l = build(begin, mid), r = build(mid, end);
+    nodes_[id].left = l;
+    nodes_[id].right = r;
+    return id;
+  }
+
+  void pairs(int a, int b) {
+    if (found_ || !nodes_[a].box.meets(nodes_[b].box)) return;
+    const Node &na = nodes_[a], &nb = nodes_[b];
+    if (na.left < 0 && nb.left < 0) {
+      for (int i = na.begin; i < na.end && !found_; ++i)
+        for (int j = (a == b ? i + 1 : nb.begin); j < nb.end && !found_; ++j) test(order_[i], order_[j]);
+      return;
+    }
+    if (a == b) {
+      pairs(na.left, na.left);
+      pairs(na.right, na.right);
+      pairs(na.left, na.right);
+    } else if (nb.left < 0 || (na.left >= 0 && na.end - na.begin >= nb.end - nb.begin)) {
+      pairs(na.left, b);
+      pairs(na.right, b);
+    } else {
+      pairs(a, nb.left);
+      pairs(a, nb.right);
+    }
+  }
+
+  void test(int s, int t) {
+    if (!box_[s].meets(box_[t])) return;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (F_(s, i) == F_(t, j)) return;  // neighbours: touching is not crossing
+    const Vec A[3] = {vertex(V_, F_(s, 0)), vertex(V_, F_(s, 1)), vertex(V_, F_(s, 2))};
+    const Vec B[3] = {vertex(V_, F_(t, 0)), vertex(V_, F_(t, 1)), vertex(V_, F_(t, 2))};
+    double deepest = -1;
+    Vec at;
+    for (int k = 0; k < 3; ++k) {
+      double depth = 0;
+      if (auto p = segment_crosses(A[k], A[(k + 1) % 3], B[0], B[1], B[2], tol_, &depth); p && depth > deepest)
+        deepest = depth, at = *p;
+      if (auto p = segment_crosses(B[k], B[(k + 1) % 3], A[0], A[1], A[2], tol_, &depth); p && depth > deepest)
+        deepest = depth, at = *p;
+    }
+    if (deepest < 0) return;
+    Crossing c{std::min(s, t), std::max(s, t), at, deepest, deepest >= kDeep};
+    if (c.deep) {
+      found_ = c;
+    } else {
+      ++shallow_count_;
+      if (!shallow_ || c.depth > shallow_->depth) shallow_ = c;
+    }
+  }
+
+  const Eigen::MatrixXd& V_;
+  const Eigen::MatrixXi& F_;
+  std::vector<Box> box_;
+  std::vector<int> order_;
+  std::vector<Node> nodes_;
+  double tol_ = 0;  // a touch: within 1e-6 of the diagonal
+  std::optional<Crossing> found_, shallow_;
+  int shallow_count_ = 0;
+};
+
+// The shell (connected component through edges) of each triangle; returns their number.
+int label_shells(const Eigen::MatrixXi& F, std::vector<int>& shell) {
+  const int n = static_cast<int>(F.rows());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::unordered_map<EdgeKey, int> first;
+  first.reserve(3 * n);
+  for (int f = 0; f < n; ++f)
+    for (int k = 0; k < 3; ++k) {
+      auto [it, fresh] = first.emplace(undirected(F(f, k), F(f, (k + 1) % 3)), f);
+      if (!fresh) parent[find(f)] = find(it->second);
+    }
+  shell.assign(n, -1);
+  std::vector<int> id(n, -1);
+  int count = 0;
+  for (int f = 0; f < n; ++f) {
+    const int r = find(f);
+    if (id[r] < 0) id[r] = count++;
+    shell[f] = id[r];
+  }
+  return count;
+}
+
+// Whether point p is inside the closed shell made of `tris`: crossings of a ray in a direction
+// no axis-aligned part lines up with, counted by parity.
+bool inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const Vec& p) {
+  const Vec d = Vec(0.8731, 0.3917, 0.2903).normalized();
+  int crossings = 0;
+  for (int f : tris) {
+    const Vec a = vertex(V, F(f, 0)), b = vertex(V, F(f, 1)), c = vertex(V, F(f, 2));
+    const Vec e1 = b - a, e2 = c - a, h = d.cross(e2);
+    const double det = e1.dot(h);
+    if (std::abs(det) < 1e-300) continue;
+    const Vec s = p - a;
+    const double u = s.dot(h) / det;
+    if (u < 0 || u > 1) continue;
+    const Vec q = s.cross(e1);
+    const double v = d.dot(q) / det;
+    if (v < 0 || u + v > 1) continue;
+    if (e2.dot(q) / det > 0) ++crossings;
+  }
+  return crossings % 2 == 1;
+}
+
+}  // namespace
+
+void check_closed_manifold(const SurfaceMesh& s) {
+  const int nf = static_cast<int>(s.F.rows());
+  if (nf == 0) throw GeometryError("the surface has no triangles");
+  std::unordered_map<EdgeKey, int> count;
+  count.reserve(3 * nf);
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+      if (a < 0 || a >= s.V.rows()) throw GeometryError("triangle " + std::to_string(f + 1) + " refers to a missing vertex");
+      if (a == b) throw GeometryError("triangle " + std::to_string(f + 1) + " is degenerate (repeats vertex " + std::to_string(a + 1) + ")");
+      count[undirected(a, b)]++;
+    }
+  }
+  for (const auto& [k, c] : count) {
+    if (c != 2) {
+      const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
+      throw GeometryError(std::string(c == 1 ? "open surface: boundary" : "non-manifold") + " edge (" + std::to_string(a + 1) +
+                          ", " + std::to_string(b + 1) + ") is shared by " + std::to_string(c) + " triangle" +
+                          (c == 1 ? "" : "s") + " (a closed surface needs 2)");
+    }
+  }
+  // With two triangles per edge, a directed edge used twice means the two disagree on orientation.
+  std::unordered_map<EdgeKey, int> used;
+  used.reserve(3 * nf);
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+      if (++used[directed(a, b)] > 1)
+        throw GeometryError("triangles next to edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) +
+                            ") are inconsistently oriented (triangle " + std::to_string(f + 1) + ")");
+    }
+}
+
+std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int* shallow_pairs) {
+  CrossingSearch search(V, F);
+  std::optional<Crossing> c = search.find();
+  if (shallow_pairs) *shallow_pairs = search.shallow_pairs();
+  return c;
+}
+
+SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const SurfaceCheckOptions& opt) {
+  try {
+    check_closed_manifold(s);
+  } catch (const GeometryError& e) {
+    throw GeometryError(what + ": " + e.what());
+  }
+  check_interrupt("check the surface");
+  SurfaceCheck r;
+  if (opt.self_intersection) {
+    int shallow = 0;
+    const auto c = find_self_intersection(s.V, s.F, &shallow);
+    if (c && !c->deep)
+      r.warnings.push_back(what + fmt(" folds over itself slightly: %.0f pairs of triangles cross by less than a tenth "
+                                      "of their edges (the deepest: triangles %.0f and %.0f",
+                                      static_cast<double>(shallow), c->a + 1.0, c->b + 1.0) +
+                           fmt(" at (%.6g, %.6g, %.6g)); meshed as it is", c->point.x(), c->point.y(), c->point.z()));
+    if (c && c->deep)
+      throw GeometryError(what + fmt(" crosses itself: triangles %.0f and %.0f cross", c->a + 1.0, c->b + 1.0) +
+                          fmt(" at (%.6g, %.6g, %.6g); a solid's surface must not (overlapping bodies written as one "
+                              "surface must be united first)",
+                              c->point.x(), c->point.y(), c->point.z()));
+  }
+  std::vector<int> shell;
+  r.shells = label_shells(s.F, shell);
+  std::vector<std::vector<int>> tris(r.shells);
+  std::vector<double> volume(r.shells, 0.0);
+  for (int f = 0; f < s.F.rows(); ++f) {
+    tris[shell[f]].push_back(f);
+    volume[shell[f]] += vertex(s.V, s.F(f, 0)).dot(vertex(s.V, s.F(f, 1)).cross(vertex(s.V, s.F(f, 2)))) / 6.0;
+  }
+  std::vector<int> depth(r.shells, 0);
+  if (r.shells > 1) {
+    for (int i = 0; i < r.shells; ++i) {
+      const Vec p = vertex(s.V, s.F(tris[i][0], 0));
+      for (int j = 0; j < r.shells; ++j)
+        if (j != i && inside(s.V, s.F, tris[j], p)) ++depth[i];
+    }
+    const int outer = static_cast<int>(std::count(depth.begin(), depth.end(), 0));
+    if (outer > 1)
+      throw GeometryError(what + fmt(" has %.0f separate closed shells (solids), none inside another: mesh each solid on "
+                                     "its own", static_cast<double>(outer)));
+    if (*std::max_element(depth.begin(), depth.end()) > 1)
+      throw GeometryError(what + " has a shell inside a cavity (a solid inside another's hole): mesh each solid on its own");
+  }
+  for (int i = 0; i < r.shells; ++i) {
+    if (depth[i] == 1) ++r.cavities;
+    const bool wrong = depth[i] == 0 ? volume[i] < 0 : volume[i] > 0;
+    if (!wrong) continue;
+    for (int f : tris[i]) std::swap(s.F(f, 1), s.F(f, 2));
+    ++r.flipped_shells;
+    r.warnings.push_back(what + ": " +
+                         (depth[i] == 0 ? (r.shells > 1 ? "the outer shell" : "the surface") : "a cavity's shell") +
+                         fmt(" of %.0f triangles faced ", static_cast<double>(tris[i].size())) +
+                         (depth[i] == 0 ? "inward (inside out)" : "into the solid") + "; turned around");
+  }
+  return r;
+}
+
+}  // namespace hexdom::mesh

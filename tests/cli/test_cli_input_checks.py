@@ -1,0 +1,120 @@
+"""Surfaces as other tools export them (issue "inside-out and self-intersecting input"): `hexdom mesh`
+checks its input before any stage. An inside-out box (every triangle reversed) meshes with a
+warning and the same cells as the box; two overlapping boxes written as one triangle soup exit 1
+naming two crossing triangles and a point, and write nothing; a cube with a cubic cavity (two
+nested shells) meshes with the cavity empty; an inconsistently oriented surface is refused naming
+an edge. The STL files are written here; meshio reads them back as an independent check that they
+say what the test means, VTK's Verdict measures the meshes."""
+
+import subprocess
+
+import meshio
+import numpy as np
+import pytest
+
+import hexdom_oracles as oracles
+
+VTK_TYPE = {"hexahedron": oracles.HEX, "wedge": oracles.WEDGE, "tetra": oracles.TET}
+
+# A box's 12 triangles, counter-clockwise seen from outside, over corners i = x + 2y + 4z.
+BOX_TRIANGLES = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
+                 (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
+
+
+def _box(lo, hi):
+    corners = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2])
+               for i in range(8)]
+    return [tuple(corners[k] for k in t) for t in BOX_TRIANGLES]
+
+
+def _reversed(tris):
+    return [(a, c, b) for a, b, c in tris]
+
+
+def _write_stl(path, tris):
+    lines = ["solid test"]
+    for tri in tris:
+        lines += ["  facet normal 0 0 0", "    outer loop"]
+        lines += ["      vertex {:.17g} {:.17g} {:.17g}".format(*p) for p in tri]
+        lines += ["    endloop", "  endfacet"]
+    lines.append("endsolid test")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _signed_volume(path):
+    m = meshio.read(path)
+    P = m.points
+    T = np.concatenate([b.data for b in m.cells if b.type == "triangle"])
+    a, b, c = P[T[:, 0]], P[T[:, 1]], P[T[:, 2]]
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+
+def _mesh(hexdom_bin, src, out, *extra):
+    return subprocess.run([str(hexdom_bin), "mesh", str(src), "-o", str(out), "--size", "2.5", *extra],
+                          capture_output=True, text=True)
+
+
+def _cells(path):
+    m = meshio.read(path)
+    cells, types = [], []
+    for block in m.cells:
+        for row in block.data:
+            cells.append(list(row) + [-1] * (8 - len(row)))
+            types.append(VTK_TYPE[block.type])
+    g = oracles.vtk_grid(m.points, np.array(cells, np.int64), np.array(types))
+    sj, _ = oracles.verdict_metrics(g)
+    return m, sj, float(np.sum(oracles.signed_volumes(g)))
+
+
+def test_an_inside_out_box_meshes_with_a_warning_and_the_box_s_cells(hexdom_bin, tmp_path):
+    box = _write_stl(tmp_path / "box.stl", _box((0, 0, 0), (10, 10, 10)))
+    inside_out = _write_stl(tmp_path / "inside_out.stl", _reversed(_box((0, 0, 0), (10, 10, 10))))
+    assert _signed_volume(box) == pytest.approx(1000.0)
+    assert _signed_volume(inside_out) == pytest.approx(-1000.0)  # meshio agrees it is inside out
+    ok = _mesh(hexdom_bin, box, tmp_path / "box.vtu")
+    run = _mesh(hexdom_bin, inside_out, tmp_path / "inside_out.vtu")
+    assert ok.returncode == 0, ok.stderr
+    assert run.returncode == 0, run.stderr
+    assert "inside out" in run.stderr and "turned around" in run.stderr, run.stderr
+    assert "inside out" not in ok.stderr
+    a, sj_a, vol_a = _cells(tmp_path / "box.vtu")
+    b, sj_b, vol_b = _cells(tmp_path / "inside_out.vtu")
+    assert [(blk.type, len(blk.data)) for blk in a.cells] == [(blk.type, len(blk.data)) for blk in b.cells]
+    np.testing.assert_allclose(np.sort(a.points, axis=0), np.sort(b.points, axis=0), atol=1e-9)
+    assert np.all(sj_b > 0) and vol_b == pytest.approx(1000.0, rel=1e-6) and vol_a == pytest.approx(vol_b)
+
+
+def test_overlapping_boxes_exit_1_naming_two_triangles_and_a_point(hexdom_bin, tmp_path):
+    soup = _write_stl(tmp_path / "soup.stl", _box((0, 0, 0), (10, 10, 10)) + _box((5, 5, 5), (15, 15, 15)))
+    out = tmp_path / "soup.vtu"
+    run = _mesh(hexdom_bin, soup, out)
+    assert run.returncode == 1, run.stderr
+    assert "crosses itself: triangles" in run.stderr and " cross at (" in run.stderr, run.stderr
+    assert not out.exists()
+    assert "polycube" not in run.stderr  # refused before any meshing stage ran
+
+
+def test_a_cube_with_a_cubic_cavity_meshes_with_the_cavity_empty(hexdom_bin, tmp_path):
+    # The inner shell facing into the cavity, as a correct export writes it; and facing out of it.
+    for name, inner in (("cavity", _reversed(_box((3, 3, 3), (7, 7, 7)))),
+                        ("cavity_wrong", _box((3, 3, 3), (7, 7, 7)))):
+        src = _write_stl(tmp_path / f"{name}.stl", _box((0, 0, 0), (10, 10, 10)) + inner)
+        out = tmp_path / f"{name}.vtu"
+        run = _mesh(hexdom_bin, src, out, "--allow-inverted")
+        assert run.returncode == 0, run.stderr
+        assert ("cavity's shell" in run.stderr) == (name == "cavity_wrong"), run.stderr
+        _, sj, volume = _cells(out)
+        assert np.sum(sj <= 0) == 0
+        assert volume == pytest.approx(1000.0 - 64.0, rel=0.01)
+
+
+def test_an_inconsistently_oriented_surface_is_refused_naming_an_edge(hexdom_bin, tmp_path):
+    tris = _box((0, 0, 0), (10, 10, 10))
+    tris[0] = (tris[0][0], tris[0][2], tris[0][1])
+    src = _write_stl(tmp_path / "mixed.stl", tris)
+    out = tmp_path / "mixed.vtu"
+    run = _mesh(hexdom_bin, src, out)
+    assert run.returncode == 1
+    assert "inconsistently oriented" in run.stderr and "edge (" in run.stderr, run.stderr
+    assert not out.exists()

@@ -1,0 +1,143 @@
+// mesh::check_solid_surface: the input checks before any meshing stage (closed, one orientation,
+// facing out of the solid, not crossing itself, one solid with its cavities).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hexdom/common/error.h"
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/mesh/surface_check.h"
+
+using hexdom::GeometryError;
+using hexdom::mesh::check_solid_surface;
+using hexdom::mesh::find_self_intersection;
+using hexdom::mesh::SurfaceMesh;
+
+namespace {
+
+// An axis-aligned box [lo, hi], 12 triangles facing out.
+SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  SurfaceMesh s;
+  s.V.resize(8, 3);
+  for (int i = 0; i < 8; ++i)
+    s.V.row(i) << (i & 1 ? hi.x() : lo.x()), (i & 2 ? hi.y() : lo.y()), (i & 4 ? hi.z() : lo.z());
+  s.F.resize(12, 3);
+  s.F << 0, 2, 1, 1, 2, 3,  // z = lo
+      4, 5, 6, 5, 7, 6,     // z = hi
+      0, 1, 4, 1, 5, 4,     // y = lo
+      2, 6, 3, 3, 6, 7,     // y = hi
+      0, 4, 2, 2, 4, 6,     // x = lo
+      1, 3, 5, 3, 7, 5;     // x = hi
+  s.patch = Eigen::VectorXi::Ones(12);
+  return s;
+}
+
+// Two surfaces written as one (a triangle soup of two bodies).
+SurfaceMesh join(const SurfaceMesh& a, const SurfaceMesh& b) {
+  SurfaceMesh s;
+  s.V.resize(a.V.rows() + b.V.rows(), 3);
+  s.V << a.V, b.V;
+  s.F.resize(a.F.rows() + b.F.rows(), 3);
+  s.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  s.patch = Eigen::VectorXi::Ones(s.F.rows());
+  return s;
+}
+
+void reverse(SurfaceMesh& s, int from = 0, int to = -1) {
+  for (int f = from; f < (to < 0 ? s.F.rows() : to); ++f) std::swap(s.F(f, 1), s.F(f, 2));
+}
+
+std::string error_of(SurfaceMesh s) {
+  try {
+    check_solid_surface(s, "part.stl");
+  } catch (const GeometryError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(SurfaceCheck, AnOutwardBoxPassesUnchanged) {
+  SurfaceMesh s = box({0, 0, 0}, {10, 10, 10});
+  const Eigen::MatrixXi F = s.F;
+  const auto r = check_solid_surface(s);
+  EXPECT_EQ(r.shells, 1);
+  EXPECT_EQ(r.flipped_shells, 0);
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_EQ(s.F, F);
+}
+
+TEST(SurfaceCheck, AnInsideOutBoxIsTurnedAroundWithAWarning) {
+  SurfaceMesh s = box({0, 0, 0}, {10, 10, 10});
+  reverse(s);
+  ASSERT_LT(hexdom::mesh::enclosed_volume(s.V, s.F), 0);
+  const auto r = check_solid_surface(s, "box.stl");
+  EXPECT_EQ(r.flipped_shells, 1);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("box.stl"), std::string::npos);
+  EXPECT_NE(r.warnings[0].find("inside out"), std::string::npos);
+  EXPECT_NEAR(hexdom::mesh::enclosed_volume(s.V, s.F), 1000.0, 1e-9);
+}
+
+TEST(SurfaceCheck, InconsistentOrientationNamesAnEdge) {
+  SurfaceMesh s = box({0, 0, 0}, {10, 10, 10});
+  reverse(s, 0, 1);  // one triangle turned against its neighbours
+  const std::string e = error_of(s);
+  EXPECT_NE(e.find("part.stl"), std::string::npos) << e;
+  EXPECT_NE(e.find("inconsistently oriented"), std::string::npos) << e;
+  EXPECT_NE(e.find("edge ("), std::string::npos) << e;
+}
+
+TEST(SurfaceCheck, AnOpenSurfaceNamesItsBoundaryEdge) {
+  SurfaceMesh s = box({0, 0, 0}, {10, 10, 10});
+  s.F.conservativeResize(11, 3);
+  s.patch.conservativeResize(11);
+  const std::string e = error_of(s);
+  EXPECT_NE(e.find("open surface: boundary edge"), std::string::npos) << e;
+}
+
+TEST(SurfaceCheck, OverlappingBoxesAreRefusedNamingTwoTrianglesAndAPoint) {
+  const SurfaceMesh s = join(box({0, 0, 0}, {10, 10, 10}), box({5, 5, 5}, {15, 15, 15}));
+  const auto c = find_self_intersection(s.V, s.F);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_LT(c->a, 12);  // one triangle of each box
+  EXPECT_GE(c->b, 12);
+  // The point lies on both boxes' surfaces: on a face plane of each.
+  const Eigen::Vector3d p = c->point;
+  auto on_box = [&](double lo, double hi) {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(p(k) - lo) < 1e-9 || std::abs(p(k) - hi) < 1e-9) return true;
+    return false;
+  };
+  EXPECT_TRUE(on_box(0, 10) && on_box(5, 15)) << p.transpose();
+  const std::string e = error_of(s);
+  EXPECT_NE(e.find("part.stl crosses itself: triangles"), std::string::npos) << e;
+}
+
+TEST(SurfaceCheck, TouchingIsNotCrossing) {
+  // Neighbouring triangles of one closed surface, and two boxes far apart: no crossing.
+  EXPECT_FALSE(find_self_intersection(box({0, 0, 0}, {1, 1, 1}).V, box({0, 0, 0}, {1, 1, 1}).F).has_value());
+  const SurfaceMesh two = join(box({0, 0, 0}, {1, 1, 1}), box({3, 0, 0}, {4, 1, 1}));
+  EXPECT_FALSE(find_self_intersection(two.V, two.F).has_value());
+}
+
+TEST(SurfaceCheck, ANestedBoxIsACavityFacingIntoIt) {
+  // A cube with a cubic cavity: the inner shell must face into the cavity (negative volume).
+  for (bool inner_wrong : {false, true}) {
+    SurfaceMesh inner = box({3, 3, 3}, {7, 7, 7});
+    if (!inner_wrong) reverse(inner);  // facing into the cavity, as a correct export writes it
+    SurfaceMesh s = join(box({0, 0, 0}, {10, 10, 10}), inner);
+    const auto r = check_solid_surface(s);
+    EXPECT_EQ(r.shells, 2);
+    EXPECT_EQ(r.cavities, 1);
+    EXPECT_EQ(r.flipped_shells, inner_wrong ? 1 : 0);
+    EXPECT_NEAR(hexdom::mesh::enclosed_volume(s.V, s.F), 1000.0 - 64.0, 1e-9);
+  }
+}
+
+TEST(SurfaceCheck, SeparateSolidsAreRefused) {
+  const SurfaceMesh s = join(box({0, 0, 0}, {1, 1, 1}), box({3, 0, 0}, {4, 1, 1}));
+  const std::string e = error_of(s);
+  EXPECT_NE(e.find("2 separate closed shells (solids)"), std::string::npos) << e;
+}
