@@ -139,11 +139,7 @@ def mesh_options():
     the CLI's defaults too), by the keyword names of mesh_part and mesh_surface: size, level,
     method, improve, align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps,
     threads, target_sj, target_volume, target_edge_ratio."""
-    if hasattr(_hexdom, "mesh_options"):
-        return dict(_hexdom.mesh_options())
-    return dict(size=0.0, level=1, method="auto", improve=True, align=True, snap=True,
-                polycube_seconds=20.0, edge_weight=0.1, max_relabels=200, relax_sweeps=10,
-                threads=0, target_sj=0.3, target_volume=0.01, target_edge_ratio=10.0)
+    return dict(_hexdom.mesh_options())
 
 
 MESH_OPTIONS = mesh_options()

@@ -100,32 +100,24 @@ def check_mesh_part(objs, allow_inverted=False):
     """Raises MeshPartError when mesh_part's Mesh failed (naming the core's message) or has
     inverted cells (unless ``allow_inverted``); a stage object that was edited and failed is named
     too. A Polycube the Mesh does not use (the overlay grid made the mesh) is not checked."""
-    for key, stage in MESH_PART_STAGES[:3]:
+    for key, stage in MESH_PART_STAGES:
         obj = objs.get(key)
-        if obj is None:
-            continue
-        if key == "polycube" and getattr(objs.get("mesh"), "Polycube", obj) != obj:
+        if obj is None or (key == "polycube"
+                           and getattr(objs.get("mesh"), "Polycube", obj) != obj):
             continue
         state = obj.State
-        if "Invalid" in state or "Error" in state or "Touched" in state:
-            message = obj.getStatusString() if hasattr(obj, "getStatusString") else ""
-            if not message or message == "Touched":
-                message = "not computed"
-            raise MeshPartError("{} failed at {} ({}): {}".format(
-                objs["mesh"].Label.rsplit("_mesh", 1)[0], stage, obj.Label, message),
-                stage, objs)
-    mesh = objs["mesh"]
-    state = mesh.State
-    if "Invalid" in state or "Error" in state or "Touched" in state:
-        message = mesh.getStatusString() if hasattr(mesh, "getStatusString") else ""
+        if not ("Invalid" in state or "Error" in state or "Touched" in state):
+            continue
+        message = obj.getStatusString() if hasattr(obj, "getStatusString") else ""
         if not message or message == "Touched":
             message = "not computed"
-        stage = (getattr(getattr(mesh, "Proxy", None), "failed_stage", None)
-                 or "generate and improve")
-        if message.startswith(stage + ": "):
-            message = message[len(stage) + 2:]
+        if key == "mesh":  # the pipeline's failure names the stage it stopped at
+            stage = getattr(getattr(obj, "Proxy", None), "failed_stage", None) or stage
+            if message.startswith(stage + ": "):
+                message = message[len(stage) + 2:]
         raise MeshPartError("{} failed at {} ({}): {}".format(
-            mesh.Label.rsplit("_mesh", 1)[0], stage, mesh.Label, message), stage, objs)
+            objs["mesh"].Label.rsplit("_mesh", 1)[0], stage, obj.Label, message), stage, objs)
+    mesh = objs["mesh"]
     if mesh.InvertedCount and not allow_inverted:
         raise MeshPartError(
             "{}: {} inverted cells remain in the {} mesh (worst hex SJ {:.3f}); the objects are "

@@ -6,6 +6,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
 #include "hexdom/segmentation/cube_frame.h"
 
@@ -82,6 +83,10 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       return false;
     };
     try {
+      // Each tessellation checked once (mo.check_input is off for the paths' runs on it).
+      if (opt.mesh.check_input)
+        for (const std::string& w : mesh::check_solid_surface(run.surface, opt.mesh.input_name).warnings)
+          if (opt.log) opt.log(1, w);
       mesh_and_snap(shape, mo, opt, reference, run);
       return true;
     } catch (const GeometryError& e) {
@@ -99,6 +104,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   // the budget), the later ones are made for the polycube and count.
   MeshSurfaceOptions first = opt.mesh;
   first.deadline = polycube_deadline(opt.mesh);
+  first.check_input = false;  // done once per tessellation by `attempt`
   std::exception_ptr first_error;
   bool meshed = attempt(first, r, &first_error);  // a TimeoutError here (Method::Polycube) is passed on
   // Done when the mesh has no inverted cell, or in auto mode when the overlay's mesh was kept.

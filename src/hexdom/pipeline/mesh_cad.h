@@ -49,7 +49,9 @@ struct MeshCadRun {
   int tessellations = 0;            ///< tessellations made
 };
 
-/// Tessellates `shape` and meshes the surface (see MeshCadOptions::retessellate). When `progress`
+/// Tessellates `shape` and meshes the surface (see MeshCadOptions::retessellate). Each tessellation is
+/// checked once first (mesh::check_solid_surface, when options.mesh.check_input; its warnings go to
+/// options.log); one it refuses counts as a tessellation the paths could not use. When `progress`
 /// is given it holds, also when this throws, the first tessellation and what its run produced (for
 /// the files written for inspection). Throws the first tessellation's error when no tessellation
 /// gives a mesh; inverted cells that remain are reported in run.quality, not thrown.

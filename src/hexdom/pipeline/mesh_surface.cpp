@@ -269,12 +269,13 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
   r.stage = "check";
   // The input checked before any stage: closed, one orientation, facing out of the solid (an
   // inside-out shell turned around, with a warning), not crossing itself.
-  mesh::SurfaceMesh surface = input;
+  mesh::SurfaceMesh checked;
   if (opt.check_input) {
-    const mesh::SurfaceCheck check = mesh::check_solid_surface(surface, opt.input_name);
-    for (const std::string& w : check.warnings)
+    checked = input;
+    for (const std::string& w : mesh::check_solid_surface(checked, opt.input_name).warnings)
       if (opt.log) opt.log(1, w);
   }
+  const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
   MeshSurfaceOptions po = opt;  // the polycube path's options: its deadline fixed now
   po.deadline = polycube_deadline(opt);
   if (opt.method == Method::Overlay) {
