@@ -17,6 +17,7 @@
 
 #include "hexdom/cad/face_triangulation.h"
 #include "hexdom/common/error.h"
+#include "hexdom/mesh/edge_key.h"
 
 namespace hexdom::cad {
 
@@ -24,11 +25,9 @@ namespace {
 
 using mesh::remesh::Kind;
 using mesh::remesh::RVertex;
-using EdgeKey = long long;
+using mesh::EdgeKey;
 
 Eigen::Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-EdgeKey directed_key(int a, int b) { return (static_cast<EdgeKey>(a) << 32) | static_cast<unsigned>(b); }
-EdgeKey undirected_key(int a, int b) { return directed_key(std::min(a, b), std::max(a, b)); }
 
 /// One face's triangulation and the map of its nodes into the merged vertices.
 struct FaceNodes {
@@ -111,7 +110,7 @@ std::string map_edge_nodes(const WorkShape& w, const TopoDS_Edge& E, FaceNodes& 
     const int id = slot;
     if (k > 0) {
       const int a = f.g[nodes(lo + k - 1)];
-      if (a != id) (seam ? f.seam_segments : f.segments).insert(undirected_key(a, id));
+      if (a != id) (seam ? f.seam_segments : f.segments).insert(mesh::undirected_edge(a, id));
     }
   }
   return "";
@@ -124,15 +123,15 @@ std::string patch_problem(const std::vector<std::array<int, 3>>& tris, const Fac
   std::unordered_map<EdgeKey, int> directed;
   for (const auto& t : tris)
     for (int k = 0; k < 3; ++k)
-      if (++directed[directed_key(t[k], t[(k + 1) % 3])] > 1) return "its triangles overlap (an edge is used twice in one direction)";
+      if (++directed[mesh::directed_edge(t[k], t[(k + 1) % 3])] > 1) return "its triangles overlap (an edge is used twice in one direction)";
   for (const auto& [key, n] : directed) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffff);
-    if (!directed.count(directed_key(b, a)) && !f.segments.count(undirected_key(a, b)))
+    if (!directed.count(mesh::directed_edge(b, a)) && !f.segments.count(mesh::undirected_edge(a, b)))
       return "its triangles leave a gap inside the face";
   }
   for (EdgeKey key : f.segments) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffff);
-    if (!directed.count(directed_key(a, b)) && !directed.count(directed_key(b, a)))
+    if (!directed.count(mesh::directed_edge(a, b)) && !directed.count(mesh::directed_edge(b, a)))
       return "its triangles do not reach all of its edges";
   }
   return "";
@@ -206,7 +205,7 @@ void orient_faces(const WorkShape& w, Merged& m) {
   for (size_t t = 0; t < m.F.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = m.F[t][k], b = m.F[t][(k + 1) % 3];
-      edge_tris[undirected_key(a, b)].push_back({static_cast<int>(t), a < b});
+      edge_tris[mesh::undirected_edge(a, b)].push_back({static_cast<int>(t), a < b});
     }
   std::map<std::pair<int, int>, std::pair<int, int>> votes;  // face pair -> (same direction, opposite)
   for (const auto& [key, uses] : edge_tris) {
@@ -265,13 +264,13 @@ std::string closed_manifold_problem(const Eigen::MatrixXi& F, int* triangle) {
       const int a = F(t, k), b = F(t, (k + 1) % 3);
       if (triangle) *triangle = t;
       if (a == b) return "triangle " + std::to_string(t + 1) + " is degenerate";
-      if (++directed[directed_key(a, b)] > 1)
+      if (++directed[mesh::directed_edge(a, b)] > 1)
         return "edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ") is used twice in one direction";
     }
   if (triangle) *triangle = -1;
   for (const auto& [k, n] : directed) {
     const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
-    if (!directed.count(directed_key(b, a))) {
+    if (!directed.count(mesh::directed_edge(b, a))) {
       if (triangle)
         for (int t = 0; t < F.rows() && *triangle < 0; ++t)
           for (int j = 0; j < 3; ++j)

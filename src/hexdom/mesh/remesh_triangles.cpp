@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hexdom/mesh/closest_point.h"
+#include "hexdom/mesh/edge_key.h"
 #include "hexdom/mesh/remesh_surface.h"
 
 namespace hexdom::mesh {
@@ -19,8 +20,6 @@ namespace {
 using remesh::Kind;
 using remesh::RVertex;
 
-using EdgeKey = long long;
-EdgeKey key(int a, int b) { return (static_cast<EdgeKey>(a) << 32) | static_cast<unsigned>(b); }
 
 /// A polyline where two faces meet, from corner to corner (or a closed loop).
 struct Chain {
@@ -118,7 +117,7 @@ std::unordered_map<EdgeKey, int> directed_edges(const Eigen::MatrixXd& V, const 
       if (a < 0 || a >= nv) throw InputError("remesh: triangle " + std::to_string(t + 1) + " names vertex " +
                                              std::to_string(a + 1) + " of " + std::to_string(nv));
       if (a == b) throw InputError("remesh: triangle " + std::to_string(t + 1) + " is degenerate");
-      if (!directed.emplace(key(a, b), t).second)
+      if (!directed.emplace(directed_edge(a, b), t).second)
         throw InputError("remesh: edge " + vertex_pair(a, b) +
                          " is used twice in one direction (non-manifold or inconsistently oriented)");
     }
@@ -127,7 +126,7 @@ std::unordered_map<EdgeKey, int> directed_edges(const Eigen::MatrixXd& V, const 
   }
   for (const auto& [k, t] : directed) {
     const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
-    if (!directed.count(key(b, a)))
+    if (!directed.count(directed_edge(b, a)))
       throw InputError("remesh: the surface is open: edge " + vertex_pair(a, b) + " has one triangle");
   }
   return directed;
@@ -163,7 +162,7 @@ Features find_features(const SurfaceMesh& s, const std::unordered_map<EdgeKey, i
   for (const auto& [k, t] : directed) {
     const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
     if (a > b) continue;
-    const int u = directed.at(key(b, a));
+    const int u = directed.at(directed_edge(b, a));
     if (s.patch(t) != s.patch(u) || unit_normal(t).dot(unit_normal(u)) < cos_feature)
       feature_edges.emplace_back(a, b);
     else
@@ -212,24 +211,24 @@ std::vector<Chain> feature_chains(const Eigen::MatrixXd& V, Features& ft) {
     Chain c;
     c.vertices = {start};
     int prev = start, cur = next;
-    edge_chain[key(std::min(prev, cur), std::max(prev, cur))] = static_cast<int>(chains.size());
+    edge_chain[undirected_edge(prev, cur)] = static_cast<int>(chains.size());
     while (true) {
       c.length += (V.row(cur) - V.row(prev)).norm();
       c.vertices.push_back(cur);
       if (corner[cur] || cur == start) break;
       const int nxt = feature_nb[cur][0] == prev ? feature_nb[cur][1] : feature_nb[cur][0];
       prev = cur, cur = nxt;
-      edge_chain[key(std::min(prev, cur), std::max(prev, cur))] = static_cast<int>(chains.size());
+      edge_chain[undirected_edge(prev, cur)] = static_cast<int>(chains.size());
     }
     chains.push_back(std::move(c));
   };
   for (int v = 0; v < nv; ++v)
     if (corner[v])
       for (int w : feature_nb[v])
-        if (!edge_chain.count(key(std::min(v, w), std::max(v, w)))) walk(v, w);
+        if (!edge_chain.count(undirected_edge(v, w))) walk(v, w);
   for (int v = 0; v < nv; ++v)
     for (int w : feature_nb[v])
-      if (!edge_chain.count(key(std::min(v, w), std::max(v, w)))) {
+      if (!edge_chain.count(undirected_edge(v, w))) {
         corner[v] = 1;
         walk(v, w);
       }

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "hexdom/common/interrupt.h"
+#include "hexdom/mesh/edge_key.h"
 
 namespace hexdom::overlay {
 
@@ -65,8 +66,6 @@ int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer
 }
 
 namespace {
-
-int64_t edge_key(int a, int b) { return a < b ? (int64_t(a) << 32) | uint32_t(b) : (int64_t(b) << 32) | uint32_t(a); }
 
 // Region per outer quad: the one nearest its centroid, then a few passes in which a quad whose
 // edge neighbours mostly (3 or 4 of them) took one other region takes it.
@@ -191,12 +190,12 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
     if (is_outer[v]) m.V.row(v) = feat.project(m.V.row(v).transpose()).transpose();
   std::unordered_map<int64_t, std::vector<int>> by_edge;
   for (size_t q = 0; q < quads.size(); ++q)
-    for (int i = 0; i < 4; ++i) by_edge[edge_key(quads[q][i], quads[q][(i + 1) % 4])].push_back(static_cast<int>(q));
+    for (int i = 0; i < 4; ++i) by_edge[mesh::undirected_edge(quads[q][i], quads[q][(i + 1) % 4])].push_back(static_cast<int>(q));
   std::vector<std::array<int, 4>> nbr(quads.size());
   for (size_t q = 0; q < quads.size(); ++q)
     for (int i = 0; i < 4; ++i) {
       nbr[q][i] = -1;
-      for (int o : by_edge[edge_key(quads[q][i], quads[q][(i + 1) % 4])])
+      for (int o : by_edge[mesh::undirected_edge(quads[q][i], quads[q][(i + 1) % 4])])
         if (o != static_cast<int>(q)) nbr[q][i] = o;
     }
   const std::vector<int> region = quad_regions(m, quads, feat, nbr);

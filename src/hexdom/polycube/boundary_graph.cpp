@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <string>
-#include <unordered_map>
+#include <utility>
 
 #include "hexdom/common/error.h"
+#include "hexdom/mesh/edge_key.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/mesh/triangle_adjacency.h"
 
@@ -12,12 +13,11 @@ namespace hexdom::polycube {
 
 namespace {
 
-using EdgeKey = long long;
-EdgeKey key(int a, int b) { return (static_cast<EdgeKey>(std::min(a, b)) << 32) | std::max(a, b); }
-EdgeKey dkey(int a, int b) { return (static_cast<EdgeKey>(a) << 32) | static_cast<unsigned>(b); }
+using mesh::EdgeKey;
 
 struct HalfEdge {
   int region, to, across;
+  bool walked = false;
 };
 
 /// A curve as one region's loop runs it (that region on its left).
@@ -53,12 +53,8 @@ void flood_regions(const mesh::SurfaceMesh& s, const Eigen::MatrixXi& TT, Bounda
 }
 
 /// Corners and pinches from the regions around each vertex (walked as a fan: the surface is closed).
-void find_corners(const mesh::SurfaceMesh& s, BoundaryGraph& g) {
+void find_corners(const mesh::SurfaceMesh& s, const Eigen::MatrixXi& TT, BoundaryGraph& g) {
   const int nf = static_cast<int>(s.F.rows()), nv = static_cast<int>(s.V.rows());
-  std::unordered_map<EdgeKey, int> tri_of;  // directed edge -> triangle
-  tri_of.reserve(3 * nf);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) tri_of[dkey(s.F(f, k), s.F(f, (k + 1) % 3))] = f;
   std::vector<int> some_tri(nv, -1);
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) some_tri[s.F(f, k)] = f;
@@ -72,7 +68,7 @@ void find_corners(const mesh::SurfaceMesh& s, BoundaryGraph& g) {
       fan.push_back(f);
       int k = 0;
       while (s.F(f, k) != v) ++k;
-      f = tri_of.at(dkey(v, s.F(f, (k + 2) % 3)));
+      f = TT(f, (k + 2) % 3);  // across edge (F(f, k + 2), v): the next triangle around v
     } while (f != some_tri[v] && fan.size() <= static_cast<size_t>(nf));
     int changes = 0;
     distinct.clear();
@@ -99,29 +95,29 @@ std::vector<Directed> walk_curves(const mesh::SurfaceMesh& s, const Eigen::Matri
       const int h = TT(f, k);
       if (g.region(h) != g.region(f)) out[s.F(f, k)].push_back({g.region(f), s.F(f, (k + 1) % 3), g.region(h)});
     }
-  std::unordered_map<EdgeKey, char> used;  // directed boundary edge -> walked
+  // Each directed boundary edge is one triangle's, so it is in one list once: walked marks it there.
   std::vector<Directed> directed;
-  auto walk = [&](int v0, const HalfEdge& e0, bool closed) {
+  auto walk = [&](int v0, HalfEdge& e0, bool closed) {
     Directed d{e0.region, e0.across, {v0, e0.to}, closed};
-    used[dkey(v0, e0.to)] = 1;
+    e0.walked = true;
     int cur = e0.to;
     while (closed ? cur != v0 : g.corner_of(cur) < 0) {
-      const HalfEdge* next = nullptr;
-      for (const auto& e : out[cur])
-        if (e.region == e0.region && !used.count(dkey(cur, e.to))) { next = &e; break; }
+      HalfEdge* next = nullptr;
+      for (auto& e : out[cur])
+        if (e.region == e0.region && !e.walked) { next = &e; break; }
       if (!next) break;
-      used[dkey(cur, next->to)] = 1;
+      next->walked = true;
       d.vertices.push_back(next->to);
       cur = next->to;
     }
     directed.push_back(std::move(d));
   };
   for (int v : g.corners)
-    for (const auto& e : out[v])
-      if (!used.count(dkey(v, e.to))) walk(v, e, false);
+    for (auto& e : out[v])
+      if (!e.walked) walk(v, e, false);
   for (int v = 0; v < nv; ++v)
-    for (const auto& e : out[v])
-      if (!used.count(dkey(v, e.to))) walk(v, e, true);
+    for (auto& e : out[v])
+      if (!e.walked) walk(v, e, true);
   return directed;
 }
 
@@ -129,22 +125,24 @@ std::vector<Directed> walk_curves(const mesh::SurfaceMesh& s, const Eigen::Matri
 std::vector<int> store_curves(const std::vector<Directed>& directed, BoundaryGraph& g) {
   g.region_curves.assign(g.num_regions(), {});
   std::vector<int> stored(directed.size(), 0);
-  std::unordered_map<EdgeKey, int> curve_of_edge;  // undirected edge -> stored curve
+  std::vector<std::pair<EdgeKey, int>> curve_of_edge;  // (undirected edge, stored curve), sorted
   for (size_t i = 0; i < directed.size(); ++i) {
     const Directed& d = directed[i];
     if (d.left > d.right) continue;
     const int id = static_cast<int>(g.curves.size());
     stored[i] = id;
-    for (size_t k = 1; k < d.vertices.size(); ++k) curve_of_edge[key(d.vertices[k - 1], d.vertices[k])] = id;
+    for (size_t k = 1; k < d.vertices.size(); ++k) curve_of_edge.emplace_back(mesh::undirected_edge(d.vertices[k - 1], d.vertices[k]), id);
     g.region_curves[d.left].push_back(id);
     g.region_curves[d.right].push_back(id);
     g.curves.push_back({d.left, d.right, d.vertices, d.closed});
   }
+  std::sort(curve_of_edge.begin(), curve_of_edge.end());
   for (size_t i = 0; i < directed.size(); ++i) {
     const Directed& d = directed[i];
     if (d.left < d.right) continue;
-    auto it = curve_of_edge.find(key(d.vertices[0], d.vertices[1]));
-    stored[i] = it == curve_of_edge.end() ? ~0 : ~it->second;
+    const EdgeKey e = mesh::undirected_edge(d.vertices[0], d.vertices[1]);
+    auto it = std::lower_bound(curve_of_edge.begin(), curve_of_edge.end(), std::make_pair(e, -1));
+    stored[i] = it == curve_of_edge.end() || it->first != e ? ~0 : ~it->second;
   }
   return stored;
 }
@@ -195,7 +193,7 @@ BoundaryGraph boundary_graph(const mesh::SurfaceMesh& s) {
   const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
   BoundaryGraph g;
   flood_regions(s, TT, g);
-  find_corners(s, g);
+  find_corners(s, TT, g);
   const std::vector<Directed> directed = walk_curves(s, TT, g);
   const std::vector<int> stored = store_curves(directed, g);
   chain_loops(directed, stored, g);

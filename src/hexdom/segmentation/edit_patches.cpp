@@ -5,15 +5,12 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "hexdom/mesh/edge_key.h"
 #include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::segmentation {
 
 namespace {
-
-long long edge_key(int a, int b) {
-  return (static_cast<long long>(std::min(a, b)) << 32) | static_cast<unsigned>(std::max(a, b));
-}
 
 void require_shape(const mesh::SurfaceMesh& s) {
   if (s.patch.rows() != s.F.rows())
@@ -44,7 +41,7 @@ Eigen::VectorXi components(const Eigen::MatrixXi& F, const Eigen::MatrixXi& TT, 
       for (int k = 0; k < 3; ++k) {
         const int g = TT(f, k);
         if (g < 0 || comp(g) >= 0 || patch(g) != patch(f)) continue;
-        if (!cut.empty() && cut.count(edge_key(F(f, k), F(f, (k + 1) % 3)))) continue;
+        if (!cut.empty() && cut.count(mesh::undirected_edge(F(f, k), F(f, (k + 1) % 3)))) continue;
         comp(g) = n;
         stack.push_back(g);
       }
@@ -149,7 +146,7 @@ Eigen::VectorXi split_patch(const mesh::SurfaceMesh& s, int id, const std::vecto
     if (prev[to] < 0)
       throw GeometryError("vertices " + std::to_string(from) + " and " + std::to_string(to) +
                           " cannot be joined through the inside of patch " + std::to_string(id));
-    for (int v = to; v != from; v = prev[v]) cut.insert(edge_key(v, prev[v]));
+    for (int v = to; v != from; v = prev[v]) cut.insert(mesh::undirected_edge(v, prev[v]));
   }
   const Eigen::VectorXi before = components(s.F, TT, s.patch, {});
   const Eigen::VectorXi after = components(s.F, TT, s.patch, cut);

@@ -6,7 +6,6 @@
 namespace hexdom::autopolycube {
 
 ChartGraph chart_graph(const mesh::SurfaceMesh& s) {
-  polycube::check_closed_manifold(s);
   const int nf = static_cast<int>(s.F.rows());
   if (s.patch.rows() != nf)
     throw GeometryError("the surface has " + std::to_string(nf) + " triangles but " + std::to_string(s.patch.rows()) + " labels");
