@@ -466,7 +466,10 @@ class MeshRun:
     ``snap`` holds snap_to_brep's report for mesh_part (None otherwise). ``method`` names the path
     that made the mesh: "polycube" or "overlay" (a grid laid over the part; its run has no labels
     nor polycube, and level, edge_weight and the polycube options mean nothing then);
-    ``polycube_note`` says why the overlay was tried in auto mode (empty otherwise)."""
+    ``polycube_note`` says why the overlay was tried in auto mode (empty otherwise). ``solids``:
+    the solids the surface bounds (separate closed shells, each with its cavities), each meshed on
+    its own; with more than one, the mesh's region is the solid (1, 2, ...), ``polycube`` is
+    empty and the options are the first solid's."""
 
     mesh: Mesh
     generated: Mesh
@@ -489,6 +492,7 @@ class MeshRun:
     method: str = "polycube"  # the path that made the mesh: "polycube" or "overlay"
     polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
     face_only: list = None    # overlay mesh: per node, 1 when it goes onto a CAD face only (snap_to_brep's face_only)
+    solids: int = 1           # solids meshed (each its own region when more than one)
 
     @property
     def inverted(self):
@@ -503,7 +507,7 @@ def _mesh_run(r):
                    keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
                    choice=str(r["choice"]), frame=dict(r["frame"]),
                    method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")),
-                   face_only=list(r.get("face_only", [])))
+                   face_only=list(r.get("face_only", [])), solids=int(r.get("solids", 1)))
 
 
 def _cad_run(r):

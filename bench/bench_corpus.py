@@ -279,6 +279,24 @@ def print_totals(all_totals, methods):
                   + f" {t['time_median']:9.2f} {t['time_max']:7.2f} {t['over_10s']:5d}  {t['time_max_part']}")
 
 
+ER_BUCKETS = (2, 5, 10, 20, 50, 100)
+
+
+def print_edge_ratios(runs, methods):
+    """The distribution of the largest edge ratio per part (issue "element size that FEM users can
+    steer": <= 10 on >= 95% of the parts at default settings)."""
+    heads = [f"<={b}" for b in ER_BUCKETS] + [f">{ER_BUCKETS[-1]}", "no mesh"]
+    print("\nlargest edge ratio per part: " + " ".join(f"{h:>7s}" for h in heads))
+    for m in methods:
+        ers = [r.get("edge_ratio_max") for r in runs if r["method"] == m]
+        counts, lo = [], 0
+        for b in ER_BUCKETS:
+            counts.append(sum(e is not None and lo < e <= b for e in ers))
+            lo = b
+        counts += [sum(e is not None and e > ER_BUCKETS[-1] for e in ers), sum(e is None for e in ers)]
+        print(f"{m:28s} " + " ".join(f"{c:7d}" for c in counts) + f"   ({len(ers)} parts)")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
@@ -358,6 +376,7 @@ def main(argv=None):
                   for g, rs in groups.items() if rs}
     save(all_totals)
     print_totals(all_totals, methods)
+    print_edge_ratios(runs, methods)
     misses = [r for r in runs if not r["targets"]["all"]]
     print(f"\n{len(misses)} of {len(runs)} runs miss a target:")
     for r in misses:

@@ -286,7 +286,7 @@ void add_mesh(CLI::App& app) {
         throw;
       }
     }
-    if (reference_volume == 0) reference_volume = mesh::enclosed_volume(surface.V, surface.F);
+    if (reference_volume == 0) reference_volume = run.surface_volume;
     print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
     if (snapped) print_snap(snap, snap_seconds);
     if (a->keep) write_intermediate(true);

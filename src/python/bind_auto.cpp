@@ -93,6 +93,7 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["budget_passed"] = r.budget_passed;
   d["frame"] = frame_dict(r.frame);
   d["stage"] = r.stage;
+  d["solids"] = std::max<size_t>(1, r.solids.size());
   return d;
 }
 

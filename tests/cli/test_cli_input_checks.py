@@ -3,7 +3,7 @@ checks its input before any stage. An inside-out box (every triangle reversed) m
 warning and the same cells as the box; two overlapping boxes written as one triangle soup exit 1
 naming two crossing triangles and a point, and write nothing; a cube with a cubic cavity (two
 nested shells) meshes with the cavity empty; an inconsistently oriented surface is refused naming
-an edge. The STL files are written here; meshio reads them back as an independent check that they
+an edge; separate solids in one file (and a solid inside another's cavity) mesh as one region each. The STL files are written here; meshio reads them back as an independent check that they
 say what the test means, VTK's Verdict measures the meshes."""
 
 import subprocess
@@ -70,6 +70,7 @@ def test_an_inside_out_box_meshes_with_a_warning_and_the_box_s_cells(hexdom_bin,
     assert ok.returncode == 0, ok.stderr
     assert run.returncode == 0, run.stderr
     assert "inside out" in run.stderr and "turned around" in run.stderr, run.stderr
+    assert "surface volume 1000 (+0.000%)" in run.stdout, run.stdout
     assert "inside out" not in ok.stderr
     pa, types_a, sj_a, vol_a = _cells(tmp_path / "box.vtu")
     pb, types_b, sj_b, vol_b = _cells(tmp_path / "inside_out.vtu")
@@ -111,3 +112,44 @@ def test_an_inconsistently_oriented_surface_is_refused_naming_an_edge(hexdom_bin
     assert run.returncode == 1
     assert "inconsistently oriented" in run.stderr and "edge (" in run.stderr, run.stderr
     assert not out.exists()
+
+
+def _regions(path):
+    """Region id, VTK type and signed volume per cell, and the points per cell, of a .vtu read by VTK."""
+    from vtk.util.numpy_support import vtk_to_numpy
+    g = oracles.read_vtu(str(path))
+    region = vtk_to_numpy(g.GetCellData().GetArray("region"))
+    return region, np.asarray(oracles.signed_volumes(g)), g
+
+
+def test_separate_solids_mesh_as_one_region_each(hexdom_bin, tmp_path):
+    # The second box inside out: turned around, and the volume compared with the solids' 1500.
+    src = _write_stl(tmp_path / "two.stl", _box((0, 0, 0), (10, 10, 10)) + _reversed(_box((20, 0, 0), (30, 10, 5))))
+    out = tmp_path / "two.vtu"
+    run = _mesh(hexdom_bin, src, out)
+    assert run.returncode == 0, run.stderr
+    assert "solid 1 of 2" in run.stderr and "solid 2 of 2" in run.stderr, run.stderr
+    assert "the outer shell of solid 2 of 12 triangles faced inward" in run.stderr, run.stderr
+    assert "surface volume 1500 (+0.000%)" in run.stdout, run.stdout
+    region, volume, g = _regions(out)
+    assert sorted(set(region.tolist())) == [1, 2]
+    assert volume[region == 1].sum() == pytest.approx(1000.0, rel=1e-6)
+    assert volume[region == 2].sum() == pytest.approx(500.0, rel=1e-6)
+    _, _, sj, _ = _cells(out)
+    assert np.all(sj > 0)
+    for c in range(g.GetNumberOfCells()):  # each region's cells lie in its own box
+        x = [g.GetCell(c).GetPoints().GetPoint(i)[0] for i in range(g.GetCell(c).GetNumberOfPoints())]
+        assert (max(x) <= 10 + 1e-9) if region[c] == 1 else (min(x) >= 20 - 1e-9)
+
+
+def test_a_solid_inside_another_s_cavity_is_its_own_region(hexdom_bin, tmp_path):
+    shells = (_box((0, 0, 0), (12, 12, 12)) + _reversed(_box((2, 2, 2), (10, 10, 10)))
+              + _box((4, 4, 4), (8, 8, 8)))
+    src = _write_stl(tmp_path / "nested.stl", shells)
+    out = tmp_path / "nested.vtu"
+    run = _mesh(hexdom_bin, src, out)
+    assert run.returncode == 0, run.stderr
+    region, volume, _ = _regions(out)
+    assert sorted(set(region.tolist())) == [1, 2]
+    assert volume[region == 1].sum() == pytest.approx(12.0 ** 3 - 8.0 ** 3, rel=1e-3)
+    assert volume[region == 2].sum() == pytest.approx(64.0, rel=1e-6)

@@ -516,3 +516,20 @@ def test_core_autopolycube_takes_the_candidates_options(core):
     run = core.mesh_surface(s, size=0.25, level=1)
     assert run.collapse_apexes == (run.mesh.count(core.TET) > 0)
     assert run.choice.endswith("tet blocks at apexes" if run.collapse_apexes else "hex blocks under the caps")
+
+
+def test_core_mesh_surface_meshes_separate_solids_as_regions(core):
+    """Two boxes apart in one surface: each meshed on its own, the mesh's region is the solid; VTK
+    measures each region's volume and Verdict the cells."""
+    a, b = _box(core, 3, 2, 1), _box(core, 1, 1, 2)
+    V = np.vstack([a.V, b.V + [5.0, 0.0, 0.0]])
+    F = np.vstack([a.F, b.F + len(a.V)]).astype(np.int32)
+    run = core.mesh_surface(core.Surface(V, F, np.concatenate([a.patch, b.patch])), size=0.5)
+    assert run.solids == 2 and "2 solids" in run.choice
+    g = oracle.vtk_grid(run.mesh.V, run.mesh.cells, run.mesh.types)
+    vol = np.asarray(oracle.signed_volumes(g))
+    region = np.asarray(run.mesh.region)
+    assert sorted(set(region.tolist())) == [1, 2]
+    assert vol[region == 1].sum() == pytest.approx(6.0) and vol[region == 2].sum() == pytest.approx(2.0)
+    sj, _ = oracle.verdict_metrics(g)
+    assert sj.min() > 0

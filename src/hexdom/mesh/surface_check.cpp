@@ -3,21 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "hexdom/common/error.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/mesh/edge_key.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 
 namespace hexdom::mesh {
 
 namespace {
 
 using Vec = Eigen::Vector3d;
-using EdgeKey = long long;
-
-EdgeKey undirected(int a, int b) { return (static_cast<EdgeKey>(std::min(a, b)) << 32) | static_cast<unsigned>(std::max(a, b)); }
-EdgeKey directed(int a, int b) { return (static_cast<EdgeKey>(a) << 32) | static_cast<unsigned>(b); }
 
 Vec vertex(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
 
@@ -161,29 +160,30 @@ class CrossingSearch {
   int shallow_count_ = 0;
 };
 
-// The shell (connected component through edges) of each triangle; returns their number.
+// The shell (connected component through edges) of each triangle of a closed manifold surface;
+// returns their number.
 int label_shells(const Eigen::MatrixXi& F, std::vector<int>& shell) {
   const int n = static_cast<int>(F.rows());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  std::unordered_map<EdgeKey, int> first;
-  first.reserve(3 * n);
-  for (int f = 0; f < n; ++f)
-    for (int k = 0; k < 3; ++k) {
-      auto [it, fresh] = first.emplace(undirected(F(f, k), F(f, (k + 1) % 3)), f);
-      if (!fresh) parent[find(f)] = find(it->second);
-    }
+  const Eigen::MatrixXi TT = triangle_adjacency(F);
   shell.assign(n, -1);
-  std::vector<int> id(n, -1);
   int count = 0;
-  for (int f = 0; f < n; ++f) {
-    const int r = find(f);
-    if (id[r] < 0) id[r] = count++;
-    shell[f] = id[r];
+  std::vector<int> stack;
+  for (int f0 = 0; f0 < n; ++f0) {
+    if (shell[f0] >= 0) continue;
+    shell[f0] = count;
+    stack.assign(1, f0);
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const int g = TT(f, k);
+        if (g >= 0 && shell[g] < 0) {
+          shell[g] = count;
+          stack.push_back(g);
+        }
+      }
+    }
+    ++count;
   }
   return count;
 }
@@ -214,34 +214,37 @@ bool inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vecto
 void check_closed_manifold(const SurfaceMesh& s) {
   const int nf = static_cast<int>(s.F.rows());
   if (nf == 0) throw GeometryError("the surface has no triangles");
-  std::unordered_map<EdgeKey, int> count;
-  count.reserve(3 * nf);
+  // Every half-edge as (undirected edge, f * 3 + k), sorted: an edge's triangles are consecutive,
+  // in triangle order. One array and one sort, no per-edge allocation.
+  std::vector<std::pair<EdgeKey, int>> half(3 * static_cast<size_t>(nf));
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
       if (a < 0 || a >= s.V.rows()) throw GeometryError("triangle " + std::to_string(f + 1) + " refers to a missing vertex");
       if (a == b) throw GeometryError("triangle " + std::to_string(f + 1) + " is degenerate (repeats vertex " + std::to_string(a + 1) + ")");
-      count[undirected(a, b)]++;
+      half[3 * static_cast<size_t>(f) + k] = {undirected_edge(a, b), 3 * f + k};
     }
   }
-  for (const auto& [k, c] : count) {
-    if (c != 2) {
-      const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
-      throw GeometryError(std::string(c == 1 ? "open surface: boundary" : "non-manifold") + " edge (" + std::to_string(a + 1) +
-                          ", " + std::to_string(b + 1) + ") is shared by " + std::to_string(c) + " triangle" +
-                          (c == 1 ? "" : "s") + " (a closed surface needs 2)");
-    }
+  std::sort(half.begin(), half.end());
+  for (size_t i = 0; i < half.size();) {
+    size_t j = i + 1;
+    while (j < half.size() && half[j].first == half[i].first) ++j;
+    const size_t c = j - i;
+    if (c != 2)
+      throw GeometryError(std::string(c == 1 ? "open surface: boundary" : "non-manifold") + " edge (" +
+                          std::to_string(edge_from(half[i].first) + 1) + ", " + std::to_string(edge_to(half[i].first) + 1) +
+                          ") is shared by " + std::to_string(c) + " triangle" + (c == 1 ? "" : "s") +
+                          " (a closed surface needs 2)");
+    i = j;
   }
-  // With two triangles per edge, a directed edge used twice means the two disagree on orientation.
-  std::unordered_map<EdgeKey, int> used;
-  used.reserve(3 * nf);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      if (++used[directed(a, b)] > 1)
-        throw GeometryError("triangles next to edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) +
-                            ") are inconsistently oriented (triangle " + std::to_string(f + 1) + ")");
-    }
+  // With two triangles per edge, both running it the same way means they disagree on orientation.
+  for (size_t i = 0; i < half.size(); i += 2) {
+    const int f0 = half[i].second / 3, k0 = half[i].second % 3, f = half[i + 1].second / 3, k = half[i + 1].second % 3;
+    const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+    if (s.F(f0, k0) == a)
+      throw GeometryError("triangles next to edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) +
+                          ") are inconsistently oriented (triangle " + std::to_string(f + 1) + ")");
+  }
 }
 
 std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int* shallow_pairs) {
@@ -281,32 +284,75 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
     tris[shell[f]].push_back(f);
     volume[shell[f]] += vertex(s.V, s.F(f, 0)).dot(vertex(s.V, s.F(f, 1)).cross(vertex(s.V, s.F(f, 2)))) / 6.0;
   }
-  std::vector<int> depth(r.shells, 0);
+  // Nesting: shells inside an even number of others bound a solid, the others are the cavities of
+  // the shell one level further out that holds them.
+  std::vector<int> depth(r.shells, 0), solid_of_shell(r.shells, -1);
+  std::vector<std::vector<char>> holds(r.shells, std::vector<char>(r.shells, 0));  // holds[j][i]: i inside j
   if (r.shells > 1) {
     for (int i = 0; i < r.shells; ++i) {
       const Vec p = vertex(s.V, s.F(tris[i][0], 0));
       for (int j = 0; j < r.shells; ++j)
-        if (j != i && inside(s.V, s.F, tris[j], p)) ++depth[i];
+        if (j != i && inside(s.V, s.F, tris[j], p)) {
+          holds[j][i] = 1;
+          ++depth[i];
+        }
     }
     const int outer = static_cast<int>(std::count(depth.begin(), depth.end(), 0));
-    if (outer > 1)
+    if (outer > 1 && !opt.several_solids)
       throw GeometryError(what + fmt(" has %.0f separate closed shells (solids), none inside another: mesh each solid on "
                                      "its own", static_cast<double>(outer)));
-    if (*std::max_element(depth.begin(), depth.end()) > 1)
+    if (*std::max_element(depth.begin(), depth.end()) > 1 && !opt.several_solids)
       throw GeometryError(what + " has a shell inside a cavity (a solid inside another's hole): mesh each solid on its own");
   }
+  for (int i = 0; i < r.shells; ++i)
+    if (depth[i] % 2 == 0) solid_of_shell[i] = r.solids++;
+  for (int i = 0; i < r.shells; ++i)
+    if (depth[i] % 2 == 1)
+      for (int j = 0; j < r.shells; ++j)
+        if (holds[j][i] && depth[j] == depth[i] - 1) solid_of_shell[i] = solid_of_shell[j];
+  r.solid.resize(s.F.rows());
+  for (int f = 0; f < s.F.rows(); ++f) r.solid[f] = solid_of_shell[shell[f]];
   for (int i = 0; i < r.shells; ++i) {
-    if (depth[i] == 1) ++r.cavities;
-    const bool wrong = depth[i] == 0 ? volume[i] < 0 : volume[i] > 0;
+    const bool cavity = depth[i] % 2 == 1;
+    if (cavity) ++r.cavities;
+    const bool wrong = cavity ? volume[i] > 0 : volume[i] < 0;
     if (!wrong) continue;
     for (int f : tris[i]) std::swap(s.F(f, 1), s.F(f, 2));
     ++r.flipped_shells;
     r.warnings.push_back(what + ": " +
-                         (depth[i] == 0 ? (r.shells > 1 ? "the outer shell" : "the surface") : "a cavity's shell") +
+                         (!cavity ? (r.shells > 1 ? (r.solids > 1 ? fmt("the outer shell of solid %.0f", solid_of_shell[i] + 1.0)
+                                                                  : std::string("the outer shell"))
+                                                  : std::string("the surface"))
+                                  : std::string("a cavity's shell")) +
                          fmt(" of %.0f triangles faced ", static_cast<double>(tris[i].size())) +
-                         (depth[i] == 0 ? "inward (inside out)" : "into the solid") + "; turned around");
+                         (!cavity ? "inward (inside out)" : "into the solid") + "; turned around");
   }
   return r;
+}
+
+std::vector<SurfaceMesh> split_solids(const SurfaceMesh& s, const SurfaceCheck& check) {
+  if (check.solids <= 1 || static_cast<Eigen::Index>(check.solid.size()) != s.F.rows()) return {s};
+  std::vector<SurfaceMesh> out(check.solids);
+  std::vector<int> count(check.solids, 0), node(s.V.rows(), -1), nodes(check.solids, 0);
+  for (int k : check.solid) ++count[k];
+  for (int k = 0; k < check.solids; ++k) {
+    out[k].F.resize(count[k], 3);
+    out[k].patch.resize(count[k]);
+    count[k] = 0;
+  }
+  for (int f = 0; f < s.F.rows(); ++f) {  // a vertex belongs to the one solid its triangles do
+    const int k = check.solid[f];
+    for (int c = 0; c < 3; ++c) {
+      int& v = node[s.F(f, c)];
+      if (v < 0) v = nodes[k]++;
+      out[k].F(count[k], c) = v;
+    }
+    out[k].patch(count[k]++) = s.patch.rows() == s.F.rows() ? s.patch(f) : 0;
+  }
+  for (int k = 0; k < check.solids; ++k) out[k].V.resize(nodes[k], 3);
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) out[check.solid[f]].V.row(node[s.F(f, c)]) = s.V.row(s.F(f, c));
+  return out;
 }
 
 }  // namespace hexdom::mesh

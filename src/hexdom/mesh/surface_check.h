@@ -40,24 +40,37 @@ std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const E
 
 struct SurfaceCheck {
   int shells = 0;          ///< closed shells (triangles connected through edges)
-  int cavities = 0;        ///< of them, inside another: the solid's cavities
+  int cavities = 0;        ///< of them, inside an odd number of others: a solid's cavities
   int flipped_shells = 0;  ///< shells turned around (inside-out exports)
+  /// Solids: each shell inside an even number of others (none, or a solid inside another's cavity)
+  /// bounds one, with the cavities directly inside it; numbered in the order of their shells' first
+  /// triangles.
+  int solids = 0;
+  std::vector<int> solid;  ///< #F: the solid (0-based) each triangle bounds
   std::vector<std::string> warnings;  ///< one line per shell turned around, one for slight folds
 };
 
 struct SurfaceCheckOptions {
   bool self_intersection = true;  ///< look for triangles crossing each other
+  /// Accept several solids (separate shells, or a solid inside another's cavity); otherwise
+  /// they are refused.
+  bool several_solids = false;
 };
 
 /// Checks `surface` (check_closed_manifold, then per shell, then find_self_intersection) and turns
 /// around every shell that faces the wrong way: an outer shell (inside no other) must enclose a
-/// positive volume, a shell nested inside one other (a cavity) a negative one. Throws GeometryError
-/// naming the cause: an open or non-manifold edge, an edge whose two triangles disagree on
-/// orientation, shells that are separate solids ("2 separate closed shells (solids)..."), shells
-/// nested more than one deep, two triangles crossing deeply (Crossing::deep: overlapping bodies)
-/// with a point; a surface that only folds over itself slightly is taken with a warning. `what`
-/// prefixes the messages (a file name, "the tessellation").
+/// positive volume, a cavity (a shell inside an odd number of others) a negative one. Throws
+/// GeometryError naming the cause: an open or non-manifold edge, an edge whose two triangles
+/// disagree on orientation, two triangles crossing deeply (Crossing::deep: overlapping bodies) with
+/// a point, and unless options.several_solids shells that are separate solids ("2 separate closed
+/// shells (solids)...") or nested more than one deep; a surface that only folds over itself
+/// slightly is taken with a warning. `what` prefixes the messages (a file name, "the tessellation").
 SurfaceCheck check_solid_surface(SurfaceMesh& surface, const std::string& what = "the surface",
                                  const SurfaceCheckOptions& options = {});
+
+/// The surface of each solid check_solid_surface found in `surface` (its outer shell and its
+/// cavities, vertices renumbered from 0 in the order the triangles use them, patch ids kept);
+/// `surface` itself when there is one solid.
+std::vector<SurfaceMesh> split_solids(const SurfaceMesh& surface, const SurfaceCheck& check);
 
 }  // namespace hexdom::mesh

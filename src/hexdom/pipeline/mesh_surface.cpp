@@ -272,8 +272,32 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
   mesh::SurfaceMesh checked;
   if (opt.check_input) {
     checked = input;
-    for (const std::string& w : mesh::check_solid_surface(checked, opt.input_name).warnings)
+    mesh::SurfaceCheckOptions co;
+    co.several_solids = true;
+    const mesh::SurfaceCheck check = mesh::check_solid_surface(checked, opt.input_name, co);
+    for (const std::string& w : check.warnings)
       if (opt.log) opt.log(1, w);
+    if (check.solids > 1) {
+      // Each solid on its own, then put together; the checks are done.
+      MeshSurfaceOptions so = opt;
+      so.check_input = false;
+      std::vector<mesh::SurfaceMesh> parts = mesh::split_solids(checked, check);
+      std::vector<MeshSurfaceRun> runs(parts.size());
+      for (size_t k = 0; k < parts.size(); ++k) {
+        const std::string which = fmt("solid %.0f of ", k + 1.0) + fmt("%.0f", static_cast<double>(parts.size()));
+        if (opt.log) opt.log(0, which + fmt(" (%.0f triangles)", static_cast<double>(parts[k].F.rows())));
+        so.input_name = opt.input_name + ", " + which;
+        try {
+          mesh_surface(parts[k], so, &runs[k]);
+        } catch (const Error&) {
+          r = std::move(runs[k]);
+          if (opt.log) opt.log(1, opt.input_name + ": " + which + " gave no mesh");
+          throw;
+        }
+      }
+      merge_solid_runs(std::move(runs), r);
+      return r;
+    }
   }
   const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
   MeshSurfaceOptions po = opt;  // the polycube path's options: its deadline fixed now
@@ -294,6 +318,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
         [](const MeshSurfaceRun& run) { return run; }, r);
   }
   check_interrupt("mesh");  // interrupted after the stages' last look: no result
+  r.surface_volume = mesh::enclosed_volume(surface.V, surface.F);
   return r;
 }
 
@@ -458,6 +483,11 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
 }  // namespace
 
 std::string to_text(const MeshSurfaceRun& r) {
+  if (!r.solids.empty()) {
+    std::string s;
+    for (size_t k = 0; k < r.solids.size(); ++k) s += fmt("solid %.0f\n", k + 1.0) + to_text(r.solids[k]);
+    return s;
+  }
   if (r.method == Method::Overlay) return overlay::to_text(r.overlay) + "\nkept          " + choice_text(r) + "\n";
   std::string s;
   s += fmt("segment       %8.2f s\n", r.seconds[0]);
@@ -470,6 +500,12 @@ std::string to_text(const MeshSurfaceRun& r) {
 }
 
 std::string choice_text(const MeshSurfaceRun& r) {
+  if (!r.solids.empty()) {
+    std::string s = fmt("%.0f solids", static_cast<double>(r.solids.size()));
+    for (size_t k = 0; k < r.solids.size(); ++k)
+      s += fmt("; solid %.0f: ", k + 1.0) + method_name(r.solids[k].method) + ", " + choice_text(r.solids[k]);
+    return s;
+  }
   if (r.method == Method::Overlay)
     return fmt("overlay grid, spacing %g", r.overlay.spacing) + (r.frame.turned() ? ", frame: the axes " + frame_text(r.frame) : "");
   std::string s = fmt("level %.0f, lambda %g, ", r.level, r.edge_weight) +

@@ -149,10 +149,23 @@ struct MeshSurfaceRun {
   /// a polycube (mesh_cad_part); with one, another tessellation seldom gives a better one.
   bool polycube_meshed = false;
   std::string stage;          ///< the stage running last ("segment", "autopolycube", "generate", "improve", "done")
+  /// The volume the input surface encloses, its shells facing as the input check turned them (the
+  /// reference a mesh's volume is compared with); set by mesh_surface when it returns.
+  double surface_volume = 0;
+  /// A surface bounding several solids (separate closed shells, each with its cavities): each
+  /// solid's own run, in the order mesh::check_solid_surface numbers them; `mesh` and `generated`
+  /// are theirs put together with region = solid number (1, 2, ...), `labels` theirs (triangles
+  /// of solid 1 first), `quality` and `generated_quality` measured on those; `method` Overlay when
+  /// every solid's mesh is an overlay mesh, else Polycube; level, edge_weight, frame and the
+  /// polycube options are the first solid's; `polycube` is empty. Empty for one solid.
+  std::vector<MeshSurfaceRun> solids;
 };
 
-/// Runs the path options.method names (see Method); for the polycube, segment -> autopolycube -> generate -> improve on `surface` (closed, oriented outward; its
-/// patch ids are CAD faces when there are several, see CvtOptions::respect_faces). When `progress`
+/// Runs the path options.method names (see Method); for the polycube, segment -> autopolycube ->
+/// generate -> improve on `surface` (closed, oriented outward; its patch ids are CAD faces when there
+/// are several, see CvtOptions::respect_faces). With check_input, a surface bounding several solids
+/// has each solid meshed on its own (see MeshSurfaceRun::solids); when one fails, the error is
+/// thrown with `progress` holding that solid's run. When `progress`
 /// is given it holds, also when this throws, what the finished stages produced. Inverted cells that
 /// remain are reported in `quality`, not thrown. Throws what the stages throw; with Method::Polycube
 /// and a deadline (see polycube_seconds) TimeoutError when it passes before a mesh exists;
@@ -160,6 +173,10 @@ struct MeshSurfaceRun {
 /// (common/interrupt.h; both paths under auto stop).
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
+
+/// The solids' runs `runs` (each made by mesh_surface on one solid) as one run (see
+/// MeshSurfaceRun::solids), moved into `r`.
+void merge_solid_runs(std::vector<MeshSurfaceRun> runs, MeshSurfaceRun& r);
 
 /// Copies the stages of the polycube path's run `attempt` (labels, polycube and the options that
 /// rebuild them; see MeshSurfaceRun) into the overlay's run `overlay`.

@@ -141,3 +141,36 @@ TEST(SurfaceCheck, SeparateSolidsAreRefused) {
   const std::string e = error_of(s);
   EXPECT_NE(e.find("2 separate closed shells (solids)"), std::string::npos) << e;
 }
+
+TEST(SurfaceCheck, SeveralSolidsWhenAskedForEachWithItsCavities) {
+  // Solid 1: a box with a cavity; solid 2 inside that cavity (inside-out: turned around); solid 3
+  // beside them. Shells: outer, cavity, inner solid, separate box.
+  SurfaceMesh cavity = box({2, 2, 2}, {10, 10, 10});
+  reverse(cavity);
+  SurfaceMesh inner = box({4, 4, 4}, {8, 8, 8});
+  reverse(inner);
+  SurfaceMesh s = join(join(join(box({0, 0, 0}, {12, 12, 12}), cavity), inner), box({20, 0, 0}, {21, 1, 1}));
+  hexdom::mesh::SurfaceCheckOptions opt;
+  opt.several_solids = true;
+  const auto r = check_solid_surface(s, "parts.stl", opt);
+  EXPECT_EQ(r.shells, 4);
+  EXPECT_EQ(r.solids, 3);
+  EXPECT_EQ(r.cavities, 1);
+  EXPECT_EQ(r.flipped_shells, 1);
+  ASSERT_EQ(r.solid.size(), 48u);
+  for (int f = 0; f < 48; ++f) EXPECT_EQ(r.solid[f], f < 24 ? 0 : f < 36 ? 1 : 2) << f;
+  const auto parts = hexdom::mesh::split_solids(s, r);
+  ASSERT_EQ(parts.size(), 3u);
+  const double volume[3] = {12.0 * 12 * 12 - 8.0 * 8 * 8, 64.0, 1.0};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(parts[k].F.rows(), k == 0 ? 24 : 12);
+    EXPECT_EQ(parts[k].V.rows(), k == 0 ? 16 : 8);
+    EXPECT_EQ(parts[k].patch.rows(), parts[k].F.rows());
+    EXPECT_NEAR(hexdom::mesh::enclosed_volume(parts[k].V, parts[k].F), volume[k], 1e-9) << k;
+    EXPECT_NO_THROW(hexdom::mesh::check_closed_manifold(parts[k]));
+  }
+  // Without the option a solid inside a cavity is refused, as separate solids are.
+  EXPECT_NE(error_of(join(join(box({0, 0, 0}, {12, 12, 12}), cavity), box({4, 4, 4}, {8, 8, 8})))
+                .find("a shell inside a cavity"),
+            std::string::npos);
+}

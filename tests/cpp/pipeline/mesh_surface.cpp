@@ -1,5 +1,6 @@
 #include "hexdom/pipeline/mesh_surface.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -305,4 +306,35 @@ TEST(MeshSurface, APartLyingAtAnAngleIsMeshedInTheFrameItsFacesFit) {
   const auto c = pipeline::mesh_surface(turned, o);
   EXPECT_FALSE(c.frame.turned());
   EXPECT_LT(square_share(c.polycube.polycube), 0.5);
+}
+
+TEST(MeshSurface, SeparateSolidsAreMeshedEachAsARegion) {
+  // An L of three unit cells and, apart from it, a bar of two, scaled by 10.
+  const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {3, 0, 0}, {3, 0, 1}}, 3, 10.0);
+  pipeline::MeshSurfaceOptions o;
+  o.size = 2.5;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const auto r = pipeline::mesh_surface(s, o);
+  ASSERT_EQ(r.solids.size(), 2u);
+  EXPECT_NE(log.find("solid 2 of 2"), std::string::npos) << log;
+  EXPECT_EQ(r.mesh.num_cells(), r.solids[0].mesh.num_cells() + r.solids[1].mesh.num_cells());
+  EXPECT_EQ(r.mesh.num_nodes(), r.solids[0].mesh.num_nodes() + r.solids[1].mesh.num_nodes());
+  EXPECT_EQ(quality::inverted_cells(r.quality), 0);
+  int cells[2] = {0, 0};
+  const auto q = quality::quality_report(r.mesh);
+  EXPECT_NEAR(q.total_volume, 5000.0, 1e-6);
+  for (int c = 0; c < r.mesh.num_cells(); ++c) {
+    const int k = r.mesh.region(c) - 1;
+    ASSERT_TRUE(k == 0 || k == 1) << r.mesh.region(c);
+    for (int j = 0; j < mesh::node_count(r.mesh.type(c)); ++j)  // solid 1 lies in x <= 20, solid 2 in x >= 30
+      EXPECT_TRUE(k == 0 ? r.mesh.V(r.mesh.cells(c, j), 0) <= 20 + 1e-9 : r.mesh.V(r.mesh.cells(c, j), 0) >= 30 - 1e-9);
+    ++cells[k];
+  }
+  EXPECT_EQ(cells[0], r.solids[0].mesh.num_cells());
+  EXPECT_EQ(cells[1], r.solids[1].mesh.num_cells());
+  EXPECT_NEAR(r.solids[0].quality.total_volume, 3000.0, 1e-6);
+  EXPECT_NEAR(r.solids[1].quality.total_volume, 2000.0, 1e-6);
+  EXPECT_EQ(r.labels.F.rows(), s.F.rows());
+  EXPECT_NE(pipeline::choice_text(r).find("2 solids; solid 1: "), std::string::npos) << pipeline::choice_text(r);
 }
