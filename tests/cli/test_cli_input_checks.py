@@ -49,8 +49,11 @@ def _signed_volume(path):
 
 
 def _mesh(hexdom_bin, src, out, *extra):
-    return subprocess.run([str(hexdom_bin), "mesh", str(src), "-o", str(out), "--size", "2.5", *extra],
-                          capture_output=True, text=True)
+    return _mesh_default(hexdom_bin, src, out, "--size", "2.5", *extra)
+
+
+def _mesh_default(hexdom_bin, src, out, *extra):
+    return subprocess.run([str(hexdom_bin), "mesh", str(src), "-o", str(out), *extra], capture_output=True, text=True)
 
 
 def _cells(path):

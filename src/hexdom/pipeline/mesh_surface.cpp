@@ -11,6 +11,7 @@
 #include "hexdom/generation/generate.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
+#include "hexdom/pipeline/stretch.h"
 
 namespace hexdom::pipeline {
 
@@ -346,6 +347,37 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
   }
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
+  const double diag = surface.V.rows() ? (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() : 0.0;
+  const std::optional<Stretch> st =
+      thin_stretch(surface, frame.rotation, o.size > 0 ? o.size : diag / 30.0, opt.across_thin, opt.max_cell_ratio);
+  if (st) {  // thin along a frame axis: meshed stretched along it, in its frame
+    if (opt.log)
+      opt.log(0, fmt("thin part: cells of %.4g x %.4g x %.4g along the frame's axes", st->spacing(0), st->spacing(1),
+                     st->spacing(2)) +
+                     fmt(" (at least %g across, at most %g to 1): meshed stretched by ", opt.across_thin, opt.max_cell_ratio) +
+                     fmt("(%.4g, %.4g, %.4g)", st->factor(0), st->factor(1), st->factor(2)));
+    o.size = st->size;
+    o.align = false;
+    o.segment.frame = o.polycube.frame = I;
+    mesh::SurfaceMesh s = surface;
+    s.V = stretched(surface.V, *st);
+    MeshSurfaceRun first;
+    if (opt.first_run) {  // a run of this path: mapped back when it returned
+      first = *opt.first_run;
+      map_run(first, *st, true);
+      o.first_run = &first;
+    }
+    try {
+      mesh_candidates(s, o, &r);
+    } catch (...) {
+      map_run(r, *st, false);
+      r.frame = frame;
+      throw;
+    }
+    map_run(r, *st, false);
+    r.frame = frame;
+    return r;
+  }
   try {
     mesh_candidates(surface, o, &r);
   } catch (...) {

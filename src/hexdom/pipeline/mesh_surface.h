@@ -104,6 +104,16 @@ struct MeshSurfaceOptions {
   /// is given (not the identity): that frame is used. Every output is in the input's coordinates.
   bool align = true;
   segmentation::CubeFrameOptions frame_options;
+  /// The polycube path on a part thin along an axis of its frame (a plate, a rod: an extent whose
+  /// across_thin cells would be shorter than the element size over max_cell_ratio, needles for cubic
+  /// cells of that size, one block thick): cells of a different length along each frame axis,
+  /// at least across_thin across every extent and none longer than max_cell_ratio times the
+  /// shortest (overlay::grid_spacing, as the overlay's grid), so that the thin axis gets cells across
+  /// without needles along the others. Made by meshing the part stretched along its thin axes
+  /// (candidates and improvement there) and mapping the results back; `size` then bounds the longest
+  /// side. across_thin 0: cubic cells (the part's thin axis gets one block).
+  double across_thin = 2;
+  double max_cell_ratio = 5;
   /// Check the input first (mesh::check_solid_surface: closed, consistently oriented, no
   /// crossing triangles, shells facing out of the solid; a shell facing the wrong way is turned
   /// around with a warning, level 1); `input_name` names the input in its messages.

@@ -338,3 +338,34 @@ TEST(MeshSurface, SeparateSolidsAreMeshedEachAsARegion) {
   EXPECT_EQ(r.labels.F.rows(), s.F.rows());
   EXPECT_NE(pipeline::choice_text(r).find("2 solids; solid 1: "), std::string::npos) << pipeline::choice_text(r);
 }
+
+TEST(MeshSurface, APlateAndARodGetCellsAcrossWithoutNeedles) {
+  // 100 x 100 x 0.5 and 1000 x 1 x 1 boxes: the default size (diagonal / 30) is 4.7 and 33, many times
+  // their thickness. Cubic cells would give two layers of needles (edge ratio 18 and 66).
+  for (const Eigen::Vector3d dims : {Eigen::Vector3d(100, 100, 0.5), Eigen::Vector3d(1000, 1, 1)}) {
+    auto s = test::cell_surface({{0, 0, 0}}, 1);  // two triangles per face, as STL exports write a box
+    s.V = s.V * dims.asDiagonal();
+    pipeline::MeshSurfaceOptions o;
+    o.method = pipeline::Method::Polycube;
+    std::string log;
+    o.log = [&](int, const std::string& m) { log += m + "\n"; };
+    const auto r = pipeline::mesh_surface(s, o);
+    EXPECT_NE(log.find("thin part: cells of"), std::string::npos) << log;
+    EXPECT_EQ(quality::inverted_cells(r.quality), 0);
+    EXPECT_GT(r.quality.hex.sj_min, 0.99) << log;
+    EXPECT_NEAR(r.mesh.num_cells(), dims(2) < 1 ? 80 * 80 * 2 : 400 * 2 * 2, 0);
+    EXPECT_LE(quality::max_edge_ratio(r.quality), 5.0 + 1e-6) << dims.transpose();
+    EXPECT_NEAR(r.quality.total_volume, dims.prod(), 1e-6 * dims.prod());
+    // At least two cells across each thin axis: three distinct node coordinates along it.
+    for (int a = 0; a < 3; ++a) {
+      if (dims(a) > 1) continue;
+      std::vector<double> c(r.mesh.V.col(a).data(), r.mesh.V.col(a).data() + r.mesh.V.rows());
+      std::sort(c.begin(), c.end());
+      c.erase(std::unique(c.begin(), c.end(), [](double x, double y) { return std::abs(x - y) < 1e-9; }), c.end());
+      EXPECT_GE(c.size(), 3u) << "axis " << a;
+    }
+    // The labels and the polycube's patches are in the model's coordinates, as for any part.
+    EXPECT_NEAR(r.labels.V.col(0).maxCoeff(), dims(0), 1e-9);
+    EXPECT_NEAR(r.polycube.patches.V.col(2).maxCoeff(), dims(2), 1e-9);
+  }
+}
