@@ -160,34 +160,6 @@ class CrossingSearch {
   int shallow_count_ = 0;
 };
 
-// The shell (connected component through edges) of each triangle of a closed manifold surface;
-// returns their number.
-int label_shells(const Eigen::MatrixXi& F, std::vector<int>& shell) {
-  const int n = static_cast<int>(F.rows());
-  const Eigen::MatrixXi TT = triangle_adjacency(F);
-  shell.assign(n, -1);
-  int count = 0;
-  std::vector<int> stack;
-  for (int f0 = 0; f0 < n; ++f0) {
-    if (shell[f0] >= 0) continue;
-    shell[f0] = count;
-    stack.assign(1, f0);
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k) {
-        const int g = TT(f, k);
-        if (g >= 0 && shell[g] < 0) {
-          shell[g] = count;
-          stack.push_back(g);
-        }
-      }
-    }
-    ++count;
-  }
-  return count;
-}
-
 // Whether point p is inside the closed shell made of `tris`: crossings of a ray in a direction
 // no axis-aligned part lines up with, counted by parity.
 bool inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const Vec& p) {
@@ -277,7 +249,7 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
                               c->point.x(), c->point.y(), c->point.z()));
   }
   std::vector<int> shell;
-  r.shells = label_shells(s.F, shell);
+  r.shells = triangle_components(triangle_adjacency(s.F), [](int, int) { return true; }, shell);
   std::vector<std::vector<int>> tris(r.shells);
   std::vector<double> volume(r.shells, 0.0);
   for (int f = 0; f < s.F.rows(); ++f) {

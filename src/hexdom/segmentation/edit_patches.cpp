@@ -27,28 +27,15 @@ void require_id(const Eigen::VectorXi& patch, int id) {
 /// Connected components of triangles with equal id, not crossing the edges in `cut`.
 Eigen::VectorXi components(const Eigen::MatrixXi& F, const Eigen::MatrixXi& TT, const Eigen::VectorXi& patch,
                            const std::unordered_set<long long>& cut) {
-  const int nf = static_cast<int>(F.rows());
-  Eigen::VectorXi comp = Eigen::VectorXi::Constant(nf, -1);
-  int n = 0;
-  std::vector<int> stack;
-  for (int f0 = 0; f0 < nf; ++f0) {
-    if (comp(f0) >= 0) continue;
-    comp(f0) = n;
-    stack.assign(1, f0);
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k) {
-        const int g = TT(f, k);
-        if (g < 0 || comp(g) >= 0 || patch(g) != patch(f)) continue;
-        if (!cut.empty() && cut.count(mesh::undirected_edge(F(f, k), F(f, (k + 1) % 3)))) continue;
-        comp(g) = n;
-        stack.push_back(g);
-      }
-    }
-    ++n;
-  }
-  return comp;
+  std::vector<int> comp;
+  mesh::triangle_components(
+      TT,
+      [&](int f, int k) {
+        return patch(TT(f, k)) == patch(f) &&
+               (cut.empty() || !cut.count(mesh::undirected_edge(F(f, k), F(f, (k + 1) % 3))));
+      },
+      comp);
+  return Eigen::Map<const Eigen::VectorXi>(comp.data(), static_cast<Eigen::Index>(comp.size()));
 }
 
 }  // namespace
