@@ -554,11 +554,30 @@ def _method_args(method, polycube_seconds=None):
     return args
 
 
+SIZE_BOUNDS = ("max_size", "min_size", "cells_across")
+
+
+def _size_args(**bounds):
+    """The max_size=, min_size= and cells_across= keywords for _hexdom that differ from the core's
+    defaults (MESH_OPTIONS); a negative one raises InputError."""
+    args = {}
+    for name in SIZE_BOUNDS:
+        value = bounds.get(name)
+        if value is None:
+            continue
+        if not float(value) >= 0:
+            raise InputError("{} must be 0 or more, not {}".format(name, value))
+        if float(value) != MESH_OPTIONS.get(name, 0.0):
+            args[name] = float(value)
+    return args
+
+
 def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"],
                  edge_weight=MESH_OPTIONS["edge_weight"], max_relabels=MESH_OPTIONS["max_relabels"],
                  relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
                  allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
-                 method=MESH_OPTIONS["method"], polycube_seconds=None):
+                 method=MESH_OPTIONS["method"], polycube_seconds=None, max_size=None, min_size=None,
+                 cells_across=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -568,7 +587,9 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     and the overlay too when the polycube fails or misses a target, the better kept: MeshRun.method,
     .polycube_note). polycube_seconds: the polycube path's time budget (None: the core's default,
     5 s under "auto", no limit under "polycube"; 0: no limit; see _hexdom.mesh_surface); with
-    "polycube", _hexdom.TimeoutError (an Error) when it passes before there is a mesh. Raises
+    "polycube", _hexdom.TimeoutError (an Error) when it passes before there is a mesh.
+    max_size, min_size: bounds on the element size (None or 0: none; `hexdom mesh --max-size /
+    --min-size`); cells_across: cells across a thin part (None: the core's 2). Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
     them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
     stages made, or None) and ``stage`` (the stage that failed)."""
@@ -577,7 +598,9 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                                  float(edge_weight), int(max_relabels), int(relax_sweeps),
                                  bool(improve), bool(align),
                                  None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
-                                 **_method_args(method, polycube_seconds))
+                                 **_method_args(method, polycube_seconds),
+                                 **_size_args(max_size=max_size, min_size=min_size,
+                                              cells_across=cells_across))
     except Error as e:
         _attach_partial(e, _mesh_run)
         raise
@@ -593,7 +616,8 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     """The CAD part's mesh as `hexdom mesh` makes it: a .step/.stp, .iges/.igs or .brep/.brp path or
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
-    max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds go to it; the time
+    max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
+    min_size, cells_across go to it; the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
     or cells stay inverted, the B-rep is tessellated again with slightly smaller or larger triangles
@@ -605,12 +629,13 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
-                             "method", "polycube_seconds"}
+                             "method", "polycube_seconds"} - set(SIZE_BOUNDS)
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
     frame = kwargs.pop("frame", None)
     kwargs.update(_method_args(kwargs.pop("method", "auto"), kwargs.pop("polycube_seconds", None)))
+    kwargs.update(_size_args(**{name: kwargs.pop(name, None) for name in SIZE_BOUNDS}))
     try:
         r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
                              level=int(level),

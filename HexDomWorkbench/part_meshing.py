@@ -44,13 +44,16 @@ class MeshPartError(RecomputeError):
 
 
 def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improve=True,
-                   method="auto", polycube_seconds=None):
+                   method="auto", polycube_seconds=None, max_size=0.0, min_size=0.0,
+                   cells_across=None):
     """Adds the four objects of mesh_part to ``doc`` without recomputing; returns them as a dict
     (surface, segmentation, polycube, mesh; no polycube with method "overlay"). The Mesh runs the
     pipeline (Pipeline) with Size ``size`` (0: `hexdom mesh`'s default), Level ``level``, Improve
-    ``improve``, Method ``method`` and PolycubeSeconds ``polycube_seconds`` (None: the default);
-    the three others wait to be filled by it (FromPipeline). Raises ValueError for a ``part``
-    without a solid, a negative level or size or budget, or an unknown method."""
+    ``improve``, Method ``method``, PolycubeSeconds ``polycube_seconds`` (None: the default),
+    MaxSize ``max_size`` and MinSize ``min_size`` (0: no bound) and CellsAcross ``cells_across``
+    (None: the default); the three others wait to be filled by it (FromPipeline). Raises
+    ValueError for a ``part`` without a solid, a negative level, size, bound or budget, a min size
+    above the max size, or an unknown method."""
     if method not in hex_mesh.METHODS:
         raise ValueError("method must be one of {}".format(", ".join(hex_mesh.METHODS)))
     shape = getattr(part, "Shape", None)
@@ -62,6 +65,11 @@ def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improv
         raise ValueError("size must be 0 (the default) or more")
     if polycube_seconds is not None and not polycube_seconds >= 0:
         raise ValueError("polycube_seconds must be 0 (no limit) or more")
+    for name, value in (("max_size", max_size), ("min_size", min_size), ("cells_across", cells_across)):
+        if value is not None and not value >= 0:
+            raise ValueError("{} must be 0 or more".format(name))
+    if max_size and min_size and min_size > max_size:
+        raise ValueError("min_size {} is larger than max_size {}".format(min_size, max_size))
     label = part.Label
     objs = {}
     objs["surface"] = make.make_surface(doc, source=part, size=0.0, deflection=0.0, angle=30.0)
@@ -76,6 +84,10 @@ def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improv
     mesh.Size = float(size or 0.0)
     if polycube_seconds is not None:
         mesh.PolycubeSeconds = float(polycube_seconds)
+    mesh.MaxSize = float(max_size or 0.0)
+    mesh.MinSize = float(min_size or 0.0)
+    if cells_across is not None:
+        mesh.CellsAcross = int(cells_across)
     for key, suffix in (("surface", "_surface"), ("segmentation", "_segmentation"),
                         ("polycube", "_polycube"), ("mesh", "_mesh")):
         if key in objs:
@@ -130,10 +142,12 @@ def check_mesh_part(objs, allow_inverted=False):
 
 
 def mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improve=True, recompute=True,
-              allow_inverted=False, method="auto", polycube_seconds=None):
+              allow_inverted=False, method="auto", polycube_seconds=None, max_size=0.0,
+              min_size=0.0, cells_across=None):
     """Meshes the Part solid ``part`` with no manual step, as `hexdom mesh` does (element size
     ``size``, 0: its default; ``level``; ``improve``; ``method`` "auto", "polycube" or "overlay";
-    ``polycube_seconds``, None: the default budget),
+    ``polycube_seconds``, None: the default budget; ``max_size``, ``min_size``: bounds on the
+    size, 0: none; ``cells_across`` a thin part, None: the default),
     keeping every stage as an editable document object: HexDom Surface, Segmentation, Polycube
     and Mesh (see the module doc: the Mesh runs the pipeline once and fills the others).
     Returns a dict with keys surface, segmentation, polycube, mesh.
@@ -142,7 +156,8 @@ def mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improve=Tru
     message, the objects kept in the document (``error.objects``); so do inverted cells left in
     the mesh, unless ``allow_inverted``."""
     objs = make_mesh_part(doc, part, size=size, level=level, improve=improve, method=method,
-                          polycube_seconds=polycube_seconds)
+                          polycube_seconds=polycube_seconds, max_size=max_size, min_size=min_size,
+                          cells_across=cells_across)
     if recompute:
         doc.recompute()
         check_mesh_part(objs, allow_inverted)

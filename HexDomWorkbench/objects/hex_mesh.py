@@ -131,6 +131,20 @@ class HexMesh(BaseHexDomObject):
                             "Pipeline: the target element size (`hexdom mesh --size`); 0: the "
                             "bounding-box diagonal / 30 (of the box square to the axes the faces "
                             "fit)")
+        if not hasattr(obj, "MaxSize"):
+            obj.addProperty("App::PropertyLength", "MaxSize", "HexDom",
+                            "Pipeline and overlay: the largest element size (`hexdom mesh "
+                            "--max-size`); the Size, given or default, is at most this; 0: no bound")
+        if not hasattr(obj, "MinSize"):
+            obj.addProperty("App::PropertyLength", "MinSize", "HexDom",
+                            "Pipeline and overlay: the smallest element size (`hexdom mesh "
+                            "--min-size`): the Size is at least this, and cells made thinner for a "
+                            "thin part are not shorter (it then gets fewer cells across); 0: no bound")
+        if not hasattr(obj, "CellsAcross"):
+            obj.addProperty("App::PropertyInteger", "CellsAcross", "HexDom",
+                            "Pipeline and overlay: cells across a part thin along an axis, a plate "
+                            "or a rod (`hexdom mesh --cells-across`); 0: cubic cells of the Size")
+            obj.CellsAcross = int(core.MESH_OPTIONS.get("cells_across", 2))
         if not hasattr(obj, "PolycubeSeconds"):
             obj.addProperty("App::PropertyFloat", "PolycubeSeconds", "HexDom",
                             "Pipeline, Method auto: the polycube path's time budget in seconds "
@@ -235,7 +249,8 @@ class HexMesh(BaseHexDomObject):
         snap = snap_source(obj)
         with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap)) as bar:
             run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
-                          align=align, improve=bool(obj.Improve), allow_inverted=True)
+                          align=align, improve=bool(obj.Improve), allow_inverted=True,
+                          **pipeline.size_bounds(obj))
             mesh = run.mesh
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:

@@ -72,12 +72,25 @@ def leave_pipeline(objs):
         "Polycube (set Pipeline to run `hexdom mesh` again)\n".format(mesh.Label))
 
 
+def size_bounds(mesh):
+    """The HexDom Mesh ``mesh``'s MaxSize, MinSize and CellsAcross as the core's keywords
+    max_size, min_size and cells_across (those a document older than them lacks left out)."""
+    bounds = {}
+    for prop, key in (("MaxSize", "max_size"), ("MinSize", "min_size")):
+        if hasattr(mesh, prop):
+            bounds[key] = float(getattr(mesh, prop).Value)
+    if hasattr(mesh, "CellsAcross"):
+        bounds["cells_across"] = float(mesh.CellsAcross)
+    return bounds
+
+
 def pipeline_options(mesh):
     """The options of `hexdom mesh` the HexDom Mesh ``mesh`` runs the pipeline with."""
     method = getattr(mesh, "Method", "auto")
     options = dict(size=float(mesh.Size.Value), level=int(mesh.Level), improve=bool(mesh.Improve),
                    method=method,
-                   snap=bool(getattr(mesh, "SnapToCAD", True)) and core_has("snap_to_brep"))
+                   snap=bool(getattr(mesh, "SnapToCAD", True)) and core_has("snap_to_brep"),
+                   **size_bounds(mesh))
     if method == "auto" and hasattr(mesh, "PolycubeSeconds"):  # (polycube: no limit, as the CLI)
         options["polycube_seconds"] = float(mesh.PolycubeSeconds)
     return options
@@ -108,6 +121,10 @@ def run_pipeline(objs, store_mesh=None, run=None):
                               snap=snap, allow_inverted=True, **options)
             else:  # no OpenCASCADE in the core: FreeCAD's tessellation, not snapped
                 size = options["size"] or part_size(shape)
+                if options.get("max_size"):  # the triangles within the bounds, as the core's
+                    size = min(size, options["max_size"])
+                if options.get("min_size"):
+                    size = max(size, options["min_size"])
                 surface = tessellate(shape, size=size, deflection=size / 50.0, angle=30.0)
                 result = call("hexdom mesh", core.mesh_surface, surface, allow_inverted=True,
                               **dict(options, size=size))

@@ -162,6 +162,26 @@ const char* const kMeshHelp =
       "fit them) is segmented and given its polycube in that turned frame; the mesh is in the model's\n"
       "coordinates (--no-align: the model's axes).";
 
+// `hexdom mesh`'s options of the element size: --size, its bounds, cells across, level, octree.
+void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt) {
+  cmd.add_option("--size", opt.size, "target element size H; 0: the bounding-box diagonal / 30")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_option("--max-size", opt.max_size, "largest element size: the size (given or default) is at most this; 0: no bound")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_option("--min-size", opt.min_size,
+                 "smallest element size: the size is at least this, and cells made thinner for a thin part are not "
+                 "shorter (it then gets fewer cells across); 0: no bound")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_option("--cells-across", opt.across_thin,
+                 "cells across a part thin along an axis (a plate, a rod), none longer than 5 times the shortest side; "
+                 "0: cubic cells of the size")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_option("-s,--level", opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
+      ->capture_default_str()->check(CLI::Range(0, 6));
+  cmd.add_option("--octree-levels", opt.overlay.octree_levels, "overlay grid: cells split in 27, up to this many "
+                 "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
+}
+
 void add_mesh(CLI::App& app) {
   auto* cmd = app.add_subcommand("mesh", kMeshHelp);
   struct Args {
@@ -187,12 +207,7 @@ void add_mesh(CLI::App& app) {
                   "the first tessellation). polycube: no limit unless given, then counted from the start; when it passes "
                   "before there is a mesh, an error (exit 5) and no output file")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--size", a->opt.size, "target element size H; 0: the bounding-box diagonal / 30")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("-s,--level", a->opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
-      ->capture_default_str()->check(CLI::Range(0, 6));
-  cmd->add_option("--octree-levels", a->opt.overlay.octree_levels, "overlay grid: cells split in 27, up to this many "
-                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
+  add_size_options(*cmd, a->opt);
   cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
   cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
   cmd->add_option("--sliver-ratio", a->opt.polycube.sliver_ratio,
@@ -219,6 +234,7 @@ void add_mesh(CLI::App& app) {
     a->opt.align = !a->no_align;
     a->opt.method = pipeline::method_from_name(a->method);
     a->opt.input_name = a->in;  // the input checks' messages name the file
+    pipeline::bounded_size(1, a->opt);  // --min-size above --max-size: an error before any work
     // --method polycube honours the budget only when it is given; it starts now, before reading.
     if (a->opt.method == pipeline::Method::Polycube && cmd->count("--polycube-seconds") > 0)
       a->opt.deadline = Deadline::in(a->opt.polycube_seconds);

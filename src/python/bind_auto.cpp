@@ -72,6 +72,11 @@ const char* const kPolycubeSecondsDoc =
     "runs; polycube_note then names the budget. polycube: given, it raises TimeoutError (an Error) when it\n"
     "passes before there is a mesh.";
 
+const char* const kSizeBoundsDoc =
+    "\nmax_size, min_size: bounds on the element size (0: none), as `hexdom mesh --max-size / --min-size`: the\n"
+    "size (given or default) is brought within them, and cells made thinner for a thin part are not made\n"
+    "shorter than min_size. cells_across: cells across a part thin along an axis (0: cubic cells).";
+
 py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   py::dict d;
   d["mesh"] = mesh_tuple(r.mesh);
@@ -100,8 +105,15 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame, const std::string& method,
-                                                      std::optional<double> polycube_seconds) {
+                                                      std::optional<double> polycube_seconds, double max_size,
+                                                      double min_size, double cells_across) {
   pipeline::MeshSurfaceOptions opt;
+  if (!(max_size >= 0) || !(min_size >= 0) || !(cells_across >= 0))
+    throw InputError("max_size, min_size and cells_across must not be negative (0: no bound, 0 cells: cubic cells)");
+  opt.max_size = max_size;
+  opt.min_size = min_size;
+  opt.across_thin = cells_across;
+  pipeline::bounded_size(1, opt);  // min_size > max_size: InputError before any work
   opt.method = pipeline::method_from_name(method);
   if (polycube_seconds) {
     if (!(*polycube_seconds >= 0)) throw InputError("polycube_seconds must be 0 (no limit) or positive");
@@ -179,10 +191,11 @@ void bind_auto(py::module_& m) {
   m.def("mesh_surface",
         [module](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
-           std::optional<double> polycube_seconds) {
+           std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
-          const pipeline::MeshSurfaceOptions opt = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps,
-                                                                        improve, align, frame, method, polycube_seconds);
+          const pipeline::MeshSurfaceOptions opt =
+              mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
+                                   polycube_seconds, max_size, min_size, cells_across);
           pipeline::MeshSurfaceRun r;
           try {
             py::gil_scoped_release nogil;
@@ -196,7 +209,9 @@ void bind_auto(py::module_& m) {
         py::arg("edge_weight") = defaults.segment.edge_weight, py::arg("max_relabels") = defaults.polycube.max_relabels,
         py::arg("relax_sweeps") = defaults.relax_sweeps, py::arg("improve") = defaults.improve,
         py::arg("align") = defaults.align, py::arg("frame") = py::none(), py::arg("method") = method_name(defaults.method),
-        py::arg("polycube_seconds") = py::none(), (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc).c_str());
+        py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.max_size,
+        py::arg("min_size") = defaults.min_size, py::arg("cells_across") = defaults.across_thin,
+        (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc).c_str());
 }
 
 }  // namespace hexdom::python

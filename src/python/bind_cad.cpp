@@ -147,24 +147,28 @@ void bind_mesh_cad(py::module_& m) {
           d["max_relabels"] = o.polycube.max_relabels;
           d["relax_sweeps"] = o.relax_sweeps;
           d["threads"] = o.threads;
+          d["max_size"] = o.max_size;
+          d["min_size"] = o.min_size;
+          d["cells_across"] = o.across_thin;
           d["target_sj"] = o.target_sj;
           d["target_volume"] = o.target_volume;
           d["target_edge_ratio"] = o.target_edge_ratio;
           return d;
         },
         "The defaults of `hexdom mesh`'s options (pipeline::MeshCadOptions, the CLI's defaults), by the keyword\n"
-        "names of mesh_cad and mesh_surface: size (0: the bounding-box diagonal / 30), level, method, improve,\n"
+        "names of mesh_cad and mesh_surface: size (0: the bounding-box diagonal / 30), max_size, min_size (0: no\n"
+        "bound), cells_across, level, method, improve,\n"
         "align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps, threads (0: one per core), and\n"
         "the targets the candidates are measured against: target_sj, target_volume, target_edge_ratio.");
   m.def("mesh_cad",
         [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
-           std::optional<double> polycube_seconds) {
+           std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across) {
           pipeline::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                          polycube_seconds);
+                                          polycube_seconds, max_size, min_size, cells_across);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           try {
@@ -182,8 +186,9 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("max_relabels") = defaults.mesh.polycube.max_relabels, py::arg("relax_sweeps") = defaults.mesh.relax_sweeps,
         py::arg("improve") = defaults.mesh.improve, py::arg("align") = defaults.mesh.align, py::arg("frame") = py::none(),
         py::arg("method") = pipeline::method_name(defaults.mesh.method),
-        py::arg("polycube_seconds") = py::none(),
-        mesh_cad_doc().c_str());
+        py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.mesh.max_size,
+        py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
+        (mesh_cad_doc() + kSizeBoundsDoc).c_str());
 }
 
 void bind_cad(py::module_& m) {

@@ -19,12 +19,14 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame,
                                                   const std::string& method = "auto",
-                                                  std::optional<double> polycube_seconds = std::nullopt);
+                                                  std::optional<double> polycube_seconds = std::nullopt,
+                                                  double max_size = 0, double min_size = 0, double cells_across = 2);
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);
 /// The text of the polycube_seconds= keyword's documentation, shared by mesh_surface and mesh_cad.
 extern const char* const kPolycubeSecondsDoc;
+extern const char* const kSizeBoundsDoc;
 void bind_segmentation(pybind11::module_& m);
 void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);

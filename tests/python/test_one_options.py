@@ -9,7 +9,10 @@ Python's inspect reads off the module's functions."""
 import inspect
 import re
 import subprocess
+import sys
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 import HexDomWorkbench.core as wb_core
@@ -17,7 +20,8 @@ import HexDomWorkbench.core as wb_core
 # (mesh_options key, `hexdom mesh` option whose default --help prints)
 CLI_OPTIONS = [("level", "--level"), ("polycube_seconds", "--polycube-seconds"),
                ("edge_weight", "--lambda"), ("max_relabels", "--max-relabels"), ("size", "--size"),
-               ("method", "--method")]
+               ("method", "--method"), ("max_size", "--max-size"), ("min_size", "--min-size"),
+               ("cells_across", "--cells-across")]
 
 
 def _help_defaults(hexdom_bin):
@@ -92,3 +96,25 @@ def _tetrahedron_brep():
     faces = [Part.Face(Part.makePolygon([pts[a], pts[b], pts[c], pts[a]]))
              for a, b, c in ((0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3))]
     return Part.makeSolid(Part.makeShell(faces)).exportBrepToString()
+
+
+def test_the_size_bounds_give_the_program_s_mesh(core, hexdom_bin, tmp_path):
+    """max_size, min_size and cells_across through core.mesh_surface (_hexdom) and through
+    `hexdom mesh --max-size --min-size --cells-across` on the same STL box: the same cells, the
+    same nodes; a min size above the max size is refused by both."""
+    sys_path = str(Path(__file__).resolve().parents[1] / "cli")
+    if sys_path not in sys.path:
+        sys.path.insert(0, sys_path)
+    from test_cli_input_checks import _box, _write_stl
+    src = _write_stl(tmp_path / "bar.stl", _box((0, 0, 0), (40.0, 3.0, 1.0)))
+    out = tmp_path / "bar.vtk"
+    subprocess.run([str(hexdom_bin), "mesh", str(src), "-o", str(out), "--max-size", "0.8",
+                    "--min-size", "0.3", "--cells-across", "3"], check=True, capture_output=True)
+    cli = core.read_mesh(str(out))
+    run = core.mesh_surface(core.read_surface(str(src)), max_size=0.8, min_size=0.3, cells_across=3)
+    assert run.mesh.counts == cli.counts
+    assert np.abs(run.mesh.V - cli.V).max() < 1e-9
+    # Default size 1.34 (diagonal / 30): cells of 0.8 along the bar, 50 of them.
+    assert len(np.unique(np.round(cli.V[:, 0], 9))) == 51
+    with pytest.raises(core.InputError, match="min size 2 is larger than the max size 1"):
+        core.mesh_surface(core.read_surface(str(src)), max_size=1.0, min_size=2.0)

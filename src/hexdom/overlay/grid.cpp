@@ -41,9 +41,10 @@ Grid cell_centres(const Grid& g) {
   return c;
 }
 
-Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double across, double ratio) {
+Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double across, double ratio,
+                             double min_size) {
   Eigen::Vector3d h;
-  for (int a = 0; a < 3; ++a) h(a) = std::min(size, extent(a) / across);
+  for (int a = 0; a < 3; ++a) h(a) = std::max(std::min(size, extent(a) / across), std::min(min_size, size));
   const double shortest = h.minCoeff();
   for (int a = 0; a < 3; ++a) h(a) = std::min(h(a), ratio * shortest);
   return h;

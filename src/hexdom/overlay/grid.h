@@ -39,10 +39,11 @@ Grid grid_around(const Eigen::MatrixXd& V, const Eigen::Vector3d& h);
 Grid cell_centres(const Grid& g);
 
 /// Spacing per axis for element size `size` over a bounding box of `extent`: `size` along every
-/// axis, less along an axis the box is thin in, so that it spans at least `across` cells; no cell
-/// longer than `ratio` times its shortest side (a plate gets flat cells, a rod long ones, neither
-/// needles).
-Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double across, double ratio);
+/// axis, less along an axis the box is thin in, so that it spans at least `across` cells, but not
+/// less than `min_size` (when > 0; a thinner part then spans fewer cells); no cell longer than
+/// `ratio` times its shortest side (a plate gets flat cells, a rod long ones, neither needles).
+Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double across, double ratio,
+                             double min_size = 0);
 
 /// Per grid node: inside the closed surface or not, and, for nodes within `band` of the surface
 /// (a bound on it, not the exact set), the distance to it; other nodes get +infinity.

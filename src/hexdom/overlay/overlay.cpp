@@ -58,6 +58,10 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     };
     tree = octree_mesh(grid, opt.octree_levels, [&](const OctreeCell& c) {
       const Eigen::Vector3d size = octree_cell_size(grid, c), centre = octree_cell_origin(grid, c) + size / 2;
+      if (opt.min_size > 0) {  // the children's real sides (the grid may be laid over a stretched copy)
+        const Eigen::Vector3d real = stretch ? Eigen::Vector3d(size.cwiseQuotient(stretch->factor)) : size;
+        if (real.minCoeff() / 3 < opt.min_size * (1 - 1e-9)) return false;
+      }
       int t = -1;
       const Eigen::Vector3d q = proj.project(centre, &t);
       if ((q - centre).norm() > size.norm() / 2) return false;
@@ -184,7 +188,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   const double size = opt.size > 0 ? opt.size : segmentation::frame_diagonal(surface, frame.rotation) / 30.0;
   if (!(size > 0) || !std::isfinite(size)) throw GeometryError("the surface has no extent");
   const Eigen::Vector3d extent = (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).transpose();
-  const Eigen::Vector3d h0 = grid_spacing(extent, size, opt.across, opt.max_cell_ratio);
+  const Eigen::Vector3d h0 = grid_spacing(extent, size, opt.across, opt.max_cell_ratio, opt.min_size);
   const double reference = mesh::enclosed_volume(s.V, s.F);
   auto volume_off = [&](const OverlayResult& r) {
     return reference != 0 && std::abs(r.quality.total_volume - reference) > opt.target_volume * std::abs(reference);
@@ -240,6 +244,11 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   int finer_for_quality = 0;
   for (int k = 0; k <= opt.refinements; ++k) {
     const Eigen::Vector3d h = h0 / std::pow(2.0, k);
+    if (k > 0 && h.minCoeff() < opt.min_size * (1 - 1e-9)) {
+      why += fmt("; halving the spacing would give cells shorter than the min size %g", opt.min_size);
+      if (have) say(fmt("overlay: a finer grid would have cells shorter than the min size %g; keeping this one", opt.min_size));
+      break;
+    }
     opt.deadline.check("overlay");
     OverlayResult r;
     try {

@@ -32,6 +32,9 @@ struct OverlayOptions {
   /// shortest side (overlay::grid_spacing).
   double across = 3;
   double max_cell_ratio = 5;
+  /// No cell shorter than this (0: no bound): the thin-axis rule above, the halvings and the octree
+  /// stop at it, so a part thinner than `across` times min_size gets fewer cells across.
+  double min_size = 0;
   /// Which cells make the core. By centres (core_cells_by_centres): the cells whose centre is at
   /// least centre_margin spacings inside, so that a wall about one cell thick keeps its cells; the
   /// core's boundary nodes are then moved buffer_depth spacings inside the surface

@@ -95,7 +95,19 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       return defeated(e);
     }
   };
-  r.surface = cad::tessellate(shape, opt.tessellation, &r.stats);
+  // With bounds on the element size, the triangles take the bounded size too (a default size
+  // beyond a bound: tessellated again with the bound), and the paths mesh with it.
+  const bool bounded = opt.mesh.max_size != 0 || opt.mesh.min_size != 0;
+  cad::TessellateOptions to = opt.tessellation;
+  if (bounded && to.size > 0) to.size = bounded_size(to.size, opt.mesh);
+  r.surface = cad::tessellate(shape, to, &r.stats);
+  if (bounded && bounded_size(r.stats.size, opt.mesh) != r.stats.size) {
+    to.size = bounded_size(r.stats.size, opt.mesh);
+    say(fmt("tessellate: size %g, within the min and max size: %g", r.stats.size, to.size));
+    const double seconds = r.stats.seconds;
+    r.surface = cad::tessellate(shape, to, &r.stats);
+    r.stats.seconds += seconds;
+  }
   r.tessellations = 1;
   say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
   reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
@@ -103,6 +115,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   // tessellation serves both paths (on a part with many small faces it alone can take longer than
   // the budget), the later ones are made for the polycube and count.
   MeshSurfaceOptions first = opt.mesh;
+  if (bounded && first.size <= 0) first.size = bounded_size(r.stats.size, opt.mesh);  // as the triangles'
   first.deadline = polycube_deadline(opt.mesh);
   first.check_input = false;  // done once per tessellation by `attempt`
   std::exception_ptr first_error;
@@ -137,7 +150,6 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
     }
     say(why + ": tessellating again with triangles of " + fmt("%.2f", f) + " x the size (" + fmt("%g", f * first_size) +
         "), the polycube grid kept at " + fmt("%g", mo.size));
-    cad::TessellateOptions to = opt.tessellation;
     to.size = f * first_size;
     MeshCadRun again;
     again.tessellation_factor = f;

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
@@ -207,6 +209,8 @@ void run_overlay(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt
   r.stage = "overlay";
   overlay::OverlayOptions oo = opt.overlay;
   oo.size = opt.size;
+  oo.min_size = opt.min_size;
+  if (opt.across_thin > 0) oo.across = opt.across_thin + 1;
   oo.align = opt.align;
   oo.max_edge_ratio = opt.target_edge_ratio;
   oo.log = opt.verbose ? opt.log : LogCallback();
@@ -250,6 +254,29 @@ std::vector<char> snap_face_only(const MeshSurfaceRun& run) {
   out.assign(kind.size(), 0);
   for (size_t v = 0; v < kind.size(); ++v) out[v] = kind[v] == optimize::Surface;
   return out;
+}
+
+double bounded_size(double size, const MeshSurfaceOptions& opt) {
+  if (opt.min_size < 0 || opt.max_size < 0)
+    throw InputError(fmt("the min size (%g) and the max size (%g) must not be negative", opt.min_size, opt.max_size));
+  if (opt.min_size > 0 && opt.max_size > 0 && opt.min_size > opt.max_size)
+    throw InputError(fmt("the min size %g is larger than the max size %g", opt.min_size, opt.max_size));
+  if (opt.max_size > 0) size = std::min(size, opt.max_size);
+  if (opt.min_size > 0) size = std::max(size, opt.min_size);
+  return size;
+}
+
+double element_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt) {
+  double size = opt.size;
+  if (size <= 0) {
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    if (opt.align && surface.F.rows() > 0) {
+      const segmentation::CubeFrame frame = segmentation::cube_frame(surface, opt.frame_options);
+      if (frame.turned()) rotation = frame.rotation;
+    }
+    size = segmentation::frame_diagonal(surface, rotation) / 30.0;
+  }
+  return bounded_size(size, opt);
 }
 
 Deadline polycube_deadline(const MeshSurfaceOptions& opt) {
@@ -301,16 +328,21 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
     }
   }
   const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
-  MeshSurfaceOptions po = opt;  // the polycube path's options: its deadline fixed now
-  po.deadline = polycube_deadline(opt);
+  MeshSurfaceOptions so = opt;  // the element size fixed within its bounds
+  if (opt.max_size != 0 || opt.min_size != 0) {
+    so.size = element_size(surface, opt);
+    if (opt.log) opt.log(0, fmt("size: %g (min size %g, max size %g; 0: none)", so.size, opt.min_size, opt.max_size));
+  }
+  MeshSurfaceOptions po = so;  // the polycube path's options: its deadline fixed now
+  po.deadline = polycube_deadline(so);
   if (opt.method == Method::Overlay) {
-    run_overlay(surface, opt, r);
+    run_overlay(surface, so, r);
   } else if (opt.method == Method::Polycube) {
     mesh_polycube(surface, po, &r);
   } else {
     const double reference = mesh::enclosed_volume(surface.V, surface.F);
     choose_path(
-        opt, reference,
+        so, reference,
         [&](const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
           if (o.method == Method::Overlay) run_overlay(surface, o, run);
           else mesh_polycube(surface, o, &run);
@@ -349,7 +381,19 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
   MeshSurfaceRun& r = progress ? *progress : local;
   const double diag = surface.V.rows() ? (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() : 0.0;
   const std::optional<Stretch> st =
-      thin_stretch(surface, frame.rotation, o.size > 0 ? o.size : diag / 30.0, opt.across_thin, opt.max_cell_ratio);
+      thin_stretch(surface, frame.rotation, o.size > 0 ? o.size : diag / 30.0, opt.across_thin, opt.max_cell_ratio,
+                   opt.min_size);
+  // A block of level s spans 2^s cells: a part fewer cells thick than that (the stretch's cells
+  // across it, or its thinnest extent over the min size) gets a lower level, so that its block
+  // across is not split into cells thinner than asked.
+  double across = st ? st->across : std::numeric_limits<double>::infinity();
+  if (opt.min_size > 0 && surface.V.rows() > 0) {
+    const Eigen::MatrixXd F = surface.V * frame.rotation.transpose();
+    across = std::min(across, (F.colwise().maxCoeff() - F.colwise().minCoeff()).minCoeff() / opt.min_size);
+  }
+  while (o.level > 0 && std::pow(2.0, o.level) > across * (1 + 1e-9)) --o.level;
+  if (o.level != opt.level && opt.log)
+    opt.log(0, fmt("thin part: %.3g cells across, level %.0f", across, double(o.level)));
   if (st) {  // thin along a frame axis: meshed stretched along it, in its frame
     if (opt.log)
       opt.log(0, fmt("thin part: cells of %.4g x %.4g x %.4g along the frame's axes", st->spacing(0), st->spacing(1),

@@ -55,7 +55,14 @@ struct MeshSurfaceOptions {
   Deadline deadline;
   /// The overlay path's options; its size, alignment and log are taken from here.
   overlay::OverlayOptions overlay;
-  double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30
+  double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30 (see max_size, min_size)
+  /// Bounds on the element size (0: none), as FreeCAD's Gmsh mesher's CharacteristicLengthMax / Min:
+  /// H (given or default) is brought within [min_size, max_size] (bounded_size), and the cells made
+  /// thinner than H for a thin part (across_thin, the overlay's grid, its halvings and octree) are
+  /// not made shorter than min_size, so such a part may get fewer than across_thin cells across.
+  /// min_size > max_size is an InputError.
+  double max_size = 0;
+  double min_size = 0;
   int level = 1;    ///< subdivision level s: blocks are grid cells of h = H * 2^s, 2^s cells per block edge
   segmentation::CvtOptions segment;   ///< segmentation (its log is replaced by `log` when `verbose`)
   /// Its size and level are taken from above. The candidates after the first (without the widths of
@@ -111,7 +118,9 @@ struct MeshSurfaceOptions {
   /// shortest (overlay::grid_spacing, as the overlay's grid), so that the thin axis gets cells across
   /// without needles along the others. Made by meshing the part stretched along its thin axes
   /// (candidates and improvement there) and mapping the results back; `size` then bounds the longest
-  /// side. across_thin 0: cubic cells (the part's thin axis gets one block).
+  /// side. across_thin 0: cubic cells (the part's thin axis gets one block). The overlay path's grid
+  /// takes across_thin + 1 cells across (OverlayOptions::across; its buffer layers add one more on
+  /// each side), or OverlayOptions::across as given for across_thin 0.
   double across_thin = 2;
   double max_cell_ratio = 5;
   /// Check the input first (mesh::check_solid_surface: closed, consistently oriented, no
@@ -170,6 +179,15 @@ struct MeshSurfaceRun {
   /// polycube options are the first solid's; `polycube` is empty. Empty for one solid.
   std::vector<MeshSurfaceRun> solids;
 };
+
+/// `size` (> 0) within [options.min_size, options.max_size], each bound when > 0. InputError for
+/// a negative bound or min_size > max_size.
+double bounded_size(double size, const MeshSurfaceOptions& options);
+
+/// The element size mesh_surface meshes `surface` with: options.size, or its default (the diagonal
+/// of the surface's box, square to the frame its faces fit when options.align, over 30), within the
+/// bounds (bounded_size).
+double element_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options);
 
 /// Runs the path options.method names (see Method); for the polycube, segment -> autopolycube ->
 /// generate -> improve on `surface` (closed, oriented outward; its patch ids are CAD faces when there

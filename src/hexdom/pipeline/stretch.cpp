@@ -6,18 +6,19 @@
 namespace hexdom::pipeline {
 
 std::optional<Stretch> thin_stretch(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotation, double size,
-                                    double across, double max_cell_ratio) {
+                                    double across, double max_cell_ratio, double min_size) {
   if (across <= 0 || size <= 0 || surface.V.rows() == 0) return std::nullopt;
   const Eigen::MatrixXd F = surface.V * rotation.transpose();
   const Eigen::Vector3d extent = (F.colwise().maxCoeff() - F.colwise().minCoeff()).transpose();
   Stretch s;
   s.rotation = rotation;
-  s.spacing = overlay::grid_spacing(extent, size, across, max_cell_ratio);
+  s.spacing = overlay::grid_spacing(extent, size, across, max_cell_ratio, min_size);
   // Cubic cells of `size` already have `across` cells across an extent of across x size or more (the
   // polycube gives a thinner part one block, across cells): stretched only where those would be
   // needles, more than max_cell_ratio to 1.
   if (s.spacing.minCoeff() <= 0 || size <= max_cell_ratio * s.spacing.minCoeff() * (1 + 1e-9)) return std::nullopt;
   s.size = s.spacing.maxCoeff();
+  s.across = extent.cwiseQuotient(s.spacing).minCoeff();
   for (int a = 0; a < 3; ++a) s.factor(a) = s.size / s.spacing(a);
   return s;
 }

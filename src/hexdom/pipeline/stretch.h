@@ -17,15 +17,17 @@ struct Stretch {
   Eigen::Vector3d factor = Eigen::Vector3d::Ones();  ///< >= 1 per frame axis
   Eigen::Vector3d spacing = Eigen::Vector3d::Zero(); ///< the cell length per frame axis
   double size = 0;  ///< the element size in stretched space: spacing's largest
+  double across = 0;  ///< cells across the part's thinnest extent (extent / spacing), fewest over the axes
 };
 
 /// The stretch that gives `surface` (in the frame `rotation` takes it to) cells of
-/// overlay::grid_spacing(extent, size, across, max_cell_ratio) per frame axis: at least `across`
-/// across each extent, none longer than max_cell_ratio times the shortest. None when across <= 0
+/// overlay::grid_spacing(extent, size, across, max_cell_ratio, min_size) per frame axis: at least
+/// `across` across each extent (none shorter than min_size when > 0), none longer than
+/// max_cell_ratio times the shortest. None when across <= 0
 /// or the shortest spacing is at least size / max_cell_ratio (the polycube's cubic cells, `across`
 /// across a part one block thick, are then within max_cell_ratio to 1).
 std::optional<Stretch> thin_stretch(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotation, double size,
-                                    double across, double max_cell_ratio);
+                                    double across, double max_cell_ratio, double min_size = 0);
 
 /// Rows of V (#V by 3) taken into stretched space, and back.
 Eigen::MatrixXd stretched(const Eigen::MatrixXd& V, const Stretch& s);

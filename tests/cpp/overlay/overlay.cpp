@@ -107,6 +107,16 @@ TEST(OverlayGrid, ThinPartsGetCellsAcrossWithoutNeedles) {
   EXPECT_EQ(block, Eigen::Vector3d(2.5, 2.5, 2.5));
 }
 
+// A min size stops the thin-axis rule: the plate gets fewer cells across, none shorter than it, and
+// the other axes follow the ratio from there; a min size above the element size gives cubes of it.
+TEST(OverlayGrid, AMinSizeBoundsTheCellsAcross) {
+  const Eigen::Vector3d plate = overlay::grid_spacing({100, 100, 0.5}, 4.7, 3, 5, 0.25);
+  EXPECT_NEAR(plate.z(), 0.25, 1e-12);
+  EXPECT_NEAR(plate.x(), 1.25, 1e-12);
+  EXPECT_EQ(overlay::grid_spacing({100, 100, 0.5}, 4.7, 3, 5, 0.1), overlay::grid_spacing({100, 100, 0.5}, 4.7, 3, 5));
+  EXPECT_EQ(overlay::grid_spacing({100, 100, 0.5}, 2, 3, 5, 9), Eigen::Vector3d(2, 2, 2));
+}
+
 // Two cells that share only an edge would give a boundary that is not a manifold: one is dropped.
 TEST(OverlayCore, CellsMeetingAlongAnEdgeOnlyLoseOne) {
   overlay::Grid g;

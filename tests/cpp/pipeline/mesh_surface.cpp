@@ -369,3 +369,75 @@ TEST(MeshSurface, APlateAndARodGetCellsAcrossWithoutNeedles) {
     EXPECT_NEAR(r.polycube.patches.V.col(2).maxCoeff(), dims(2), 1e-9);
   }
 }
+
+// The bounds on the element size: a default size above the max size is brought down to it (and a
+// given one too), one below the min size up; a min size above the max size is refused.
+TEST(MeshSurface, TheElementSizeIsKeptWithinTheMinAndMaxSize) {
+  auto s = test::cell_surface({{0, 0, 0}}, 1);
+  s.V = s.V * Eigen::Vector3d(60, 30, 15).asDiagonal();  // diagonal 73.5: default size 2.45
+  pipeline::MeshSurfaceOptions o;
+  EXPECT_NEAR(pipeline::element_size(s, o), std::sqrt(60.0 * 60 + 30 * 30 + 15 * 15) / 30, 1e-12);
+  o.max_size = 1.5;
+  EXPECT_EQ(pipeline::element_size(s, o), 1.5);
+  o.size = 4;
+  EXPECT_EQ(pipeline::element_size(s, o), 1.5);
+  o = {};
+  o.min_size = 3;
+  EXPECT_EQ(pipeline::element_size(s, o), 3);
+  o.max_size = 2;
+  EXPECT_THROW(pipeline::element_size(s, o), InputError);
+  o = {};
+  o.min_size = -1;
+  EXPECT_THROW(pipeline::bounded_size(1, o), InputError);
+}
+
+// The max size reaches both paths: the box's cells are about that long (the polycube rounds each
+// block count to the nearest whole number, up to 1.25 x at level 1; the overlay's buffer cells
+// reach the surface),
+// well below the default size, and there are several times the default's cells.
+TEST(MeshSurface, TheMaxSizeBoundsTheCellsOfBothPaths) {
+  auto s = test::cell_surface({{0, 0, 0}}, 1);
+  s.V = s.V * Eigen::Vector3d(20, 2, 2).asDiagonal();  // default size 0.67
+  for (auto method : {pipeline::Method::Polycube, pipeline::Method::Overlay}) {
+    pipeline::MeshSurfaceOptions o;
+    o.method = method;
+    o.max_size = 0.4;
+    const auto r = pipeline::mesh_surface(s, o);
+    o.max_size = 0;
+    const int default_cells = pipeline::mesh_surface(s, o).mesh.num_cells();
+    EXPECT_EQ(quality::inverted_cells(r.quality), 0);
+    EXPECT_NEAR(r.quality.total_volume, 80, 1e-6 * 80);
+    std::vector<double> lengths;
+    static const int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                      {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    ASSERT_EQ(r.mesh.count(mesh::CellType::Hex), r.mesh.num_cells());
+    for (int c = 0; c < r.mesh.num_cells(); ++c)
+      for (const auto& e : kEdges)
+        lengths.push_back((r.mesh.V.row(r.mesh.cells(c, e[0])) - r.mesh.V.row(r.mesh.cells(c, e[1]))).norm());
+    std::sort(lengths.begin(), lengths.end());
+    const double p95 = lengths[lengths.size() * 95 / 100];
+    // (the polycube: 2 / 0.8 = 2.5 blocks across rounded to 2, cells of 0.5 there, 0.4 along)
+    EXPECT_LE(lengths[lengths.size() / 2], method == pipeline::Method::Overlay ? 0.4 * 1.01 : 0.5 * 1.01);
+    EXPECT_LE(p95, 0.4 * 1.3) << pipeline::method_name(method);
+    EXPECT_GT(r.mesh.num_cells(), 3 * default_cells) << pipeline::method_name(method);
+  }
+}
+
+// A min size keeps the plate's cells from getting thinner than it: one cell across instead of two
+// (80 x 80 x 2 without it), and still no needles.
+TEST(MeshSurface, AMinSizeGivesAThinPlateFewerCellsAcross) {
+  auto s = test::cell_surface({{0, 0, 0}}, 1);
+  s.V = s.V * Eigen::Vector3d(100, 100, 0.5).asDiagonal();
+  pipeline::MeshSurfaceOptions o;
+  o.method = pipeline::Method::Polycube;
+  o.min_size = 0.5;
+  const auto r = pipeline::mesh_surface(s, o);
+  EXPECT_EQ(r.mesh.num_cells(), 40 * 40 * 1);
+  EXPECT_LE(quality::max_edge_ratio(r.quality), 5.0 + 1e-6);
+  EXPECT_GT(r.quality.hex.sj_min, 0.99);
+  o.min_size = 0;
+  o.across_thin = 4;  // cells across: four, the other sides at most 5 times as long
+  const auto r4 = pipeline::mesh_surface(s, o);
+  EXPECT_EQ(r4.mesh.num_cells(), 160 * 160 * 4);
+  EXPECT_LE(quality::max_edge_ratio(r4.quality), 5.0 + 1e-6);
+}

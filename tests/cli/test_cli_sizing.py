@@ -1,0 +1,106 @@
+"""Element size bounds (issue "element size that FEM users can steer"): `hexdom mesh --max-size`,
+`--min-size` and `--cells-across`, as FreeCAD's Gmsh mesher offers CharacteristicLengthMax / Min.
+
+Oracles: VTK reads the meshes, Verdict measures edge ratios; node coordinates count the cells
+across a thin axis; the bundled bracket's B-rep volume (OpenCASCADE, printed by the program) is
+compared with VTK's volume of the cells."""
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import hexdom_oracles as oracles
+from test_cli_input_checks import _box, _mesh_default, _write_stl
+
+BRACKET = Path(__file__).resolve().parents[2] / "examples" / "data" / "bracket.step"
+
+
+def _levels(points, axis):
+    """Distinct node coordinates along ``axis`` (to 1e-9): cells across + 1 on a box."""
+    return len(np.unique(np.round(points[:, axis], 9)))
+
+
+def _hex_edge_lengths(g):
+    P, types, conn = oracles.grid_arrays(g)
+    hexes = np.array([c for c, t in zip(conn, types) if t == 12])
+    edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+    return np.concatenate([np.linalg.norm(P[hexes[:, a]] - P[hexes[:, b]], axis=1) for a, b in edges])
+
+
+def test_a_min_size_above_the_max_size_is_refused_before_any_work(hexdom_bin, tmp_path):
+    src = _write_stl(tmp_path / "box.stl", _box((0, 0, 0), (10, 10, 10)))
+    out = tmp_path / "box.vtu"
+    run = _mesh_default(hexdom_bin, src, out, "--max-size", "1", "--min-size", "2")
+    assert run.returncode != 0
+    assert "min size 2 is larger than the max size 1" in run.stderr, run.stderr
+    assert not out.exists()
+
+
+def test_a_min_size_gives_a_thin_plate_one_cell_across_without_needles(hexdom_bin, tmp_path):
+    # 100 x 100 x 0.5: two cells of 0.25 across by default (80 x 80 x 2); with cells of at least
+    # 0.5, one across and 40 x 40 of 2.5 beside it (at most 5 to 1).
+    src = _write_stl(tmp_path / "plate.stl", _box((0, 0, 0), (100.0, 100.0, 0.5)))
+    out = tmp_path / "plate.vtu"
+    run = _mesh_default(hexdom_bin, src, out, "--min-size", "0.5")
+    assert run.returncode == 0, run.stderr
+    g = oracles.read_vtu(str(out))
+    sj, er = oracles.verdict_metrics(g)
+    assert g.GetNumberOfCells() == 40 * 40
+    assert sj.min() > 0.99 and er.max() <= 5.0 + 1e-9, (sj.min(), er.max())
+    P, _, _ = oracles.grid_arrays(g)
+    assert _levels(P, 2) == 2
+    assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(5000.0, rel=1e-9)
+
+
+@pytest.mark.parametrize("method", ["polycube", "overlay"])
+def test_cells_across_a_rod_as_asked_by_either_path(hexdom_bin, tmp_path, method):
+    # 200 x 1 x 1: cells across 4, so no cell thicker than 0.25 across and none longer than 5 x that.
+    src = _write_stl(tmp_path / "rod.stl", _box((0, 0, 0), (200.0, 1.0, 1.0)))
+    out = tmp_path / "rod.vtu"
+    run = _mesh_default(hexdom_bin, src, out, "--cells-across", "4", "--method", method)
+    assert run.returncode == 0, run.stderr
+    g = oracles.read_vtu(str(out))
+    sj, er = oracles.verdict_metrics(g)
+    P, _, _ = oracles.grid_arrays(g)
+    assert _levels(P, 1) >= 5 and _levels(P, 2) >= 5, (_levels(P, 1), _levels(P, 2))
+    assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(200.0, rel=1e-6 if method == "polycube" else 1e-3)
+    if method == "polycube":  # cubes of 0.25 x 1.25: exactly 160 x 4 x 4
+        assert g.GetNumberOfCells() == 160 * 4 * 4
+        assert er.max() <= 5.0 + 1e-9 and sj.min() > 0.99
+    else:
+        assert sj.min() > 0
+
+
+def test_the_overlay_grid_stops_at_the_min_size(hexdom_bin, tmp_path):
+    # 30 x 30 x 0.6: the overlay's grid would take 0.2 across (3 cells); with a min size of 0.3 its
+    # thinnest spacing (the program's overlay line) is at least that.
+    src = _write_stl(tmp_path / "plate.stl", _box((0, 0, 0), (30.0, 30.0, 0.6)))
+    out = tmp_path / "plate.vtu"
+    run = _mesh_default(hexdom_bin, src, out, "--method", "overlay", "--min-size", "0.3")
+    assert run.returncode == 0, run.stderr
+    m = re.search(r"overlay: spacing ([\d.eE+-]+) \(thinnest ([\d.eE+-]+)", run.stderr)
+    assert m, run.stderr
+    assert 0.3 * (1 - 1e-9) <= float(m.group(2)) < 0.33, m.group(0)
+    g = oracles.read_vtu(str(out))
+    assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(540.0, rel=1e-3)
+
+
+def test_a_max_size_on_a_cad_part_tessellates_and_meshes_with_it(hexdom_bin, tmp_path):
+    # The bundled bracket: default size (its diagonal / 30) about 2.9; with --max-size 2 the
+    # triangles and the cells take 2: more cells, edges about that long, on the B-rep.
+    assert BRACKET.is_file(), BRACKET
+    default, bounded = tmp_path / "default.vtu", tmp_path / "bounded.vtu"
+    run0 = _mesh_default(hexdom_bin, BRACKET, default)
+    run = _mesh_default(hexdom_bin, BRACKET, bounded, "--max-size", "2")
+    assert run0.returncode == 0 and run.returncode == 0, (run0.stderr, run.stderr)
+    m = re.search(r"tessellate: size ([\d.]+), within the min and max size: 2\b", run.stderr)
+    assert m and float(m.group(1)) > 2, run.stderr
+    g0, g = oracles.read_vtu(str(default)), oracles.read_vtu(str(bounded))
+    assert g.GetNumberOfCells() > 2 * g0.GetNumberOfCells()
+    assert np.median(_hex_edge_lengths(g)) <= 2.0 < np.median(_hex_edge_lengths(g0))
+    sj, _ = oracles.verdict_metrics(g)
+    assert sj.min() > 0
+    brep = float(re.search(r"B-rep volume ([\d.eE+-]+)", run.stdout).group(1))
+    assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(brep, rel=0.01)
