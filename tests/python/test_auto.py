@@ -202,7 +202,10 @@ def paper_mesh(tmp_path_factory):
 @pytest.mark.parametrize("model", ["hepta", "mount1", "rockerarm"])
 def test_mesh_paper_model_has_no_inverted_cell(model, paper_mesh):
     raw, out, report, stderr = paper_mesh(model)
-    for stage in ("segment:", "autopolycube:", "generate:", "improve:"):
+    # One line per stage; the polycube path's first candidate may have been stopped after 5 s
+    # because the overlay's mesh met every target (pipeline/choice.h), the line says so.
+    stopped = "the overlay mesh meets every target" in stderr
+    for stage in ("segment:",) + (() if stopped else ("autopolycube:", "generate:", "improve:")):
         assert stage in stderr
     V, F, _ = _k_surface(raw)
     sj, _ = _check_hex_mesh(out, V, F)  # all hexes, conforming, closed, boundary nodes on the surface

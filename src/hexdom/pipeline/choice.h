@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <exception>
 #include <string>
 #include <thread>
@@ -33,20 +35,85 @@ struct KeptMessages {
   }
 };
 
+/// The moment polycube_seconds_overlay_met after the choice's start, and what the two threads of
+/// choose_path tell each other about it.
+struct PathCut {
+  std::chrono::steady_clock::time_point at;
+  bool on = false;  ///< a cut at all (polycube_seconds_overlay_met > 0)
+  std::atomic<bool> step1_done{false}, overlay_done{false};        ///< set by the thread that ran it
+  std::atomic<bool> step1_stopped{false}, overlay_stopped{false};  ///< set by the thread that stopped it
+  explicit PathCut(double seconds)
+      : at(std::chrono::steady_clock::now() +
+           std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds))),
+        on(seconds > 0) {}
+  /// Waits until the cut unless `done` is set or `until` passes first; true when the other path
+  /// still runs at the cut (and is to be stopped).
+  bool wait(const std::atomic<bool>& done, const Deadline& until) const {
+    while (on && !done.load() && !until.passed() && std::chrono::steady_clock::now() < at)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return on && !done.load() && !until.passed();
+  }
+};
+
+/// Sets a flag when it goes out of scope (a path's thread ends, by return or throw).
+struct SetOnExit {
+  std::atomic<bool>& flag;
+  ~SetOnExit() { flag.store(true); }
+};
+
+/// Cancels `deadline` (unless `cancel` was cleared) and joins `thread` when it goes out of scope.
+struct JoinOnExit {
+  std::thread& thread;
+  const Deadline& deadline;
+  bool cancel = true;
+  ~JoinOnExit() {
+    if (cancel) deadline.cancel();
+    if (thread.joinable()) thread.join();
+  }
+};
+
+/// Step 3's options (see choose_path) from `mo`: with `further`, the polycube's further candidates
+/// from step 1's run `step1` (its repaired labelling and lambda; `first`, its run before any snap,
+/// as their first candidate); otherwise the segmentation with `weights` in turn. `heading` says
+/// which.
+inline MeshSurfaceOptions step3_options(const MeshSurfaceOptions& mo, bool further, const MeshSurfaceRun& step1,
+                                        const MeshSurfaceRun* first, const std::vector<double>& weights,
+                                        std::string& heading) {
+  MeshSurfaceOptions full = mo;
+  full.method = Method::Polycube;
+  if (further) {
+    heading = "the polycube again with its further candidates";
+    full.polycube.repaired = &step1.polycube.repaired;  // the repair is not run again
+    full.segment.edge_weight = step1.edge_weight;
+    full.retry_edge_weights.clear();
+    full.first_run = first;
+  } else {
+    heading = fmt("the polycube again, segmenting with lambda %g", weights.front()) +
+              (weights.size() > 1 ? " and then the further edge weights" : "");
+    full.segment.edge_weight = weights.front();
+    full.retry_edge_weights.assign(weights.begin() + 1, weights.end());
+  }
+  return full;
+}
+
 /// Method::Auto on one surface, cheapest first:
 ///  1. the polycube path with its first candidate only (no further candidate: without the widths of
 ///     holes, hex blocks under apex caps, a finer level), within the options' deadline. A mesh that
 ///     meets every target (meets_path_targets) is kept; the overlay's run is called off.
 ///  2. the overlay path, run beside step 1 on a thread of its own (the machine's second core; its
 ///     messages are said after step 1's, as if it had run after it). When its mesh meets every
-///     target, the better of the two (better_run) is kept.
+///     target, the better of the two (better_run) is kept, and step 1, if it still runs
+///     polycube_seconds_overlay_met after the start, is stopped then (keeping what it has).
 ///  3. when step 1's mesh misses the targets the further candidates may mend (meets_targets: no
 ///     inverted cell, the worst SJ, the volume) and the polycube's deadline has not passed, the
 ///     polycube path again with its candidates (the labelling repaired once, taken from step 1),
 ///     started beside the overlay as soon as step 1 ends; when step 1 gave no mesh because its
 ///     labelling defeated the repair, the segmentation with the options' further edge weights
 ///     (retry_edge_weights; step 1 tries the first weight only). It is called off, and counts for
-///     nothing, when the overlay's mesh meets those targets. The best of the meshes is kept.
+///     nothing, when the overlay's mesh meets those targets. When its own mesh meets every target
+///     and the overlay still runs polycube_seconds_overlay_met after the start, the overlay is
+///     called off then. The best of the meshes is kept. Where both paths end within
+///     polycube_seconds_overlay_met, the mesh kept does not depend on which thread ends first.
 /// `mesh_path(options, run)` meshes with options.method (Polycube or Overlay) into `run`, throwing
 /// Error when the path gives no mesh; `run_of(run)` is its MeshSurfaceRun; `blank(run)` a fresh run
 /// for the same surface; `unsnapped(run)` (a MeshSurfaceRun) the polycube run of step 1 as
@@ -63,7 +130,9 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   auto say = [&](const std::string& m) { if (mo.log) mo.log(0, m); };
   MeshSurfaceOptions quick = mo;
   quick.method = Method::Polycube;
-  quick.deadline = polycube_deadline(mo);
+  // Step 1's deadline: the polycube's, called off by the overlay's thread (see below).
+  quick.deadline = Deadline::cancellable(polycube_deadline(mo));
+  PathCut cut(mo.polycube_seconds_overlay_met);  // see polycube_seconds_overlay_met
   // The two paths run beside each other: each gets half the threads (the mesh does not depend on it).
   const int half = std::max(1, thread_count(mo.threads) / 2);
   quick.threads = half;
@@ -85,40 +154,47 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   bool have_grid = false;
   std::exception_ptr grid_error;
   // Step 3's deadline: the polycube's, called off by the overlay's thread (see below).
-  const Deadline step3 = Deadline::cancellable(quick.deadline);
+  const Deadline step3 = Deadline::cancellable(polycube_deadline(mo));
   const Interrupt* interrupt = current_interrupt();  // the overlay's thread runs under the caller's
   std::thread worker([&] {
     const InterruptScope scope(interrupt);
     try {
       mesh_path(overlay, grid);
       have_grid = true;
+      cut.overlay_done.store(true);
       if (meets_targets(run_of(grid), reference, mo)) step3.cancel();
+      // A mesh that meets every target: step 1 is stopped at the cut if it runs then.
+      if (meets_path_targets(run_of(grid), reference, mo) && cut.wait(cut.step1_done, overlay.deadline)) {
+        cut.step1_stopped.store(true);
+        quick.deadline.cancel();
+      }
     } catch (...) {
       grid_error = std::current_exception();
+      cut.overlay_done.store(true);
     }
   });
-  struct Join {
-    std::thread& t;
-    const Deadline& d;
-    bool cancel;
-    ~Join() {
-      if (cancel) d.cancel();
-      if (t.joinable()) t.join();
-    }
-  } join{worker, overlay.deadline, true};
+  JoinOnExit join{worker, overlay.deadline};
   std::string note;
   bool have = false, labelling_failed = false;
   try {
-    mesh_path(quick, r);
+    {
+      const SetOnExit done{cut.step1_done};
+      mesh_path(quick, r);
+    }
     have = true;
     if (meets_path_targets(run_of(r), reference, mo)) {
       run_of(r).polycube_meshed = true;
       return;  // the overlay's run called off
     }
     note = "the polycube mesh misses a target (" + run_summary(run_of(r), reference) + ")" +
-           (run_of(r).budget_passed ? fmt(" (its time budget of %g s passed)", quick.deadline.budget()) : std::string());
+           (!run_of(r).budget_passed ? std::string()
+            : cut.step1_stopped.load()   ? fmt(" (stopped after %g s: the overlay mesh meets every target)",
+                                           mo.polycube_seconds_overlay_met)
+                                     : fmt(" (its time budget of %g s passed)", quick.deadline.budget()));
   } catch (const TimeoutError& e) {  // the polycube path ran out of its time: no retry
-    note = polycube_failure_note(e, run_of(r).stage);
+    note = cut.step1_stopped.load() ? fmt("the polycube path was stopped after %g s at stage ", mo.polycube_seconds_overlay_met) +
+                                      run_of(r).stage + ": the overlay mesh meets every target"
+                                : polycube_failure_note(e, run_of(r).stage);
   } catch (const Error& e) {
     note = polycube_failure_note(e, run_of(r).stage);
     labelling_failed = true;
@@ -137,29 +213,20 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   Run again = blank(r);
   bool have_again = false;
   if ((further || reweigh) && !step3.passed()) {
-    MeshSurfaceOptions full = mo;
-    full.method = Method::Polycube;
+    const MeshSurfaceRun first = further ? unsnapped(r) : MeshSurfaceRun{};
+    MeshSurfaceOptions full = step3_options(mo, further, run_of(r), &first, weights, again_heading);
     full.deadline = step3;
     full.threads = half;
     full.log = again_said.sink(mo.log);
-    MeshSurfaceRun first;
-    if (further) {
-      again_heading = "the polycube again with its further candidates";
-      // The labelling (and lambda) of the first run: the repair is not run again.
-      full.polycube.repaired = &run_of(r).polycube.repaired;
-      full.segment.edge_weight = run_of(r).edge_weight;
-      full.retry_edge_weights.clear();
-      first = unsnapped(r);
-      full.first_run = &first;  // the first candidate is step 1's run
-    } else {
-      again_heading = fmt("the polycube again, segmenting with lambda %g", weights.front()) +
-                      (weights.size() > 1 ? " and then the further edge weights" : "");
-      full.segment.edge_weight = weights.front();
-      full.retry_edge_weights.assign(weights.begin() + 1, weights.end());
-    }
     try {
       mesh_path(full, again);
       have_again = true;
+      // A mesh that meets every target: the overlay is called off at the cut if it runs then.
+      if (!step3.passed() && meets_path_targets(run_of(again), reference, mo) &&
+          cut.wait(cut.overlay_done, overlay.deadline)) {
+        cut.overlay_stopped.store(true);
+        overlay.deadline.cancel();
+      }
     } catch (const Error& e) {
       again_failed = further ? std::string("the polycube's further candidates: ") + e.what() + "; keeping its first mesh"
                              : "the polycube with the further edge weights: " + polycube_failure_note(e, run_of(again).stage);
@@ -174,7 +241,9 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
       std::rethrow_exception(grid_error);
     } catch (const Error& e) {
       if (!have && !have_again) throw;
-      say(std::string("overlay: ") + e.what());
+      say(cut.overlay_stopped.load() ? fmt("overlay: called off after %g s, the polycube mesh meets every target",
+                                       mo.polycube_seconds_overlay_met)
+                                 : std::string("overlay: ") + e.what());
     }
   }
   auto keep = [&](Run& other, const char* name) {

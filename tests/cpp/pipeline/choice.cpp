@@ -33,13 +33,15 @@ MeshSurfaceRun fake_run(Method method, double sj) {
 
 struct Fake {
   double first_sj = 0.2, overlay_sj = 0.5, further_sj = 0.6;
-  int overlay_millis = 0, further_millis = 0;  // how long each pretends to work
-  std::atomic<bool> overlay_cancelled{false}, further_cancelled{false};
+  int first_millis = 0, overlay_millis = 0, further_millis = 0;  // how long each pretends to work
+  double seconds_overlay_met = 5;  // MeshSurfaceOptions::polycube_seconds_overlay_met
+  std::atomic<bool> first_cancelled{false}, overlay_cancelled{false}, further_cancelled{false};
   std::mutex mutex;
   std::vector<std::string> said;  // everything said, in order
 
   MeshSurfaceOptions options() {
     MeshSurfaceOptions o;
+    o.polycube_seconds_overlay_met = seconds_overlay_met;
     o.log = [this](int, const std::string& m) {
       std::lock_guard<std::mutex> lock(mutex);
       said.push_back(m);
@@ -65,6 +67,8 @@ struct Fake {
       run = fake_run(Method::Overlay, overlay_sj);
     } else if (o.first_run == nullptr) {
       o.log(0, "fake first candidate");
+      work(first_millis, o.deadline, first_cancelled);
+      if (first_cancelled) o.deadline.check("autopolycube");  // no mesh yet: TimeoutError
       run = fake_run(Method::Polycube, first_sj);
     } else {
       o.log(0, "fake further candidates");
@@ -138,4 +142,47 @@ TEST(ChoosePath, AnOverlayMeshThatMeetsTheTargetsCallsTheFurtherCandidatesOffWhi
     EXPECT_GE(f.index("the polycube again with its further candidates: called off"), 0);
     EXPECT_EQ(f.index("fake further candidates"), -1);  // its messages are not said
   }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+TEST(ChoosePath, AnOverlayMeshThatMeetsEveryTargetStopsASlowFirstCandidateAtTheCut) {
+  // The first candidate would take 20 s; the overlay's mesh meets every target at once: the first
+  // candidate is stopped 0.3 s after the start (no mesh yet), the overlay's kept, the note says why.
+  Fake f;
+  f.first_millis = 20000;
+  f.seconds_overlay_met = 0.3;
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshSurfaceRun r = f.choose();
+  EXPECT_LT(seconds_since(t0), 10.0);
+  EXPECT_TRUE(f.first_cancelled.load());
+  EXPECT_EQ(r.method, Method::Overlay);
+  EXPECT_NE(r.polycube_note.find("stopped after 0.3 s at stage"), std::string::npos) << r.polycube_note;
+  // A first candidate that ends before the cut is not stopped, and its mesh, meeting every target,
+  // is kept; with no cut (0) a slow one runs to its end.
+  for (double cut : {5.0, 0.0}) {
+    Fake g;
+    g.first_millis = 300;
+    g.first_sj = 0.7;
+    g.seconds_overlay_met = cut;
+    EXPECT_EQ(g.choose().method, Method::Polycube);
+    EXPECT_FALSE(g.first_cancelled.load());
+  }
+}
+
+TEST(ChoosePath, FurtherCandidatesThatMeetEveryTargetStopASlowOverlayAtTheCut) {
+  // The overlay would take 20 s; the further candidates' mesh (0.6) meets every target: the overlay
+  // is called off 0.3 s after the start and the polycube's mesh kept.
+  Fake f;
+  f.overlay_millis = 20000;
+  f.seconds_overlay_met = 0.3;
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshSurfaceRun r = f.choose();
+  EXPECT_LT(seconds_since(t0), 10.0);
+  EXPECT_TRUE(f.overlay_cancelled.load());
+  EXPECT_EQ(r.method, Method::Polycube);
+  EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.6);
+  EXPECT_GE(f.index("overlay: called off after 0.3 s, the polycube mesh meets every target"), 0);
 }
