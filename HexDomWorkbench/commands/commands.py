@@ -326,7 +326,8 @@ class _MeshPart(CommandManager):
                "HexDom Mesh runs its pipeline once (element size = bounding-box diagonal / 30, "
                "the polycube or, where it fails or misses a target, the overlay grid) and fills "
                "a Surface, a Segmentation and a Polycube with the stages it made, all kept and "
-               "editable. Change the Mesh's Size, Level or Method and recompute to mesh again; "
+               "editable. Change the Mesh's Size, MaxSize, MinSize, CellsAcross, Level or Method "
+               "and recompute to mesh again; "
                "edit a stage and the mesh is rebuilt from the stages")
     is_active = "with_part"
 

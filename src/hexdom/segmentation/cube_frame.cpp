@@ -21,8 +21,21 @@ constexpr int kSharpExponents[] = {16, 64};
 struct Normals {
   std::vector<Eigen::Vector3d> n;
   std::vector<double> area;
+  std::vector<int> count;  ///< triangles merged into each entry
   double total = 0;
 };
+
+// The same normals with the entries of three triangles or more (planar faces: a curved face's
+// triangles have normals of their own) weighted `weight` times their area.
+Normals planar_weighted(const Normals& ns, double weight) {
+  Normals out = ns;
+  out.total = 0;
+  for (size_t i = 0; i < out.n.size(); ++i) {
+    if (out.count[i] >= 3) out.area[i] *= weight;
+    out.total += out.area[i];
+  }
+  return out;
+}
 
 Normals normals_of(const mesh::SurfaceMesh& s) {
   struct Key {
@@ -48,7 +61,9 @@ Normals normals_of(const mesh::SurfaceMesh& s) {
     if (added) {
       sum.push_back(Eigen::Vector3d::Zero());
       out.area.push_back(0);
+      out.count.push_back(0);
     }
+    ++out.count[it->second];
     sum[it->second] += 0.5 * x;
     out.area[it->second] += 0.5 * twice;
     out.total += 0.5 * twice;
@@ -177,7 +192,7 @@ double cube_fit(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotatio
 
 CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& opt) {
   CubeFrame out;
-  const Normals ns = normals_of(surface);
+  const Normals ns = planar_weighted(normals_of(surface), std::max(1.0, opt.planar_weight));
   if (!(ns.total > 0)) return out;
   out.fit_identity = out.fit = fit_of(ns, Eigen::Matrix3d::Identity(), nullptr);
   // A few steps from every start, then the best few ascended to the end.

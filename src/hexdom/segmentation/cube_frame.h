@@ -14,6 +14,11 @@ struct CubeFrameOptions {
   /// area-weighted mean of sum_k (R n)_k^4, 1 for a box, 1/3 at worst): a part already square to the
   /// axes, or one whose faces the axes fit nearly as well as any frame, is left as it is.
   double min_gain = 0.02;
+  /// Planar faces (normals shared by three triangles or more) weigh this many times their area in
+  /// the fit: they set the frame, and curved faces only turn it where the planar ones leave it free
+  /// (on a revolved part square to the axes, the conical faces alone would pull the fit to a frame
+  /// tilted tens of degrees, its flat ends then at an angle).
+  double planar_weight = 100;
   /// Starting rotations of the local ascent, spread over the rotation group (plus the identity).
   int starts = 72;
   int iterations = 60;  ///< ascent steps from each start
@@ -23,7 +28,7 @@ struct CubeFrame {
   /// Rotation taking the part's coordinates to the frame: x_frame = rotation * x. The identity
   /// when the part is kept as it is.
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  double fit_identity = 0;  ///< fit of the part's own axes
+  double fit_identity = 0;  ///< fit of the part's own axes (planar faces weighted: planar_weight)
   double fit = 0;           ///< fit of `rotation` (== fit_identity when it is the identity)
   double angle_degrees = 0; ///< angle of `rotation`
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< its axis (unit; Z for the identity)
@@ -36,7 +41,7 @@ double cube_fit(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotatio
 
 /// The rotation whose frame the triangle normals fit best (maximises cube_fit by gradient ascent
 /// on the rotation group from `starts` starting rotations), or the identity when it gains less
-/// than `min_gain`. Of the 24 equivalent rotations of a cube the one with the smallest angle is
+/// than `min_gain`; planar faces weigh planar_weight times their area in these fits. Of the 24 equivalent rotations of a cube the one with the smallest angle is
 /// returned. Deterministic. An empty surface gives the identity.
 CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& options = {});
 
