@@ -234,7 +234,7 @@ void add_mesh(CLI::App& app) {
     a->opt.align = !a->no_align;
     a->opt.method = pipeline::method_from_name(a->method);
     a->opt.input_name = a->in;  // the input checks' messages name the file
-    pipeline::bounded_size(1, a->opt);  // --min-size above --max-size: an error before any work
+    pipeline::check_size_bounds(a->opt);  // --min-size above --max-size: an error before any work
     // --method polycube honours the budget only when it is given; it starts now, before reading.
     if (a->opt.method == pipeline::Method::Polycube && cmd->count("--polycube-seconds") > 0)
       a->opt.deadline = Deadline::in(a->opt.polycube_seconds);

@@ -108,12 +108,11 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       std::optional<double> polycube_seconds, double max_size,
                                                       double min_size, double cells_across) {
   pipeline::MeshSurfaceOptions opt;
-  if (!(max_size >= 0) || !(min_size >= 0) || !(cells_across >= 0))
-    throw InputError("max_size, min_size and cells_across must not be negative (0: no bound, 0 cells: cubic cells)");
+  if (!(cells_across >= 0)) throw InputError("cells_across must not be negative (0: cubic cells)");
   opt.max_size = max_size;
   opt.min_size = min_size;
   opt.across_thin = cells_across;
-  pipeline::bounded_size(1, opt);  // min_size > max_size: InputError before any work
+  pipeline::check_size_bounds(opt);  // before any work
   opt.method = pipeline::method_from_name(method);
   if (polycube_seconds) {
     if (!(*polycube_seconds >= 0)) throw InputError("polycube_seconds must be 0 (no limit) or positive");

@@ -130,8 +130,10 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   auto say = [&](const std::string& m) { if (mo.log) mo.log(0, m); };
   MeshSurfaceOptions quick = mo;
   quick.method = Method::Polycube;
-  // Step 1's deadline: the polycube's, called off by the overlay's thread (see below).
-  quick.deadline = Deadline::cancellable(polycube_deadline(mo));
+  // Step 1's and step 3's deadlines: the polycube's one budget, each called off by the overlay's
+  // thread (see below).
+  const Deadline budget = polycube_deadline(mo);
+  quick.deadline = Deadline::cancellable(budget);
   PathCut cut(mo.polycube_seconds_overlay_met);  // see polycube_seconds_overlay_met
   // The two paths run beside each other: each gets half the threads (the mesh does not depend on it).
   const int half = std::max(1, thread_count(mo.threads) / 2);
@@ -154,7 +156,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   bool have_grid = false;
   std::exception_ptr grid_error;
   // Step 3's deadline: the polycube's, called off by the overlay's thread (see below).
-  const Deadline step3 = Deadline::cancellable(polycube_deadline(mo));
+  const Deadline step3 = Deadline::cancellable(budget);
   const Interrupt* interrupt = current_interrupt();  // the overlay's thread runs under the caller's
   std::thread worker([&] {
     const InterruptScope scope(interrupt);

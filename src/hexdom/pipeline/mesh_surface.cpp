@@ -256,11 +256,15 @@ std::vector<char> snap_face_only(const MeshSurfaceRun& run) {
   return out;
 }
 
-double bounded_size(double size, const MeshSurfaceOptions& opt) {
+void check_size_bounds(const MeshSurfaceOptions& opt) {
   if (opt.min_size < 0 || opt.max_size < 0)
     throw InputError(fmt("the min size (%g) and the max size (%g) must not be negative", opt.min_size, opt.max_size));
   if (opt.min_size > 0 && opt.max_size > 0 && opt.min_size > opt.max_size)
     throw InputError(fmt("the min size %g is larger than the max size %g", opt.min_size, opt.max_size));
+}
+
+double bounded_size(double size, const MeshSurfaceOptions& opt) {
+  check_size_bounds(opt);
   if (opt.max_size > 0) size = std::min(size, opt.max_size);
   if (opt.min_size > 0) size = std::max(size, opt.min_size);
   return size;

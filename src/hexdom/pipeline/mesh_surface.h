@@ -186,8 +186,11 @@ struct MeshSurfaceRun {
   std::vector<MeshSurfaceRun> solids;
 };
 
-/// `size` (> 0) within [options.min_size, options.max_size], each bound when > 0. InputError for
-/// a negative bound or min_size > max_size.
+/// InputError for a negative min_size or max_size, or min_size > max_size (both > 0).
+void check_size_bounds(const MeshSurfaceOptions& options);
+
+/// `size` (> 0) within [options.min_size, options.max_size], each bound when > 0; checks them first
+/// (check_size_bounds).
 double bounded_size(double size, const MeshSurfaceOptions& options);
 
 /// The element size mesh_surface meshes `surface` with: options.size, or its default (the diagonal
