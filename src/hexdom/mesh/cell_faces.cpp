@@ -61,6 +61,30 @@ std::vector<BoundaryFace> boundary_faces(const Mesh& m) {
   return out;
 }
 
+std::vector<std::array<int, 2>> face_neighbours(const Mesh& m) {
+  std::unordered_map<std::array<int, 4>, int, FaceHash> first;  // key -> first cell, or -1 once paired
+  first.reserve(4 * static_cast<size_t>(m.num_cells()));
+  std::vector<std::array<int, 2>> pairs;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    auto [lf, nf] = cell_faces(m.type(c));
+    for (int f = 0; f < nf; ++f) {
+      std::array<int, 4> key{-1, -1, -1, -1};
+      for (int i = 0; i < lf[f].n; ++i) key[i] = m.cells(c, lf[f].v[i]);
+      for (int i = 1; i < lf[f].n; ++i)
+        for (int j = i; j > 0 && key[j] < key[j - 1]; --j) std::swap(key[j], key[j - 1]);
+      auto [it, ins] = first.try_emplace(key, c);
+      if (ins) continue;
+      if (it->second < 0)
+        throw GeometryError("face with nodes " + std::to_string(key[0] + 1) + " " + std::to_string(key[1] + 1) + " " +
+                            std::to_string(key[2] + 1) + " is shared by more than two cells");
+      pairs.push_back({std::min(it->second, c), std::max(it->second, c)});
+      it->second = -1;
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 Eigen::Vector3d face_area_vector(const Mesh& m, const BoundaryFace& f) {
   using Vec = Eigen::Vector3d;
   Vec n = Vec::Zero();

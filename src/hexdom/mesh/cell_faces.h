@@ -28,6 +28,10 @@ struct BoundaryFace {
 /// GeometryError naming the nodes of a face shared by more than two cells (non-conforming mesh).
 std::vector<BoundaryFace> boundary_faces(const Mesh& mesh);
 
+/// The pairs of cells sharing a face (a < b in each pair), in increasing order of (a, b). Throws
+/// GeometryError like boundary_faces for a face shared by more than two cells.
+std::vector<std::array<int, 2>> face_neighbours(const Mesh& mesh);
+
 /// Area vector of a boundary face: half the sum of the cross products of consecutive corners taken
 /// about the corners' centroid; it points out of the mesh, and its length is the area of a planar
 /// face.

@@ -1,6 +1,8 @@
 #include "hexdom/mesh/closest_point.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace hexdom::mesh {
@@ -106,6 +108,84 @@ Vec TriangleProjector::project(const Vec& p, int* triangle) const {
   }
   if (triangle) *triangle = best_tri;
   return result;
+}
+
+namespace {
+
+// The line a + t d against triangle (p, q, r): Moller and Trumbore (1997), barycentric bounds
+// closed. Whether it meets the triangle at one point, and `t` there.
+bool line_meets_triangle(const Vec& a, const Vec& d, const Vec& p, const Vec& q, const Vec& r, double* t) {
+  const Vec e1 = q - p, e2 = r - p;
+  const Vec h = d.cross(e2);
+  const double det = e1.dot(h);
+  const double scale = e1.norm() * e2.norm() * d.norm();
+  if (!(std::abs(det) > 1e-14 * scale)) return false;  // parallel (or degenerate): no single crossing
+  const Vec s = a - p;
+  const double u = s.dot(h) / det;
+  if (u < 0 || u > 1) return false;
+  const Vec qv = s.cross(e1);
+  const double v = d.dot(qv) / det;
+  if (v < 0 || u + v > 1) return false;
+  *t = e2.dot(qv) / det;
+  return true;
+}
+
+}  // namespace
+
+Vec TriangleProjector::normal(int t) const {
+  const Vec a = V_.row(F_(t, 0)), b = V_.row(F_(t, 1)), c = V_.row(F_(t, 2));
+  return (b - a).cross(c - a).normalized();
+}
+
+double TriangleProjector::ray_distance(const Vec& origin, const Vec& direction, double from, double up_to,
+                                       int skip, int* triangle) const {
+  const Vec d = direction.normalized();
+  double best = up_to;
+  bool hit = false;
+  // The slab test of a box against the ray's part [from, best].
+  auto reaches = [&](const Node& n) {
+    double lo = from, hi = best;
+    for (int a = 0; a < 3; ++a) {
+      if (d(a) == 0) {
+        if (origin(a) < n.lo(a) || origin(a) > n.hi(a)) return false;
+        continue;
+      }
+      double t0 = (n.lo(a) - origin(a)) / d(a), t1 = (n.hi(a) - origin(a)) / d(a);
+      if (t0 > t1) std::swap(t0, t1);
+      lo = std::max(lo, t0);
+      hi = std::min(hi, t1);
+      if (lo > hi) return false;
+    }
+    return true;
+  };
+  if (triangle) *triangle = -1;
+  if (nodes_.empty()) return std::numeric_limits<double>::infinity();
+  thread_local std::vector<int> stack;
+  stack.clear();
+  stack.push_back(0);
+  while (!stack.empty()) {
+    const Node& n = nodes_[stack.back()];
+    stack.pop_back();
+    if (!reaches(n)) continue;
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const int t = order_[i];
+        double u;
+        if (t != skip &&
+            line_meets_triangle(origin, d, V_.row(F_(t, 0)).transpose(), V_.row(F_(t, 1)).transpose(),
+                                V_.row(F_(t, 2)).transpose(), &u) &&
+            u > from && u <= best) {
+          best = u;
+          hit = true;
+          if (triangle) *triangle = t;
+        }
+      }
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+  return hit ? best : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace hexdom::mesh

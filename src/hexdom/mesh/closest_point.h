@@ -22,6 +22,13 @@ class TriangleProjector {
   bool empty() const { return F_.rows() == 0; }
   /// Closest point on the surface; `triangle` receives its triangle when given.
   Eigen::Vector3d project(const Eigen::Vector3d& p, int* triangle = nullptr) const;
+  /// The distance along the ray from `origin` in `direction` (any length) to the first triangle it
+  /// meets beyond `from` and up to `up_to`, triangle `skip` left out (the ray's own, or -1);
+  /// +infinity when it meets none. `triangle` receives the triangle met (-1 for none).
+  double ray_distance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double from, double up_to,
+                      int skip = -1, int* triangle = nullptr) const;
+  /// Unit normal of triangle t (right hand over its corners).
+  Eigen::Vector3d normal(int t) const;
 
  private:
   struct Node {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <unordered_map>
@@ -62,7 +63,18 @@ Core core_cells(const Grid& g, const NodeField& f, double margin) {
   return manifold_core(g, std::move(keep), safety);
 }
 
-Core core_cells_by_centres(const Grid& g, const NodeField& centres, double margin) {
+bool across_surface(const Eigen::Vector3d& a, double da, const Eigen::Vector3d& b, double db,
+                    const mesh::TriangleProjector& surface) {
+  const double l = (b - a).norm();
+  if (!(da + db < l)) return false;
+  int out = -1, in = -1;  // where the segment leaves the solid from a, and from b
+  if (!std::isfinite(surface.ray_distance(a, b - a, 0, l, -1, &out))) return false;
+  surface.ray_distance(b, a - b, 0, l, -1, &in);
+  return in >= 0 && surface.normal(out).dot(surface.normal(in)) < -0.5;
+}
+
+Core core_cells_by_centres(const Grid& g, const NodeField& centres, double margin, const mesh::TriangleProjector* surface,
+                           double band) {
   const Grid cg = cell_centres(g);
   std::vector<char> keep(g.num_cells(), 0);
   std::vector<double> safety(g.num_cells(), 0);
@@ -74,7 +86,30 @@ Core core_cells_by_centres(const Grid& g, const NodeField& centres, double margi
         keep[g.cell(i, j, k)] = 1;
         safety[g.cell(i, j, k)] = centres.distance[n];
       }
-  return manifold_core(g, std::move(keep), safety);
+  int parted = 0;
+  if (surface) {
+    // A centre without a distance is at least `band` inside.
+    auto depth = [&](int64_t c) { return std::min(safety[c], std::max(band, margin)); };
+    for (int k = 0; k < g.nz; ++k)
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+          const int64_t c = g.cell(i, j, k);
+          if (!keep[c]) continue;
+          const int nb[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
+          for (const auto& q : nb) {
+            if (q[0] >= g.nx || q[1] >= g.ny || q[2] >= g.nz) continue;
+            const int64_t d = g.cell(q[0], q[1], q[2]);
+            if (!keep[d] || !across_surface(cg.position(i, j, k), depth(c), cg.position(q[0], q[1], q[2]), depth(d), *surface))
+              continue;
+            keep[safety[d] < safety[c] ? d : c] = 0;
+            ++parted;
+            if (!keep[c]) break;
+          }
+        }
+  }
+  Core core = manifold_core(g, std::move(keep), safety);
+  core.parted = parted;
+  return core;
 }
 
 Core manifold_core(const Grid& g, std::vector<char> keep, const std::vector<double>& safety) {
@@ -224,24 +259,14 @@ Core manifold_core(const mesh::Mesh& m, std::vector<char> keep, const std::vecto
     for (int i = 0; i < 8; ++i) work.push_back(m.cells(worst, i));
   }
   // Face-connected pieces of the kept cells; the largest kept.
-  const auto [faces, nf] = mesh::cell_faces(mesh::CellType::Hex);
-  std::map<std::array<int, 4>, int> first;
   std::vector<int> parent(m.num_cells());
   for (int x = 0; x < m.num_cells(); ++x) parent[x] = x;
   auto find = [&](int x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (int x = 0; x < m.num_cells(); ++x) {
-    if (!c.keep[x]) continue;
-    for (int f = 0; f < nf; ++f) {
-      std::array<int, 4> key;
-      for (int i = 0; i < 4; ++i) key[i] = m.cells(x, faces[f].v[i]);
-      std::sort(key.begin(), key.end());
-      auto [it, added] = first.emplace(key, x);
-      if (!added) parent[find(x)] = find(it->second);
-    }
-  }
+  for (const auto& [x, y] : mesh::face_neighbours(m))
+    if (c.keep[x] && c.keep[y]) parent[find(x)] = find(y);
   std::unordered_map<int, int> size;
   for (int x = 0; x < m.num_cells(); ++x)
     if (c.keep[x]) ++size[find(x)];

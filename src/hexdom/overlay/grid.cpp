@@ -50,6 +50,30 @@ Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double 
   return h;
 }
 
+double wall_thickness(const mesh::SurfaceMesh& s, double quantile) {
+  const mesh::TriangleProjector proj(s.V, s.F);
+  const double diagonal = (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm();
+  std::vector<std::pair<double, double>> at;  // (thickness, area)
+  double total = 0;
+  for (int t = 0; t < s.F.rows(); ++t) {
+    const Eigen::Vector3d a = s.V.row(s.F(t, 0)), b = s.V.row(s.F(t, 1)), c = s.V.row(s.F(t, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double area = n.norm() / 2;
+    if (!(area > 0)) continue;
+    const double d = proj.ray_distance((a + b + c) / 3, -n, 1e-9 * diagonal, std::numeric_limits<double>::infinity(), t);
+    at.emplace_back(d, area);
+    total += area;
+  }
+  if (at.empty()) return std::numeric_limits<double>::infinity();
+  std::sort(at.begin(), at.end());
+  double sum = 0;
+  for (const auto& [d, area] : at) {
+    sum += area;
+    if (sum >= quantile * total) return d;
+  }
+  return at.back().first;
+}
+
 namespace {
 
 // The crossing of the x-line through (py, pz) with triangle (A, B, C): 0 when the line misses it

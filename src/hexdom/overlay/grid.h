@@ -45,6 +45,12 @@ Grid cell_centres(const Grid& g);
 Eigen::Vector3d grid_spacing(const Eigen::Vector3d& extent, double size, double across, double ratio,
                              double min_size = 0);
 
+/// The wall thickness of the solid bounded by `surface` (closed, oriented outward): behind each
+/// triangle, the distance from its centroid inward along its normal to the next triangle the ray
+/// meets; of those, the one that `quantile` of the surface's area lies on walls no thicker than
+/// (0.5: the median by area). +infinity when no ray meets another triangle.
+double wall_thickness(const mesh::SurfaceMesh& surface, double quantile);
+
 /// Per grid node: inside the closed surface or not, and, for nodes within `band` of the surface
 /// (a bound on it, not the exact set), the distance to it; other nodes get +infinity.
 struct NodeField {

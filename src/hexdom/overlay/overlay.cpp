@@ -49,9 +49,9 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   mesh::Mesh m;  // the core, then with its buffer layer
   std::vector<double> depth{opt.buffer_depth * hmin};
   OctreeMesh tree;
+  const mesh::TriangleProjector proj(s.V, s.F);
   if (opt.octree_levels > 0 && opt.core_by_centres) {
     // Cells near the surface where the wall is thinner than wall_cells of them are split.
-    const mesh::TriangleProjector proj(s.V, s.F);
     auto normal = [&](int t) {
       const Eigen::Vector3d A = s.V.row(s.F(t, 0)), B = s.V.row(s.F(t, 1)), C = s.V.row(s.F(t, 2));
       return Eigen::Vector3d((B - A).cross(C - A).normalized());
@@ -88,14 +88,23 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     const NodeField f = classify_points(centres, s);
     std::vector<char> keep(cells.num_cells(), 0);
     for (int c = 0; c < cells.num_cells(); ++c) keep[c] = f.inside[c] && f.distance[c] >= opt.centre_margin * size[c];
+    // Of two kept cells facing each other across the surface, the one nearer it goes.
+    int parted = 0;
+    for (const auto& [a, b] : mesh::face_neighbours(cells)) {
+      if (!keep[a] || !keep[b] || !across_surface(centres[a], f.distance[a], centres[b], f.distance[b], proj)) continue;
+      keep[f.distance[a] < f.distance[b] ? a : b] = 0;
+      ++parted;
+    }
     core = manifold_core(cells, std::move(keep), f.distance);
+    core.parted = parted;
     if (core.cells == 0) throw GeometryError(fmt("no octree cell of spacing %g lies inside with its margin", h.maxCoeff()));
     m = core_mesh(cells, core);
     r.octree_levels = tree.levels;
     r.thinnest = hmin / std::pow(3.0, tree.levels);
   } else {
     core = opt.core_by_centres
-               ? core_cells_by_centres(grid, classify_nodes(cell_centres(grid), s, std::max(margin, hmin) * 1.001), margin)
+               ? core_cells_by_centres(grid, classify_nodes(cell_centres(grid), s, std::max(margin, hmin) * 1.001), margin,
+                                       &proj, std::max(margin, hmin) * 1.001)
                : core_cells(grid, classify_nodes(grid, s, margin * 1.001), margin);
     if (core.cells == 0) throw GeometryError(fmt("no grid cell of spacing %g lies inside with its margin", h.maxCoeff()));
     m = core_mesh(grid, core);
@@ -105,6 +114,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
                    h.maxCoeff(), core.components, core.apart));
   r.core_cells = core.cells;
   r.dropped = core.dropped;
+  r.parted = core.parted;
   m = add_buffer_layer(m, &outer, &copy);
   if (tree.levels > 0) {
     // The buffer layer's depth from the size of the core cells at each node.
@@ -188,7 +198,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   const double size = opt.size > 0 ? opt.size : segmentation::frame_diagonal(surface, frame.rotation) / 30.0;
   if (!(size > 0) || !std::isfinite(size)) throw GeometryError("the surface has no extent");
   const Eigen::Vector3d extent = (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).transpose();
-  const Eigen::Vector3d h0 = grid_spacing(extent, size, opt.across, opt.max_cell_ratio, opt.min_size);
+  Eigen::Vector3d h0 = grid_spacing(extent, size, opt.across, opt.max_cell_ratio, opt.min_size);
   const double reference = mesh::enclosed_volume(s.V, s.F);
   auto volume_off = [&](const OverlayResult& r) {
     return reference != 0 && std::abs(r.quality.total_volume - reference) > opt.target_volume * std::abs(reference);
@@ -204,6 +214,23 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   if (stretched) {
     ss = s;
     ss.V = s.V * stretch.asDiagonal();
+  }
+  if (opt.wall_across > 0) {
+    // Walls thinner than wall_across cells (measured where the cells are cubes): every spacing
+    // made smaller alike, within max_wall_refinement, the min size and max_grid_cells.
+    const double wall = wall_thickness(stretched ? ss : s, opt.wall_quantile);
+    const double want = wall / opt.wall_across / h0.maxCoeff();
+    double f = std::max(want, 1 / opt.max_wall_refinement);
+    if (opt.min_size > 0) f = std::max(f, opt.min_size / h0.minCoeff());
+    const Eigen::Vector3d n = extent.cwiseQuotient(h0).array() + 3;  // grid_around's cells, about
+    f = std::max(f, 1.01 * std::cbrt(n.prod() / opt.max_grid_cells));
+    if (f < 1) {
+      say(fmt("overlay: walls of %.2f cells of spacing %g across (%g%% of the surface on thinner ones); the spacing made %.2f "
+              "times smaller", wall / h0.maxCoeff(), h0.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
+      h0 *= f;
+    }
+  }
+  if (stretched) {
     FeatureOptions fo = opt.features;
     fo.regions = feat.region();
     sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
@@ -314,8 +341,8 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
 
 std::string to_text(const OverlayResult& r) {
   return fmt("overlay: spacing %g (thinnest %g", r.spacing, r.thinnest) +
-         (r.octree_levels > 0 ? fmt(", %.0f octree levels), ", double(r.octree_levels)) : std::string("), ")) + fmt("%.0f core + %.0f buffer cells (%.0f dropped for a manifold core), ",
-             double(r.core_cells), double(r.buffer_cells), double(r.dropped)) +
+         (r.octree_levels > 0 ? fmt(", %.0f octree levels), ", double(r.octree_levels)) : std::string("), ")) + fmt("%.0f core + %.0f buffer cells (%.0f dropped for a manifold core, %.0f facing another across the surface), ",
+             double(r.core_cells), double(r.buffer_cells), double(r.dropped), double(r.parted)) +
          fmt("%.0f curve and %.0f corner nodes (%.0f corners missed, %.0f staircase nodes let off their curve), ",
              double(r.curve_nodes), double(r.corner_nodes), double(r.corners_missed), double(r.demoted)) +
          fmt("%.0f grids, %.2f s", double(r.grids), r.seconds);

@@ -32,6 +32,15 @@ struct OverlayOptions {
   /// shortest side (overlay::grid_spacing).
   double across = 3;
   double max_cell_ratio = 5;
+  /// Walls (overlay::wall_thickness with wall_quantile: the thickness half the surface's area lies
+  /// on walls no thicker than, by default) get at least this many cells across: where they are
+  /// thinner than wall_across cells of the spacing, every spacing is made smaller alike, down to
+  /// 1 / max_wall_refinement of it and not below min_size. Measured in the space the grid's cells
+  /// are cubes in (a plate's thin axis already has its own spacing). 0 (the default): the spacing
+  /// as it is (docs/overlay.md: not yet a gain over the whole corpus).
+  double wall_across = 0;
+  double wall_quantile = 0.5;
+  double max_wall_refinement = 8;
   /// No cell shorter than this (0: no bound): the thin-axis rule above, the halvings and the octree
   /// stop at it, so a part thinner than `across` times min_size gets fewer cells across.
   double min_size = 0;
@@ -100,6 +109,7 @@ struct OverlayResult {
   quality::QualityReport quality;
   double spacing = 0, thinnest = 0;  ///< the grid spacing of the result: largest and smallest over the axes
   int core_cells = 0, buffer_cells = 0, dropped = 0;
+  int parted = 0;                    ///< core cells dropped as they faced a kept neighbour across the surface
   int curve_nodes = 0, corner_nodes = 0, corners_missed = 0, demoted = 0;
   /// #V: what each node of `mesh` is held on (optimize::NodeKind: Corner, Curve, Surface for the
   /// outer nodes on a smooth region, Interior); a Surface node near a curve was let off it on purpose

@@ -4,7 +4,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <string>
 #include <thread>
 
 #include "autopolycube/auto_test_util.h"
@@ -152,6 +154,41 @@ TEST(OverlayCore, ALayerOneCellThickKeepsItsCellsByCentres) {
   EXPECT_EQ(overlay::core_cells_by_centres(g, f, 0.6).cells, 0);  // the centres are 0.5 inside
 }
 
+// A slot thinner than the cells between two columns of cells whose centres are all inside: its
+// walls face each other, so of each pair of cells across it the one nearer it goes, no kept cell
+// faces a kept one across it, and the two sides are apart (the larger kept). A single plane there
+// (a surface whose two sides face the same way: no slot) parts nothing.
+TEST(OverlayCore, CellsFacingEachOtherAcrossASlotArePartedByCentres) {
+  overlay::Grid g;
+  g.nx = g.ny = g.nz = 6;
+  const overlay::Grid centres = overlay::cell_centres(g);
+  overlay::NodeField f;
+  f.inside.assign(centres.num_nodes(), 1);
+  f.distance.assign(centres.num_nodes(), 0.4);
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j) f.distance[centres.node(3, j, k)] = 0.45;  // the far side a little deeper
+  // The slot's walls x = 2.95 (facing +x) and x = 3.05 (facing -x), between centres 2.5 and 3.5.
+  Eigen::MatrixXd V(8, 3);
+  V << 2.95, -1, -1, 2.95, 7, -1, 2.95, 7, 7, 2.95, -1, 7, 3.05, -1, -1, 3.05, 7, -1, 3.05, 7, 7, 3.05, -1, 7;
+  Eigen::MatrixXi F(4, 3);
+  F << 0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6;
+  const mesh::TriangleProjector slot(V, F);
+  EXPECT_EQ(overlay::core_cells_by_centres(g, f, 0.1).cells, 216);  // without the surface: every cell
+  const overlay::Core core = overlay::core_cells_by_centres(g, f, 0.1, &slot, 0.5);
+  EXPECT_EQ(core.parted, 36);
+  EXPECT_EQ(core.cells, 108);  // x in 3..6 kept, 0..2 apart
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j) {
+      EXPECT_FALSE(core.keep[g.cell(2, j, k)] && core.keep[g.cell(3, j, k)]);
+      EXPECT_TRUE(core.keep[g.cell(3, j, k)]);
+    }
+  const mesh::TriangleProjector plane(V.topRows(4), F.topRows(2));
+  EXPECT_EQ(overlay::core_cells_by_centres(g, f, 0.1, &plane, 0.5).parted, 0);
+  // Centres deep enough that no slot can pass between them are not looked at.
+  f.distance.assign(centres.num_nodes(), 0.5);
+  EXPECT_EQ(overlay::core_cells_by_centres(g, f, 0.1, &slot, 0.5).parted, 0);
+}
+
 // A box: hexahedra only, none inverted, the volume exact, every corner of the box a node.
 TEST(Overlay, ABoxIsMeshedExactly) {
   const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);  // 30 x 20 x 10
@@ -203,6 +240,55 @@ TEST(Overlay, APlateAndARodAreValidWithCellsAcross) {
     EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
     EXPECT_LE(r.thinnest, size.minCoeff() / 2);
     EXPECT_EQ(r.corner_nodes, 8);
+  }
+}
+
+// The wall thickness by area: a slab 10 x 10 x 1 has 200 of its 240 units of area on a wall 1
+// thick (top and bottom) and 40 on one 10 thick (the sides).
+TEST(OverlayWalls, TheThicknessByArea) {
+  std::vector<std::array<int, 3>> cells;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) cells.push_back({i, j, 0});
+  const auto slab = test::cell_surface(cells, 1, 1.0);
+  EXPECT_NEAR(overlay::wall_thickness(slab, 0.5), 1.0, 1e-12);
+  EXPECT_NEAR(overlay::wall_thickness(slab, 0.8), 1.0, 1e-12);
+  EXPECT_NEAR(overlay::wall_thickness(slab, 0.9), 10.0, 1e-12);
+  EXPECT_EQ(overlay::wall_thickness(mesh::SurfaceMesh{}, 0.5), std::numeric_limits<double>::infinity());
+}
+
+// A hollow sphere, radii 10 and 9 (a wall 1 thick): at the default size (the diagonal / 30, 1.15)
+// and wall_across 2 the wall gets two cells across on the first grid made; the mesh is valid, on
+// the surface, its volume within 1%. Without wall_across (the default) the first grid has cells of
+// the size.
+TEST(OverlayWalls, AThinWallGetsCellsAcross) {
+  mesh::SurfaceMesh shell = sphere_surface(10.0, 4);
+  const mesh::SurfaceMesh inner = sphere_surface(9.0, 4);
+  const int n = static_cast<int>(shell.V.rows()), f = static_cast<int>(shell.F.rows());
+  shell.V.conservativeResize(2 * n, 3);
+  shell.V.bottomRows(n) = inner.V;
+  shell.F.conservativeResize(2 * f, 3);
+  for (int t = 0; t < f; ++t) shell.F.row(f + t) << inner.F(t, 0) + n, inner.F(t, 2) + n, inner.F(t, 1) + n;  // facing in
+  shell.patch = Eigen::VectorXi::Ones(2 * f);
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  ASSERT_NEAR(overlay::wall_thickness(shell, 0.5), 1.0, 0.02);
+  overlay::OverlayOptions o;
+  o.wall_across = 2;
+  std::vector<std::string> log;
+  o.log = [&](int, const std::string& m) { log.push_back(m); };
+  const overlay::OverlayResult r = overlay::overlay_mesh(shell, o);
+  EXPECT_LE(r.spacing, 0.52);
+  EXPECT_EQ(r.grids, 1);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, shell), 1e-9 * diagonal(shell));
+  ASSERT_FALSE(log.empty());
+  EXPECT_NE(log.front().find("walls of"), std::string::npos) << log.front();
+  o.wall_across = 0;
+  o.refinements = 0;
+  o.log = nullptr;
+  try {
+    EXPECT_GT(overlay::overlay_mesh(shell, o).spacing, 1.1);
+  } catch (const GeometryError&) {  // no core on a grid that coarse: fewer cells across too
   }
 }
 
