@@ -29,6 +29,33 @@ struct Stretch {
   const SurfaceFeatures* features;
 };
 
+// The octree's cells whose centre is inside by the margin of their own size, less those facing a
+// kept neighbour across a slot (across_surface), made manifold.
+Core octree_core(const OctreeMesh& tree, const mesh::SurfaceMesh& s, const mesh::TriangleProjector& proj, double hmin,
+                 const OverlayOptions& opt) {
+  const mesh::Mesh& cells = tree.mesh;
+  std::vector<Eigen::Vector3d> centres(cells.num_cells());
+  std::vector<double> size(cells.num_cells());
+  for (int c = 0; c < cells.num_cells(); ++c) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 8; ++i) x += cells.V.row(cells.cells(c, i)).transpose() / 8;
+    centres[c] = x;
+    size[c] = hmin / std::pow(3.0, tree.level[c]) / (tree.plain[c] ? 1 : 3);
+  }
+  const NodeField f = classify_points(centres, s);
+  std::vector<char> keep(cells.num_cells(), 0);
+  for (int c = 0; c < cells.num_cells(); ++c) keep[c] = f.inside[c] && f.distance[c] >= opt.centre_margin * size[c];
+  int parted = 0;
+  for (const auto& [a, b] : mesh::face_neighbours(cells)) {
+    if (!keep[a] || !keep[b] || !across_surface(centres[a], f.distance[a], centres[b], f.distance[b], proj)) continue;
+    keep[f.distance[a] < f.distance[b] ? a : b] = 0;
+    ++parted;
+  }
+  Core core = manifold_core(cells, std::move(keep), f.distance);
+  core.parted = parted;
+  return core;
+}
+
 // One grid of spacing h over `s` (in the frame): core, buffer layer, placement, optimiser. With
 // `stretch`, s and feat are the stretched copies: the mesh is optimised there, stretched back and
 // optimised again on the real surface, its nodes kept on the same regions, curves and corners.
@@ -75,30 +102,9 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   }
   Core core;
   if (tree.levels > 0) {
-    // The octree's cells whose centre is inside by the margin of their own size.
-    const mesh::Mesh& cells = tree.mesh;
-    std::vector<Eigen::Vector3d> centres(cells.num_cells());
-    std::vector<double> size(cells.num_cells());
-    for (int c = 0; c < cells.num_cells(); ++c) {
-      Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int i = 0; i < 8; ++i) x += cells.V.row(cells.cells(c, i)).transpose() / 8;
-      centres[c] = x;
-      size[c] = hmin / std::pow(3.0, tree.level[c]) / (tree.plain[c] ? 1 : 3);
-    }
-    const NodeField f = classify_points(centres, s);
-    std::vector<char> keep(cells.num_cells(), 0);
-    for (int c = 0; c < cells.num_cells(); ++c) keep[c] = f.inside[c] && f.distance[c] >= opt.centre_margin * size[c];
-    // Of two kept cells facing each other across the surface, the one nearer it goes.
-    int parted = 0;
-    for (const auto& [a, b] : mesh::face_neighbours(cells)) {
-      if (!keep[a] || !keep[b] || !across_surface(centres[a], f.distance[a], centres[b], f.distance[b], proj)) continue;
-      keep[f.distance[a] < f.distance[b] ? a : b] = 0;
-      ++parted;
-    }
-    core = manifold_core(cells, std::move(keep), f.distance);
-    core.parted = parted;
+    core = octree_core(tree, s, proj, hmin, opt);
     if (core.cells == 0) throw GeometryError(fmt("no octree cell of spacing %g lies inside with its margin", h.maxCoeff()));
-    m = core_mesh(cells, core);
+    m = core_mesh(tree.mesh, core);
     r.octree_levels = tree.levels;
     r.thinnest = hmin / std::pow(3.0, tree.levels);
   } else {
