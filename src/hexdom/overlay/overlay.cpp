@@ -79,10 +79,6 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   const mesh::TriangleProjector proj(s.V, s.F);
   if (opt.octree_levels > 0 && opt.core_by_centres) {
     // Cells near the surface where the wall is thinner than wall_cells of them are split.
-    auto normal = [&](int t) {
-      const Eigen::Vector3d A = s.V.row(s.F(t, 0)), B = s.V.row(s.F(t, 1)), C = s.V.row(s.F(t, 2));
-      return Eigen::Vector3d((B - A).cross(C - A).normalized());
-    };
     tree = octree_mesh(grid, opt.octree_levels, [&](const OctreeCell& c) {
       const Eigen::Vector3d size = octree_cell_size(grid, c), centre = octree_cell_origin(grid, c) + size / 2;
       if (opt.min_size > 0) {  // the children's real sides (the grid may be laid over a stretched copy)
@@ -92,12 +88,12 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
       int t = -1;
       const Eigen::Vector3d q = proj.project(centre, &t);
       if ((q - centre).norm() > size.norm() / 2) return false;
-      const Eigen::Vector3d n = normal(t);
+      const Eigen::Vector3d n = proj.normal(t);
       const double r = opt.wall_cells * size.minCoeff() / 2;
       const Eigen::Vector3d ball = q - r * n;
       int t2 = -1;
       const Eigen::Vector3d q2 = proj.project(ball, &t2);
-      return (q2 - ball).norm() < 0.9 * r && normal(t2).dot(n) < -0.5;
+      return (q2 - ball).norm() < 0.9 * r && proj.normal(t2).dot(n) < -0.5;
     });
   }
   Core core;
