@@ -47,6 +47,8 @@ class SurfaceFeatures {
   /// Closest point on the whole surface; `region` receives the region there and `normal` the unit
   /// outward normal of the triangle it lies on, when given.
   Eigen::Vector3d project(const Eigen::Vector3d& p, int* region = nullptr, Eigen::Vector3d* normal = nullptr) const;
+  /// The tree over the whole surface's triangles (its closest points, rays, triangle normals).
+  const mesh::TriangleProjector& triangles() const { return all_; }
   /// Closest point on region r.
   Eigen::Vector3d project_region(int r, const Eigen::Vector3d& p) const;
   /// Closest point on the curve between regions a and b (has_curve(a, b) must hold).

@@ -76,7 +76,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   mesh::Mesh m;  // the core, then with its buffer layer
   std::vector<double> depth{opt.buffer_depth * hmin};
   OctreeMesh tree;
-  const mesh::TriangleProjector proj(s.V, s.F);
+  const mesh::TriangleProjector& proj = feat.triangles();  // over s: feat are its features
   if (opt.octree_levels > 0 && opt.core_by_centres) {
     // Cells near the surface where the wall is thinner than wall_cells of them are split.
     tree = octree_mesh(grid, opt.octree_levels, [&](const OctreeCell& c) {
