@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <tuple>
 #include <unordered_map>
@@ -267,8 +268,39 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
         changed = true;
       }
   }
+  const Eigen::MatrixXd closest = m.V;
   for (int v = 0; v < nn; ++v)
     if (is_outer[v]) m.V.row(v) = place(p, feat, v, m.V.row(v).transpose()).transpose();
+  // Two nodes of an outer edge put on one point (a curve node whose nearest point on its curve is
+  // the curve's end, where a neighbour holds the corner) would make a degenerate cell: the one
+  // lower in the feature order goes onto the region around it whose nearest point is nearest to
+  // its own nearest point on the surface while not on the other's (onto a region, a node beyond a
+  // curve's end lies beside it, not on it).
+  const double collapsed = 1e-3 * reach;
+  auto rank = [&](int v) { return p.kind[v] == optimize::Corner ? 2 : p.kind[v] == optimize::Curve ? 1 : 0; };
+  for (const auto& [key, qs] : by_edge) {
+    const std::array<int, 4>& q = quads[qs.front()];
+    int u = -1, v = -1;
+    for (int i = 0; i < 4 && u < 0; ++i)
+      if (mesh::undirected_edge(q[i], q[(i + 1) % 4]) == key) u = q[i], v = q[(i + 1) % 4];
+    if ((m.V.row(u) - m.V.row(v)).norm() >= collapsed) continue;
+    if (rank(u) > rank(v)) std::swap(u, v);  // v stays, u moves
+    if (p.kind[u] == optimize::Corner) continue;
+    double move = std::numeric_limits<double>::infinity();
+    int best = -1;
+    Eigen::Vector3d to;
+    for (const auto& [reg, k] : around[u]) {
+      const Eigen::Vector3d x = feat.project_region(reg, closest.row(u).transpose());
+      const double d = (x - closest.row(u).transpose()).norm();
+      if ((x - m.V.row(v).transpose()).norm() >= collapsed && d < move) move = d, best = reg, to = x;
+    }
+    if (best < 0) continue;
+    p.demoted += p.kind[u] == optimize::Curve;
+    p.kind[u] = optimize::Surface;
+    p.a[u] = best;
+    p.b[u] = -1;
+    m.V.row(u) = to.transpose();
+  }
   for (int v = 0; v < nn; ++v) {
     if (!is_outer[v]) continue;
     p.surface += p.kind[v] == optimize::Surface;

@@ -243,6 +243,29 @@ TEST(Overlay, APlateAndARodAreValidWithCellsAcross) {
   }
 }
 
+// An open box (a cup 20 x 20 x 10, walls and floor 1 thick) on a grid of spacing 0.5 laid so that
+// two core nodes are equally near each inner corner of the rim: one takes the corner, and the
+// other, whose nearest point on its curve is that curve's end, must not be put on the same point
+// (a degenerate cell that the optimiser then leaves inverted). The first grid is valid.
+TEST(Overlay, NodesBesideACornerAreNotPutOnIt) {
+  std::vector<std::array<int, 3>> cells;
+  for (int k = 0; k < 10; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i)
+        if (k == 0 || i == 0 || j == 0 || i == 19 || j == 19) cells.push_back({i, j, k});
+  const auto cup = test::cell_surface(cells, 1, 1.0);
+  overlay::OverlayOptions o;
+  o.size = 0.5;
+  o.refinements = 0;
+  o.refinements_for_quality = 0;
+  const overlay::OverlayResult r = overlay::overlay_mesh(cup, o);
+  EXPECT_EQ(r.grids, 1);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GT(r.quality.hex.sj_min, 0.3);
+  EXPECT_NEAR(r.quality.total_volume, 20 * 20 * 10 - 18 * 18 * 9, 0.01 * 1084);
+  EXPECT_LT(boundary_distance(r.mesh, cup), 1e-9 * diagonal(cup));
+}
+
 // The wall thickness by area: a slab 10 x 10 x 1 has 200 of its 240 units of area on a wall 1
 // thick (top and bottom) and 40 on one 10 thick (the sides).
 TEST(OverlayWalls, TheThicknessByArea) {
