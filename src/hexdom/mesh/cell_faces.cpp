@@ -15,6 +15,11 @@ const LocalFace kWedge[5] = {{3, {0, 1, 2, -1}}, {3, {3, 5, 4, -1}}, {4, {0, 3, 
                              {4, {1, 4, 5, 2}}, {4, {2, 5, 3, 0}}};
 const LocalFace kTet[4] = {{3, {0, 2, 1, -1}}, {3, {0, 1, 3, -1}}, {3, {1, 2, 3, -1}}, {3, {0, 3, 2, -1}}};
 
+const std::array<int, 2> kHexEdges[12] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                          {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+const std::array<int, 2> kWedgeEdges[9] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+const std::array<int, 2> kTetEdges[6] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+
 struct FaceHash {
   size_t operator()(const std::array<int, 4>& k) const {
     size_t h = 1469598103934665603ull;
@@ -29,6 +34,15 @@ std::pair<const LocalFace*, int> cell_faces(CellType t) {
     case CellType::Hex: return {kHex, 6};
     case CellType::Wedge: return {kWedge, 5};
     case CellType::Tet: return {kTet, 4};
+    default: return {nullptr, 0};
+  }
+}
+
+std::pair<const std::array<int, 2>*, int> cell_edges(CellType t) {
+  switch (t) {
+    case CellType::Hex: return {kHexEdges, 12};
+    case CellType::Wedge: return {kWedgeEdges, 9};
+    case CellType::Tet: return {kTetEdges, 6};
     default: return {nullptr, 0};
   }
 }

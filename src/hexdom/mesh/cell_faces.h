@@ -17,6 +17,10 @@ struct LocalFace {
 /// The faces of a cell type (6 for hex, 5 for wedge, 4 for tet), outward.
 std::pair<const LocalFace*, int> cell_faces(CellType type);
 
+/// The edges of a cell type (12 for hex, 9 for wedge, 6 for tet) as pairs of local nodes: hex
+/// bottom ring, top ring, verticals; wedge and tet likewise.
+std::pair<const std::array<int, 2>*, int> cell_edges(CellType type);
+
 /// A face of the mesh boundary: a cell face no other cell shares.
 struct BoundaryFace {
   int cell, local;          ///< the cell and its local face number

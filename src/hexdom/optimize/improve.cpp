@@ -47,7 +47,7 @@ class Run {
     std::vector<double> scale(input.num_nodes(), 1.0);
     for (int attempt = 0;; ++attempt) {
       if (with_pillow) {
-        m_ = pillow_faces(input, opt.pillow_depth, partial ? layer : nullptr, &copy, &scale);
+        m_ = pillow_faces(input, opt.pillow_depth, partial ? layer : nullptr, &copy, &scale, opt.pillow_share);
         r_.pillow_cells = m_.num_cells() - input.num_cells();
         sharp.clear();
         if (sharp_in) {  // the copies take the flags; old nodes under the layer are no longer on the boundary

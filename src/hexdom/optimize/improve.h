@@ -73,8 +73,11 @@ struct ImproveOptions {
   /// move freely, so untangling them is not held back. E.g. after the snap to the B-rep, the cells
   /// it did not break keep the quality they had. -2: no such floor.
   double floor = -2;
-  /// Pillow layer thickness as a fraction of the shortest boundary edge at each node.
+  /// Pillow layer thickness at each node: pillow_depth x its shortest boundary edge, or where
+  /// thicker pillow_share x the height of the cells under it, up to that shortest edge
+  /// (optimize::pillow_faces; 0: the first alone).
   double pillow_depth = 0.2;
+  double pillow_share = 0.4;
   /// The time budget. Looked at after every round (smoothing, optimisation or mean pass): once
   /// passed, the round running ends, no further round, run (with or without a layer) or mean pass
   /// starts, and the best of the runs made so far is returned (by the recommended sequence's order)

@@ -17,13 +17,8 @@ NodeKinds node_kinds(const mesh::Mesh& m, double feature_angle, const std::vecto
   t.node_faces.assign(nn, {});
   t.edge_nbrs.assign(nn, {});
   {
-    static const int he[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-    static const int we[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
-    static const int te[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
     for (int c = 0; c < m.num_cells(); ++c) {
-      const CellType ty = m.type(c);
-      const int(*e)[2] = ty == CellType::Hex ? he : ty == CellType::Wedge ? we : te;
-      const int ne = ty == CellType::Hex ? 12 : ty == CellType::Wedge ? 9 : 6;
+      const auto [e, ne] = mesh::cell_edges(m.type(c));
       for (int q = 0; q < ne; ++q) {
         const int a = m.cells(c, e[q][0]), b = m.cells(c, e[q][1]);
         t.edge_nbrs[a].push_back(b);

@@ -6,9 +6,11 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_set>
 
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/cell_faces.h"
+#include "hexdom/mesh/edge_key.h"
 #include "hexdom/quality/metrics.h"
 
 namespace hexdom::optimize {
@@ -19,8 +21,46 @@ using quality::is_inverted;
 using quality::scaled_jacobian;
 using Vec = Eigen::Vector3d;
 
+namespace {
+
+// Each moved node's layer thickness (see pillow_faces in the header): depth x its shortest edge
+// on the layer's faces, or share x the shortest edge off them, up to that shortest layer edge.
+template <typename Selected>
+std::vector<double> layer_thickness(const mesh::Mesh& m, const std::vector<mesh::BoundaryFace>& faces, Selected selected,
+                                    const std::vector<int>& copy, const std::vector<double>& shortest, double depth,
+                                    double share) {
+  const int nn = m.num_nodes();
+  std::vector<double> thickness(nn, 0.0);
+  std::unordered_set<int64_t> on_layer;
+  for (size_t k = 0; k < faces.size(); ++k)
+    if (selected(k))
+      for (int i = 0; i < faces[k].n; ++i) on_layer.insert(mesh::undirected_edge(faces[k].v[i], faces[k].v[(i + 1) % faces[k].n]));
+  std::vector<double> under(nn, std::numeric_limits<double>::max());
+  if (share > 0)
+    for (int c = 0; c < m.num_cells(); ++c) {
+      const auto [edges, ne] = mesh::cell_edges(m.type(c));
+      for (int e = 0; e < ne; ++e) {
+        const int a = m.cells(c, edges[e][0]), b = m.cells(c, edges[e][1]);
+        if ((copy[a] < 0 && copy[b] < 0) || on_layer.count(mesh::undirected_edge(a, b))) continue;
+        const double l = (m.V.row(a) - m.V.row(b)).norm();
+        under[a] = std::min(under[a], l);
+        under[b] = std::min(under[b], l);
+      }
+    }
+  for (int v = 0; v < nn; ++v) {
+    if (copy[v] < 0) continue;
+    // A node whose every edge lies on the layer (a corner of a cell with three faces on it): the
+    // cell under it is as high as its edges are long.
+    const double height = under[v] < std::numeric_limits<double>::max() ? under[v] : shortest[v];
+    thickness[v] = std::max(depth * shortest[v], std::min(shortest[v], share * height));
+  }
+  return thickness;
+}
+
+}  // namespace
+
 mesh::Mesh pillow_faces(const mesh::Mesh& m, double depth, const std::vector<char>* mask, std::vector<int>* old_to_new,
-                        const std::vector<double>* node_scale) {
+                        const std::vector<double>* node_scale, double share) {
   const auto faces = mesh::boundary_faces(m);
   if (mask && mask->size() != faces.size())
     throw GeometryError("pillow: " + std::to_string(mask->size()) + " face flags for " + std::to_string(faces.size()) +
@@ -41,6 +81,7 @@ mesh::Mesh pillow_faces(const mesh::Mesh& m, double depth, const std::vector<cha
       shortest[w] = std::min(shortest[w], l);
     }
   }
+  const std::vector<double> thickness = layer_thickness(m, faces, selected, copy, shortest, depth, share);
   Eigen::MatrixXd V(next, 3);
   V.topRows(nn) = m.V;
   for (int v = 0; v < nn; ++v)
@@ -137,7 +178,7 @@ mesh::Mesh pillow_faces(const mesh::Mesh& m, double depth, const std::vector<cha
   for (size_t k = 0; k < layer_face.size(); ++k) was_valid[m.num_cells() + k] = was_valid[faces[layer_face[k]].cell];
   for (int attempt = 0; attempt < 8; ++attempt) {
     for (int v = 0; v < nn; ++v)
-      if (copy[v] >= 0) out.V.row(v) = (m.V.row(v).transpose() + scale[v] * depth * shortest[v] * dir[v]).transpose();
+      if (copy[v] >= 0) out.V.row(v) = (m.V.row(v).transpose() + scale[v] * thickness[v] * dir[v]).transpose();
     bool all_ok = true;
     std::vector<char> shrink(nn, 0);
     for (int c = 0; c < out.num_cells(); ++c) {

@@ -27,12 +27,16 @@ mesh::Mesh pillow(const mesh::Mesh& mesh, double depth, const std::vector<char>&
                   std::vector<int>* old_to_new = nullptr);
 
 /// The layer over the boundary faces f with (*mask)[f] (all of them when `mask` is null), as
-/// pillow(). Each old boundary node moves inward by depth x its shortest boundary edge x its scale
-/// (`node_scale`, #V of the input, 1 for every node when null); where a cell valid before comes out
-/// inverted, the scale of its moved nodes is halved and the layer made again (a bounded number of
-/// times).
+/// pillow(). Each old boundary node moves inward by its layer thickness x its scale (`node_scale`,
+/// #V of the input, 1 for every node when null): depth x its shortest edge on the layer's faces,
+/// or, when `share` > 0 and that is thicker, `share` x its shortest edge off them (the height of
+/// the cells under the layer; its shortest layer edge where it has no other) but not more than
+/// that shortest layer edge, so that a layer cell is
+/// not needle-thin against its own face nor against the cell under it. Where a cell valid before
+/// comes out inverted, the scale of its moved nodes is halved and the layer made again (a bounded
+/// number of times).
 mesh::Mesh pillow_faces(const mesh::Mesh& mesh, double depth, const std::vector<char>* mask, std::vector<int>* old_to_new,
-                        const std::vector<double>* node_scale = nullptr);
+                        const std::vector<double>* node_scale = nullptr, double share = 0);
 
 /// Boundary faces (#faces of kinds.faces, flags) for a layer where a polycube edge lies on a smooth
 /// surface: the smooth regions in which some cell has two faces meeting at an edge (its dihedral

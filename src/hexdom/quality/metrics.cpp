@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "hexdom/mesh/cell_faces.h"
+
 namespace hexdom::quality {
 
 using mesh::CellType;
@@ -109,10 +111,6 @@ double wedge_sj(const CellPoints& Q) {
   return min_sj > 0 ? std::min(min_sj, kDblMax) : std::max(min_sj, -kDblMax);
 }
 
-const int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-                              {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-const int kWedgeEdges[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
-const int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
 
 }  // namespace
 
@@ -126,14 +124,8 @@ double scaled_jacobian(CellType type, const CellPoints& P) {
 }
 
 double edge_ratio(CellType type, const CellPoints& P) {
-  const int(*edges)[2] = nullptr;
-  int n = 0;
-  switch (type) {
-    case CellType::Hex: edges = kHexEdges; n = 12; break;
-    case CellType::Wedge: edges = kWedgeEdges; n = 9; break;
-    case CellType::Tet: edges = kTetEdges; n = 6; break;
-    default: return std::numeric_limits<double>::quiet_NaN();
-  }
+  const auto [edges, n] = mesh::cell_edges(type);
+  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
   double lo = DBL_MAX, hi = 0;
   for (int e = 0; e < n; ++e) {
     double l = (P.row(edges[e][0]) - P.row(edges[e][1])).squaredNorm();

@@ -148,6 +148,25 @@ TEST(Pillow, NoHexKeepsMoreThanOneBoundaryFace) {
   EXPECT_GT(sj.minCoeff(), 0.0);
 }
 
+// A layer as thick as a share of the cell under it: over a 2 x 2 x 2 grid of the unit cube (cells
+// 0.5) the old rule (0.2 of the shortest boundary edge) gives layer cells 0.1 thick, edge ratio 5;
+// with share 0.4 they are 0.2 thick (ratio 2.5), every cell valid, the volume kept. A layer is
+// never thinner than the old rule gives, and never thicker than its shortest face edge.
+TEST(Pillow, ALayerTakesAShareOfTheCellUnderIt) {
+  const mesh::Mesh m = cube_grid(2, 0.0);
+  auto largest_ratio = [](const mesh::Mesh& p) { return quality::compute_metrics(p).edge_ratio.maxCoeff(); };
+  const mesh::Mesh old_rule = optimize::pillow_faces(m, 0.2, nullptr, nullptr);
+  const mesh::Mesh shared = optimize::pillow_faces(m, 0.2, nullptr, nullptr, nullptr, 0.4);
+  EXPECT_NEAR(largest_ratio(old_rule), 5.0, 1e-9);
+  EXPECT_NEAR(largest_ratio(shared), 2.5, 1e-9);
+  EXPECT_GT(sj_of(shared).minCoeff(), 0.0);
+  EXPECT_NEAR(quality::compute_metrics(shared).volume.sum(), 1.0, 1e-12);
+  // A share that would crush the cells under the layer: thinned where cells would invert.
+  const mesh::Mesh capped = optimize::pillow_faces(m, 0.2, nullptr, nullptr, nullptr, 3.0);
+  EXPECT_GT(sj_of(capped).minCoeff(), 0.0);
+  EXPECT_NEAR(quality::compute_metrics(capped).volume.sum(), 1.0, 1e-12);
+}
+
 TEST(Improve, RaisesTheMeanWithoutLoweringTheWorstAndKeepsTheCube) {
   const mesh::Mesh m = cube_grid(4, 0.35);
   const Eigen::VectorXd sj0 = sj_of(m);
