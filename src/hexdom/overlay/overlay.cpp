@@ -188,6 +188,33 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   return r;
 }
 
+// Meshes of one part compared against its surface's volume `reference`.
+struct Ranking {
+  double reference;
+  const OverlayOptions& opt;
+  double error(const OverlayResult& x) const { return std::abs(x.quality.total_volume - reference); }
+  bool volume_off(const OverlayResult& x) const {
+    return reference != 0 && error(x) > opt.target_volume * std::abs(reference);
+  }
+  bool lost(const OverlayResult& x) const { return reference != 0 && error(x) > opt.lost_volume * std::abs(reference); }
+  // The better of two meshes: a mesh of the whole part first (a grid too coarse for a thin part
+  // drops it: volume off by more than lost_volume), and of two that both lost part of it the one
+  // that lost less; then fewer inverted cells; then, when either misses the volume target, the
+  // smaller volume error; then the higher worst SJ.
+  bool better(const OverlayResult& r, const OverlayResult& b) const {
+    return lost(r) != lost(b) ? lost(b)
+           : lost(r)          ? error(r) < error(b)
+           : inverted(r.quality) != inverted(b.quality)
+               ? inverted(r.quality) < inverted(b.quality)
+               : (volume_off(b) || volume_off(r) ? error(r) < error(b) : r.quality.hex.sj_min > b.quality.hex.sj_min);
+  }
+  std::string summary(const OverlayResult& r) const {
+    return fmt("%.0f core + %.0f buffer cells, ", double(r.core_cells), double(r.buffer_cells)) +
+           fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), r.quality.hex.sj_min,
+               reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0);
+  }
+};
+
 }  // namespace
 
 OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOptions& opt) {
@@ -202,9 +229,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   const Eigen::Vector3d extent = (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).transpose();
   Eigen::Vector3d h0 = grid_spacing(extent, size, opt.across, opt.max_cell_ratio, opt.min_size);
   const double reference = mesh::enclosed_volume(s.V, s.F);
-  auto volume_off = [&](const OverlayResult& r) {
-    return reference != 0 && std::abs(r.quality.total_volume - reference) > opt.target_volume * std::abs(reference);
-  };
+  const Ranking rank{reference, opt};
   const SurfaceFeatures feat(s, opt.features);
   // A grid of unequal spacings (a plate, a rod) is laid as cubes over the surface stretched per
   // axis by hmax / h: closest points, the buffer's depth and the optimiser then see the cells as
@@ -217,39 +242,28 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     ss = s;
     ss.V = s.V * stretch.asDiagonal();
   }
-  if (opt.wall_across > 0) {
-    // Walls thinner than wall_across cells (measured where the cells are cubes): every spacing
-    // made smaller alike, within max_wall_refinement, the min size and max_grid_cells.
-    const double wall = wall_thickness(stretched ? ss : s, opt.wall_quantile);
-    const double want = wall / opt.wall_across / h0.maxCoeff();
-    double f = std::max(want, 1 / opt.max_wall_refinement);
-    if (opt.min_size > 0) f = std::max(f, opt.min_size / h0.minCoeff());
-    const Eigen::Vector3d n = extent.cwiseQuotient(h0).array() + 3;  // grid_around's cells, about
-    f = std::max(f, 1.01 * std::cbrt(n.prod() / opt.max_grid_cells));
-    if (f < 1) {
+  // The factor (< 1) that gives walls `across` cells (measured where the cells are cubes): every
+  // spacing made smaller alike, within max_wall_refinement, the min size and max_grid_cells;
+  // 1 when the walls have that many already. Says so.
+  const Eigen::Vector3d h_default = h0;
+  double wall = -1;
+  auto wall_factor = [&](double across) {
+    if (wall < 0) wall = wall_thickness(stretched ? ss : s, opt.wall_quantile);
+    double f = std::max(wall / across / h_default.maxCoeff(), 1 / opt.max_wall_refinement);
+    if (opt.min_size > 0) f = std::max(f, opt.min_size / h_default.minCoeff());
+    const Eigen::Vector3d n = extent.cwiseQuotient(h_default).array() + 3;  // grid_around's cells, about
+    f = std::min(1.0, std::max(f, 1.01 * std::cbrt(n.prod() / opt.max_grid_cells)));
+    if (f < 1)
       say(fmt("overlay: walls of %.2f cells of spacing %g across (%g%% of the surface on thinner ones); the spacing made %.2f "
-              "times smaller", wall / h0.maxCoeff(), h0.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
-      h0 *= f;
-    }
-  }
+              "times smaller", wall / h_default.maxCoeff(), h_default.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
+    return f;
+  };
+  if (opt.wall_across > 0) h0 *= wall_factor(opt.wall_across);
   if (stretched) {
     FeatureOptions fo = opt.features;
     fo.regions = feat.region();
     sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
   }
-  // The better of two meshes: a mesh of the whole part first (a grid too coarse for a thin part
-  // drops it: volume off by more than lost_volume), and of two that both lost part of it the one
-  // that lost less; then fewer inverted cells; then, when either misses the volume target, the
-  // smaller volume error; then the higher worst SJ.
-  auto error = [&](const OverlayResult& x) { return std::abs(x.quality.total_volume - reference); };
-  auto lost = [&](const OverlayResult& x) { return reference != 0 && error(x) > opt.lost_volume * std::abs(reference); };
-  auto better = [&](const OverlayResult& r, const OverlayResult& b) {
-    return lost(r) != lost(b) ? lost(b)
-           : lost(r)          ? error(r) < error(b)
-           : inverted(r.quality) != inverted(b.quality)
-               ? inverted(r.quality) < inverted(b.quality)
-               : (volume_off(b) || volume_off(r) ? error(r) < error(b) : r.quality.hex.sj_min > b.quality.hex.sj_min);
-  };
   int grids = 0;
   // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ).
   auto one_grid = [&](const Eigen::Vector3d& h, const OverlayOptions& o) {
@@ -261,11 +275,6 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     r.spacing = spacing.maxCoeff();
     r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
     return r;
-  };
-  auto summary = [&](const OverlayResult& r) {
-    return fmt("%.0f core + %.0f buffer cells, ", double(r.core_cells), double(r.buffer_cells)) +
-           fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), r.quality.hex.sj_min,
-               reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0);
   };
   OverlayResult best;
   bool have = false;
@@ -288,7 +297,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       if (why.find("more than") != std::string::npos) break;
       continue;
     }
-    say(fmt("overlay: spacing %g: ", h.maxCoeff()) + summary(r));
+    say(fmt("overlay: spacing %g: ", h.maxCoeff()) + rank.summary(r));
     // Cells left inverted by the core by centres: the same grid with the core by corners too (its
     // buffer layer is thicker where the surface turns sharply), the better kept.
     if (opt.core_by_centres && inverted(r.quality) > 0 && r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
@@ -296,19 +305,19 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       corners.core_by_centres = false;
       try {
         OverlayResult r2 = one_grid(h, corners);
-        say(fmt("overlay: spacing %g, core by corners: ", h.maxCoeff()) + summary(r2));
-        if (better(r2, r)) r = std::move(r2);
+        say(fmt("overlay: spacing %g, core by corners: ", h.maxCoeff()) + rank.summary(r2));
+        if (rank.better(r2, r)) r = std::move(r2);
       } catch (const GeometryError& e) {
         say(std::string("overlay: core by corners: ") + e.what());
       }
     }
     const double cells = r.core_cells + r.buffer_cells;
-    const bool kept = !have || better(r, best);
+    const bool kept = !have || rank.better(r, best);
     if (kept) {
       best = std::move(r);
       have = true;
     }
-    const bool short_of = inverted(best.quality) > 0 || volume_off(best) || best.quality.hex.sj_min < opt.refine_below_sj;
+    const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || best.quality.hex.sj_min < opt.refine_below_sj;
     if (!short_of || k == opt.refinements) break;
     // An octree grid is already refined where the part is thin: halving it as well would multiply
     // its cells (up to a million) by 8.
@@ -320,18 +329,33 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     // max_cells_for_quality, nor beyond max_cells_for_extra for the worst SJ alone.
     // A grid halved for the SJ alone that did no better ends the halvings.
     const double finer_cells = 8.0 * cells;
-    const bool for_sj = inverted(best.quality) == 0 && !volume_off(best);
+    const bool for_sj = inverted(best.quality) == 0 && !rank.volume_off(best);
     const double cap = for_sj ? opt.max_cells_for_extra : opt.max_cells_for_quality;
     if (for_sj && !kept) break;
-    if (!lost(best) && (++finer_for_quality > opt.refinements_for_quality || finer_cells > cap)) {
+    if (!rank.lost(best) && (++finer_for_quality > opt.refinements_for_quality || finer_cells > cap)) {
       if (finer_for_quality <= opt.refinements_for_quality)
         say(fmt("overlay: a finer grid would have about %.0f cells, more than %.0f; keeping this one", finer_cells, cap));
       break;
     }
     say(inverted(best.quality) > 0 ? "overlay: inverted cells remain; halving the spacing"
-        : volume_off(best)         ? "overlay: the volume is off by more than the target; halving the spacing"
+        : rank.volume_off(best)    ? "overlay: the volume is off by more than the target; halving the spacing"
                                    : fmt("overlay: worst SJ %.3f, below %.2f; halving the spacing", best.quality.hex.sj_min,
                                          opt.refine_below_sj));
+  }
+  // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
+  // wall_fallback cells across, the better kept.
+  if (have && inverted(best.quality) > 0 && opt.wall_across == 0 && opt.wall_fallback > 0) {
+    const double f = wall_factor(opt.wall_fallback);
+    if (f < 1) {
+      opt.deadline.check("overlay");
+      try {
+        OverlayResult r = one_grid(h0 * f, opt);
+        say(fmt("overlay: spacing %g for the walls: ", (h0 * f).maxCoeff()) + rank.summary(r));
+        if (rank.better(r, best)) best = std::move(r);
+      } catch (const GeometryError& e) {
+        say(std::string("overlay: the grid for the walls: ") + e.what());
+      }
+    }
   }
   if (!have) throw GeometryError("overlay: " + why);
   best.grids = grids;

@@ -72,6 +72,19 @@ double boundary_distance(const mesh::Mesh& m, const mesh::SurfaceMesh& s) {
 
 double diagonal(const mesh::SurfaceMesh& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
 
+// A hollow sphere, radii 10 and 9: a wall 1 thick.
+mesh::SurfaceMesh hollow_sphere() {
+  mesh::SurfaceMesh shell = sphere_surface(10.0, 4);
+  const mesh::SurfaceMesh inner = sphere_surface(9.0, 4);
+  const int n = static_cast<int>(shell.V.rows()), f = static_cast<int>(shell.F.rows());
+  shell.V.conservativeResize(2 * n, 3);
+  shell.V.bottomRows(n) = inner.V;
+  shell.F.conservativeResize(2 * f, 3);
+  for (int t = 0; t < f; ++t) shell.F.row(f + t) << inner.F(t, 0) + n, inner.F(t, 2) + n, inner.F(t, 1) + n;  // facing in
+  shell.patch = Eigen::VectorXi::Ones(2 * f);
+  return shell;
+}
+
 }  // namespace
 
 // Nodes strictly inside a box of cells are inside, the others outside; distances in the band are
@@ -284,14 +297,7 @@ TEST(OverlayWalls, TheThicknessByArea) {
 // the surface, its volume within 1%. Without wall_across (the default) the first grid has cells of
 // the size.
 TEST(OverlayWalls, AThinWallGetsCellsAcross) {
-  mesh::SurfaceMesh shell = sphere_surface(10.0, 4);
-  const mesh::SurfaceMesh inner = sphere_surface(9.0, 4);
-  const int n = static_cast<int>(shell.V.rows()), f = static_cast<int>(shell.F.rows());
-  shell.V.conservativeResize(2 * n, 3);
-  shell.V.bottomRows(n) = inner.V;
-  shell.F.conservativeResize(2 * f, 3);
-  for (int t = 0; t < f; ++t) shell.F.row(f + t) << inner.F(t, 0) + n, inner.F(t, 2) + n, inner.F(t, 1) + n;  // facing in
-  shell.patch = Eigen::VectorXi::Ones(2 * f);
+  const mesh::SurfaceMesh shell = hollow_sphere();
   const double volume = mesh::enclosed_volume(shell.V, shell.F);
   ASSERT_NEAR(overlay::wall_thickness(shell, 0.5), 1.0, 0.02);
   overlay::OverlayOptions o;
@@ -307,6 +313,7 @@ TEST(OverlayWalls, AThinWallGetsCellsAcross) {
   ASSERT_FALSE(log.empty());
   EXPECT_NE(log.front().find("walls of"), std::string::npos) << log.front();
   o.wall_across = 0;
+  o.wall_fallback = 0;  // not the one more grid for inverted cells either (the next test)
   o.refinements = 0;
   o.log = nullptr;
   try {
@@ -366,4 +373,25 @@ TEST(Overlay, OctreeRefinementMeshesThinWalls) {
   EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
   EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
   EXPECT_EQ(r.corner_nodes, 16);
+}
+
+// The hollow sphere (wall 1) on a grid of 0.7 with no halving keeps inverted cells and loses most
+// of the shell (its core falls apart); the one more grid for the walls (wall_fallback 2: spacing
+// 0.5) is kept instead: valid, the volume within 1%.
+TEST(OverlayWalls, InvertedCellsOnThinWallsGetOneMoreGridForThem) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  overlay::OverlayOptions o;
+  o.size = 0.7;
+  o.refinements = 0;
+  o.wall_fallback = 0;
+  const overlay::OverlayResult without = overlay::overlay_mesh(shell, o);
+  ASSERT_GT(inverted(without.quality), 0);
+  o.wall_fallback = 2;
+  const overlay::OverlayResult with = overlay::overlay_mesh(shell, o);
+  EXPECT_EQ(with.grids, without.grids + 1);
+  EXPECT_LE(with.spacing, 0.51);
+  EXPECT_EQ(inverted(with.quality), 0);
+  EXPECT_NEAR(with.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(with.mesh, shell), 1e-9 * diagonal(shell));
 }
