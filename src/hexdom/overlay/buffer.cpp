@@ -295,7 +295,6 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
       if ((x - m.V.row(v).transpose()).norm() >= collapsed && d < move) move = d, best = reg, to = x;
     }
     if (best < 0) continue;
-    p.demoted += p.kind[u] == optimize::Curve;
     p.kind[u] = optimize::Surface;
     p.a[u] = best;
     p.b[u] = -1;
