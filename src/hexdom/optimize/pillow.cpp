@@ -25,18 +25,18 @@ namespace {
 
 // Each moved node's layer thickness (see pillow_faces in the header): depth x its shortest edge
 // on the layer's faces, or share x the shortest edge off them, up to that shortest layer edge.
-template <typename Selected>
-std::vector<double> layer_thickness(const mesh::Mesh& m, const std::vector<mesh::BoundaryFace>& faces, Selected selected,
-                                    const std::vector<int>& copy, const std::vector<double>& shortest, double depth,
-                                    double share) {
+// `mask` as in pillow_faces (null: every boundary face).
+std::vector<double> layer_thickness(const mesh::Mesh& m, const std::vector<mesh::BoundaryFace>& faces,
+                                    const std::vector<char>* mask, const std::vector<int>& copy,
+                                    const std::vector<double>& shortest, double depth, double share) {
   const int nn = m.num_nodes();
   std::vector<double> thickness(nn, 0.0);
-  std::unordered_set<int64_t> on_layer;
-  for (size_t k = 0; k < faces.size(); ++k)
-    if (selected(k))
-      for (int i = 0; i < faces[k].n; ++i) on_layer.insert(mesh::undirected_edge(faces[k].v[i], faces[k].v[(i + 1) % faces[k].n]));
   std::vector<double> under(nn, std::numeric_limits<double>::max());
-  if (share > 0)
+  if (share > 0) {
+    std::unordered_set<mesh::EdgeKey> on_layer;
+    for (size_t k = 0; k < faces.size(); ++k)
+      if (!mask || (*mask)[k])
+        for (int i = 0; i < faces[k].n; ++i) on_layer.insert(mesh::undirected_edge(faces[k].v[i], faces[k].v[(i + 1) % faces[k].n]));
     for (int c = 0; c < m.num_cells(); ++c) {
       const auto [edges, ne] = mesh::cell_edges(m.type(c));
       for (int e = 0; e < ne; ++e) {
@@ -47,6 +47,7 @@ std::vector<double> layer_thickness(const mesh::Mesh& m, const std::vector<mesh:
         under[b] = std::min(under[b], l);
       }
     }
+  }
   for (int v = 0; v < nn; ++v) {
     if (copy[v] < 0) continue;
     // A node whose every edge lies on the layer (a corner of a cell with three faces on it): the
@@ -81,7 +82,7 @@ mesh::Mesh pillow_faces(const mesh::Mesh& m, double depth, const std::vector<cha
       shortest[w] = std::min(shortest[w], l);
     }
   }
-  const std::vector<double> thickness = layer_thickness(m, faces, selected, copy, shortest, depth, share);
+  const std::vector<double> thickness = layer_thickness(m, faces, mask, copy, shortest, depth, share);
   Eigen::MatrixXd V(next, 3);
   V.topRows(nn) = m.V;
   for (int v = 0; v < nn; ++v)

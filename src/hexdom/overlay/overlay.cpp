@@ -242,20 +242,19 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     ss = s;
     ss.V = s.V * stretch.asDiagonal();
   }
-  // The factor (< 1) that gives walls `across` cells (measured where the cells are cubes): every
-  // spacing made smaller alike, within max_wall_refinement, the min size and max_grid_cells;
-  // 1 when the walls have that many already. Says so.
-  const Eigen::Vector3d h_default = h0;
-  double wall = -1;
+  // The factor (< 1) of h0 that gives walls `across` cells (measured where the cells are cubes):
+  // every spacing made smaller alike, within max_wall_refinement, the min size and max_grid_cells;
+  // 1 when the walls have that many already. Says so. Called once at most (wall_across before
+  // h0 changes, or wall_fallback when wall_across is off).
   auto wall_factor = [&](double across) {
-    if (wall < 0) wall = wall_thickness(stretched ? ss : s, opt.wall_quantile);
-    double f = std::max(wall / across / h_default.maxCoeff(), 1 / opt.max_wall_refinement);
-    if (opt.min_size > 0) f = std::max(f, opt.min_size / h_default.minCoeff());
-    const Eigen::Vector3d n = extent.cwiseQuotient(h_default).array() + 3;  // grid_around's cells, about
+    const double wall = wall_thickness(stretched ? ss : s, opt.wall_quantile);
+    double f = std::max(wall / across / h0.maxCoeff(), 1 / opt.max_wall_refinement);
+    if (opt.min_size > 0) f = std::max(f, opt.min_size / h0.minCoeff());
+    const Eigen::Vector3d n = extent.cwiseQuotient(h0).array() + 3;  // grid_around's cells, about
     f = std::min(1.0, std::max(f, 1.01 * std::cbrt(n.prod() / opt.max_grid_cells)));
     if (f < 1)
       say(fmt("overlay: walls of %.2f cells of spacing %g across (%g%% of the surface on thinner ones); the spacing made %.2f "
-              "times smaller", wall / h_default.maxCoeff(), h_default.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
+              "times smaller", wall / h0.maxCoeff(), h0.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
     return f;
   };
   if (opt.wall_across > 0) h0 *= wall_factor(opt.wall_across);
