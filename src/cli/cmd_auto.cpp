@@ -162,6 +162,25 @@ const char* const kMeshHelp =
       "fit them) is segmented and given its polycube in that turned frame; the mesh is in the model's\n"
       "coordinates (--no-align: the model's axes).";
 
+// "10=1.5" or "Face10=1.5": a cell size on a face; InputError naming the text otherwise.
+overlay::LocalSize parse_face_size(const std::string& text) {
+  const size_t eq = text.find('=');
+  std::string face = text.substr(0, eq == std::string::npos ? 0 : eq);
+  if (face.rfind("Face", 0) == 0) face = face.substr(4);
+  overlay::LocalSize l;
+  try {
+    size_t used = 0, used2 = 0;
+    l.patch = std::stoi(face, &used);
+    l.size = std::stod(text.substr(eq + 1), &used2);
+    if (used != face.size() || used2 != text.size() - eq - 1) throw std::invalid_argument(text);
+  } catch (const std::logic_error&) {
+    throw InputError("--face-size " + text + ": expected FACE=SIZE, a face number (or Face<number>) and a size, as 10=1.5");
+  }
+  if (l.patch < 1 || !(l.size > 0))
+    throw InputError("--face-size " + text + ": the face number must be at least 1 and the size positive");
+  return l;
+}
+
 // `hexdom mesh`'s options of the element size: --size, its bounds, cells across, level, octree.
 void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt) {
   cmd.add_option("--size", opt.size, "target element size H; 0: the bounding-box diagonal / 30")
@@ -176,6 +195,15 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt) {
                  "cells across a part thin along an axis (a plate, a rod), none longer than 5 times the shortest side; "
                  "0: cubic cells of the size")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_option_function<std::vector<std::string>>(
+         "--face-size",
+         [&opt](const std::vector<std::string>& items) {
+           for (const std::string& item : items) opt.overlay.local_sizes.push_back(parse_face_size(item));
+         },
+         "cell size on one face, as FACE=SIZE (FACE: the face's number, FreeCAD's Face<number>, or Face<number>); "
+         "repeat for more faces. The overlay path then meshes the part (its grid refined by thirds near those faces, "
+         "graded back to the size): the smallest size is met exactly, others within a factor 1.7")
+      ->allow_extra_args(false);
   cmd.add_option("-s,--level", opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
       ->capture_default_str()->check(CLI::Range(0, 6));
   cmd.add_option("--octree-levels", opt.overlay.octree_levels, "overlay grid: cells split in 27, up to this many "

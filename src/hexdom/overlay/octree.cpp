@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bitset>
+#include <queue>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
@@ -176,6 +177,69 @@ Eigen::Vector3d octree_cell_origin(const Grid& grid, const OctreeCell& c) {
   return grid.origin + octree_cell_size(grid, c).cwiseProduct(Eigen::Vector3d(c.i, c.j, c.k));
 }
 
+namespace {
+
+// The mesh of the octree's leaves (each a cell and its mask of marked corners) into `out`: a node
+// on the finest lattice any leaf reaches is shared; a template's own node is not.
+void build_mesh(const Grid& grid, const std::vector<std::pair<OctreeCell, int>>& leaves, OctreeMesh& out) {
+  const TemplateTable& tt = table();
+  int top = 0;  // the finest lattice any node is on: a template's nodes are on the next level's
+  for (const auto& [c, m] : leaves) top = std::max(top, c.level + (tt.kind[m] > 0 ? 1 : 0));
+  out.levels = top;
+  const double fine = std::pow(3.0, top);
+  std::unordered_map<uint64_t, int> node_of;
+  std::vector<Eigen::Vector3d> pts;
+  auto lattice_node = [&](int64_t I, int64_t J, int64_t K) {
+    auto [it, added] = node_of.emplace(pack(I, J, K), static_cast<int>(pts.size()));
+    if (added) pts.push_back(grid.origin + grid.h.cwiseProduct(Eigen::Vector3d(I, J, K)) / fine);
+    return it->second;
+  };
+  mesh::MeshBuilder mb;
+  auto add_hex = [&](std::array<int, 8> v, int level, bool plain) {
+    quality::CellPoints P = quality::CellPoints::Zero();
+    for (int n = 0; n < 8; ++n) P.row(n) = pts[v[n]].transpose();
+    if (quality::volume(mesh::CellType::Hex, P) < 0) std::rotate(v.begin(), v.begin() + 4, v.end());
+    mb.add(mesh::CellType::Hex, v.data(), 1);
+    out.level.push_back(level);
+    out.plain.push_back(plain ? 1 : 0);
+  };
+  for (const auto& [c, m] : leaves) {
+    const int64_t scale = static_cast<int64_t>(std::llround(std::pow(3.0, top - c.level)));
+    if (tt.kind[m] == 0) {
+      std::array<int, 8> v;
+      for (int b = 0; b < 8; ++b)
+        v[b] = lattice_node((c.i + kCorner[b][0]) * scale, (c.j + kCorner[b][1]) * scale, (c.k + kCorner[b][2]) * scale);
+      add_hex(v, c.level, true);
+      continue;
+    }
+    if (tt.kind[m] < 0) throw GeometryError(fmt("octree: a cell of level %.0f kept an invalid mark pattern", double(c.level)));
+    ++out.templates;
+    const Symmetry& s = tt.sym[m];
+    const int64_t third = scale / 3;  // one third of this cell on the finest lattice
+    std::unordered_map<int, int> own;  // the template's own nodes, by twelfths
+    const Eigen::Vector3d lo = octree_cell_origin(grid, c), size = octree_cell_size(grid, c);
+    for (const Hex12& h : tt.hexes[tt.kind[m]]) {
+      std::array<int, 8> v;
+      for (int n = 0; n < 8; ++n) {
+        const P12 x = s.apply(h[n]);
+        if (x[0] % 4 == 0 && x[1] % 4 == 0 && x[2] % 4 == 0) {
+          v[n] = lattice_node(c.i * scale + x[0] / 4 * third, c.j * scale + x[1] / 4 * third, c.k * scale + x[2] / 4 * third);
+        } else {
+          auto [it, added] = own.emplace(x[0] + 13 * (x[1] + 13 * x[2]), static_cast<int>(pts.size()));
+          if (added) pts.push_back(lo + size.cwiseProduct(Eigen::Vector3d(x[0], x[1], x[2])) / 12.0);
+          v[n] = it->second;
+        }
+      }
+      add_hex(v, c.level, false);
+    }
+  }
+  Eigen::MatrixXd V(static_cast<int>(pts.size()), 3);
+  for (size_t n = 0; n < pts.size(); ++n) V.row(static_cast<int>(n)) = pts[n].transpose();
+  out.mesh = mb.finish(V);
+}
+
+}  // namespace
+
 OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool(const OctreeCell&)>& refine) {
   const TemplateTable& tt = table();
   const int longest = std::max({grid.nx, grid.ny, grid.nz}) + 1;
@@ -238,12 +302,35 @@ OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool
         if (tt.kind[m] < 0) fix(c, m);
       }
     };
-    settle([&](const OctreeCell& c, int) {
-      for (int b = 0; b < 8; ++b)
-        if (!may_mark(c, b)) return;
-      for (int b = 0; b < 8; ++b)
-        if (marked.insert(corner_key(c, b)).second) around(corner_key(c, b));
-    });
+    // Completion, the cells with the most marks first: a cell in a concavity of the marked region
+    // (marked on several sides) is split before one beside its staircase, which sees marks on one
+    // face only and would, split first, grow the region outwards cell by cell without end.
+    {
+      std::priority_queue<std::pair<int, int>> heap;  // (marks, -cell): most marks, then lowest index
+      auto push = [&](int c) {
+        const int m = mask_of(cells[c]);
+        if (tt.kind[m] < 0) heap.emplace(static_cast<int>(std::bitset<8>(m).count()), -c);
+      };
+      for (size_t c = 0; c < cells.size(); ++c) push(static_cast<int>(c));
+      while (!heap.empty()) {
+        const auto [count, neg] = heap.top();
+        heap.pop();
+        const OctreeCell c = cells[-neg];
+        const int m = mask_of(c);
+        if (tt.kind[m] >= 0) continue;
+        if (static_cast<int>(std::bitset<8>(m).count()) != count) {  // marked since: in its place again
+          heap.emplace(static_cast<int>(std::bitset<8>(m).count()), neg);
+          continue;
+        }
+        bool all = true;
+        for (int b = 0; b < 8 && all; ++b) all = may_mark(c, b);
+        if (!all) continue;  // left to the cut below
+        for (int b = 0; b < 8; ++b)
+          if (marked.insert(corner_key(c, b)).second) around(corner_key(c, b));
+        for (int w : work) push(w);
+        work.clear();
+      }
+    }
     settle([&](const OctreeCell& c, int m) {
       const int keep = tt.largest_valid_subset[m];
       for (int b = 0; b < 8; ++b)
@@ -263,60 +350,7 @@ OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool
     }
     cells = std::move(next);
   }
-  // The mesh: a node on the finest lattice (level `levels`) is shared; a template's own node is not.
-  int top = 0;  // the finest lattice any node is on: a template's nodes are on the next level's
-  for (const auto& [c, m] : leaves) top = std::max(top, c.level + (tt.kind[m] > 0 ? 1 : 0));
-  out.levels = top;
-  const double fine = std::pow(3.0, top);
-  std::unordered_map<uint64_t, int> node_of;
-  std::vector<Eigen::Vector3d> pts;
-  auto lattice_node = [&](int64_t I, int64_t J, int64_t K) {
-    auto [it, added] = node_of.emplace(pack(I, J, K), static_cast<int>(pts.size()));
-    if (added) pts.push_back(grid.origin + grid.h.cwiseProduct(Eigen::Vector3d(I, J, K)) / fine);
-    return it->second;
-  };
-  mesh::MeshBuilder mb;
-  auto add_hex = [&](std::array<int, 8> v, int level, bool plain) {
-    quality::CellPoints P = quality::CellPoints::Zero();
-    for (int n = 0; n < 8; ++n) P.row(n) = pts[v[n]].transpose();
-    if (quality::volume(mesh::CellType::Hex, P) < 0) std::rotate(v.begin(), v.begin() + 4, v.end());
-    mb.add(mesh::CellType::Hex, v.data(), 1);
-    out.level.push_back(level);
-    out.plain.push_back(plain ? 1 : 0);
-  };
-  for (const auto& [c, m] : leaves) {
-    const int64_t scale = static_cast<int64_t>(std::llround(std::pow(3.0, top - c.level)));
-    if (tt.kind[m] == 0) {
-      std::array<int, 8> v;
-      for (int b = 0; b < 8; ++b)
-        v[b] = lattice_node((c.i + kCorner[b][0]) * scale, (c.j + kCorner[b][1]) * scale, (c.k + kCorner[b][2]) * scale);
-      add_hex(v, c.level, true);
-      continue;
-    }
-    if (tt.kind[m] < 0) throw GeometryError(fmt("octree: a cell of level %.0f kept an invalid mark pattern", double(c.level)));
-    ++out.templates;
-    const Symmetry& s = tt.sym[m];
-    const int64_t third = scale / 3;  // one third of this cell on the finest lattice
-    std::unordered_map<int, int> own;  // the template's own nodes, by twelfths
-    const Eigen::Vector3d lo = octree_cell_origin(grid, c), size = octree_cell_size(grid, c);
-    for (const Hex12& h : tt.hexes[tt.kind[m]]) {
-      std::array<int, 8> v;
-      for (int n = 0; n < 8; ++n) {
-        const P12 x = s.apply(h[n]);
-        if (x[0] % 4 == 0 && x[1] % 4 == 0 && x[2] % 4 == 0) {
-          v[n] = lattice_node(c.i * scale + x[0] / 4 * third, c.j * scale + x[1] / 4 * third, c.k * scale + x[2] / 4 * third);
-        } else {
-          auto [it, added] = own.emplace(x[0] + 13 * (x[1] + 13 * x[2]), static_cast<int>(pts.size()));
-          if (added) pts.push_back(lo + size.cwiseProduct(Eigen::Vector3d(x[0], x[1], x[2])) / 12.0);
-          v[n] = it->second;
-        }
-      }
-      add_hex(v, c.level, false);
-    }
-  }
-  Eigen::MatrixXd V(static_cast<int>(pts.size()), 3);
-  for (size_t n = 0; n < pts.size(); ++n) V.row(static_cast<int>(n)) = pts[n].transpose();
-  out.mesh = mb.finish(V);
+  build_mesh(grid, leaves, out);
   return out;
 }
 

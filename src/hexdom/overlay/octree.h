@@ -37,7 +37,10 @@ struct OctreeMesh {
 /// (4) of one side marked gets the corner (4 hexes), edge (11) or face (22) template, whose faces
 /// match the neighbours' (an edge is cut in thirds when both its ends are marked, at a third from
 /// its marked end when one is). Other marks are made valid: a cell whose 8 corners may all be
-/// marked gets them all (it is split), otherwise its marks are cut to the largest valid subset.
+/// marked gets them all (it is split), the cells with the most marks first, so that concavities of
+/// the marked region fill before its staircase sides (which, split first, would grow the region
+/// outwards cell by cell across the grid). A cell that may not
+/// take all 8 has its marks cut to the largest valid subset.
 /// A node of level L > 0 may be marked only when the 8 cells of level L around it exist, so that
 /// a template never meets cells two levels finer. Cells `refine` asks to split may thus stay
 /// whole near the edge of a refined region (the refined region grows by at most one cell at its

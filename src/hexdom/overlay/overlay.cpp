@@ -29,6 +29,34 @@ struct Stretch {
   const SurfaceFeatures* features;
 };
 
+// The local sizes' refinement of each grid (OverlayOptions::local_sizes).
+struct Local {
+  const LocalSizeField* field = nullptr;
+  int levels = 0;
+};
+
+// Whether the octree splits cell c: where a local size asks for smaller cells near it, or (up to
+// opt.octree_levels) where the wall under it is thinner than opt.wall_cells of its cells; never
+// into children shorter than opt.min_size.
+bool split_cell(const Grid& grid, const OctreeCell& c, const mesh::TriangleProjector& proj, const OverlayOptions& opt,
+                const Stretch* stretch, const Local& local) {
+  const Eigen::Vector3d size = octree_cell_size(grid, c), lo = octree_cell_origin(grid, c), centre = lo + size / 2;
+  // The children's real sides (the grid may be laid over a stretched copy).
+  const Eigen::Vector3d real = stretch ? Eigen::Vector3d(size.cwiseQuotient(stretch->factor)) : size;
+  if (opt.min_size > 0 && real.minCoeff() / 3 < opt.min_size * (1 - 1e-9)) return false;
+  if (local.field && c.level < local.levels && local.field->split(lo, size, real.maxCoeff())) return true;
+  if (c.level >= opt.octree_levels) return false;
+  int t = -1;
+  const Eigen::Vector3d q = proj.project(centre, &t);
+  if ((q - centre).norm() > size.norm() / 2) return false;
+  const Eigen::Vector3d n = proj.normal(t);
+  const double r = opt.wall_cells * size.minCoeff() / 2;
+  const Eigen::Vector3d ball = q - r * n;
+  int t2 = -1;
+  const Eigen::Vector3d q2 = proj.project(ball, &t2);
+  return (q2 - ball).norm() < 0.9 * r && proj.normal(t2).dot(n) < -0.5;
+}
+
 // The octree's cells whose centre is inside by the margin of their own size, less those facing a
 // kept neighbour across a slot (across_surface), made manifold.
 Core octree_core(const OctreeMesh& tree, const mesh::SurfaceMesh& s, const mesh::TriangleProjector& proj, double hmin,
@@ -61,7 +89,7 @@ Core octree_core(const OctreeMesh& tree, const mesh::SurfaceMesh& s, const mesh:
 // optimised again on the real surface, its nodes kept on the same regions, curves and corners.
 // Throws GeometryError when the core is empty or in pieces.
 OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& feat, const Eigen::Vector3d& h,
-                             const OverlayOptions& opt, const Stretch* stretch) {
+                             const OverlayOptions& opt, const Stretch* stretch, const Local& local) {
   OverlayResult r;
   const Grid grid = grid_around(s.V, h);
   r.spacing = grid.h.maxCoeff();
@@ -77,25 +105,9 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   std::vector<double> depth{opt.buffer_depth * hmin};
   OctreeMesh tree;
   const mesh::TriangleProjector& proj = feat.triangles();  // over s: feat are its features
-  if (opt.octree_levels > 0 && opt.core_by_centres) {
-    // Cells near the surface where the wall is thinner than wall_cells of them are split.
-    tree = octree_mesh(grid, opt.octree_levels, [&](const OctreeCell& c) {
-      const Eigen::Vector3d size = octree_cell_size(grid, c), centre = octree_cell_origin(grid, c) + size / 2;
-      if (opt.min_size > 0) {  // the children's real sides (the grid may be laid over a stretched copy)
-        const Eigen::Vector3d real = stretch ? Eigen::Vector3d(size.cwiseQuotient(stretch->factor)) : size;
-        if (real.minCoeff() / 3 < opt.min_size * (1 - 1e-9)) return false;
-      }
-      int t = -1;
-      const Eigen::Vector3d q = proj.project(centre, &t);
-      if ((q - centre).norm() > size.norm() / 2) return false;
-      const Eigen::Vector3d n = proj.normal(t);
-      const double r = opt.wall_cells * size.minCoeff() / 2;
-      const Eigen::Vector3d ball = q - r * n;
-      int t2 = -1;
-      const Eigen::Vector3d q2 = proj.project(ball, &t2);
-      return (q2 - ball).norm() < 0.9 * r && proj.normal(t2).dot(n) < -0.5;
-    });
-  }
+  const int levels = std::max(opt.octree_levels, local.levels);
+  if (levels > 0 && opt.core_by_centres)
+    tree = octree_mesh(grid, levels, [&](const OctreeCell& c) { return split_cell(grid, c, proj, opt, stretch, local); });
   Core core;
   if (tree.levels > 0) {
     core = octree_core(tree, s, proj, hmin, opt);
@@ -215,6 +227,18 @@ struct Ranking {
   }
 };
 
+// Local sizes (opt.local_sizes): h0 scaled so that the smallest is met exactly at some octree
+// level (local_levels), said in the log; the levels they need (0: none).
+int scale_for_local_sizes(Eigen::Vector3d& h0, const OverlayOptions& opt) {
+  const LocalLevels l = local_levels(h0.maxCoeff(), opt.local_sizes, opt.min_size);
+  if (l.levels == 0) return 0;
+  h0 *= l.factor;
+  if (opt.log)
+    opt.log(0, fmt("overlay: local sizes: spacing %g, refined %.0f times by thirds near the faces asking for smaller cells",
+                   h0.maxCoeff(), double(l.levels)));
+  return l.levels;
+}
+
 }  // namespace
 
 OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOptions& opt) {
@@ -258,18 +282,21 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     return f;
   };
   if (opt.wall_across > 0) h0 *= wall_factor(opt.wall_across);
+  const int levels = scale_for_local_sizes(h0, opt);
   if (stretched) {
     FeatureOptions fo = opt.features;
     fo.regions = feat.region();
     sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
   }
+  const LocalSizeField field = levels > 0 ? LocalSizeField(stretched ? ss : s, opt.local_sizes) : LocalSizeField();
+  const Local local{levels > 0 ? &field : nullptr, levels};
   int grids = 0;
   // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ).
   auto one_grid = [&](const Eigen::Vector3d& h, const OverlayOptions& o) {
     ++grids;
-    if (!stretched) return mesh_with_grid(s, feat, h, o, nullptr);
+    if (!stretched) return mesh_with_grid(s, feat, h, o, nullptr, local);
     const Stretch st{stretch, &s, &feat};
-    OverlayResult r = mesh_with_grid(ss, *sfeat, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st);
+    OverlayResult r = mesh_with_grid(ss, *sfeat, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local);
     const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch);
     r.spacing = spacing.maxCoeff();
     r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
@@ -299,7 +326,8 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     say(fmt("overlay: spacing %g: ", h.maxCoeff()) + rank.summary(r));
     // Cells left inverted by the core by centres: the same grid with the core by corners too (its
     // buffer layer is thicker where the surface turns sharply), the better kept.
-    if (opt.core_by_centres && inverted(r.quality) > 0 && r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
+    if (opt.core_by_centres && local.levels == 0 && inverted(r.quality) > 0 &&
+        r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
       OverlayOptions corners = opt;
       corners.core_by_centres = false;
       try {
@@ -320,7 +348,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     if (!short_of || k == opt.refinements) break;
     // An octree grid is already refined where the part is thin: halving it as well would multiply
     // its cells (up to a million) by 8.
-    if (best.octree_levels > 0) {
+    if (best.octree_levels > 0 || local.levels > 0) {
       say("overlay: the octree's grid is kept; no halving after it");
       break;
     }
@@ -343,7 +371,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   }
   // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
   // wall_fallback cells across, the better kept.
-  if (have && inverted(best.quality) > 0 && opt.wall_across == 0 && opt.wall_fallback > 0) {
+  if (have && inverted(best.quality) > 0 && opt.wall_across == 0 && opt.wall_fallback > 0 && local.levels == 0) {
     const double f = wall_factor(opt.wall_fallback);
     if (f < 1) {
       opt.deadline.check("overlay");

@@ -19,6 +19,7 @@
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/node_kinds.h"
 #include "hexdom/overlay/features.h"
+#include "hexdom/overlay/local_size.h"
 #include "hexdom/quality/report.h"
 #include "hexdom/segmentation/cube_frame.h"
 
@@ -64,6 +65,14 @@ struct OverlayOptions {
   /// first). A grid so refined is not halved further. 0: the grid's cells only.
   int octree_levels = 0;
   double wall_cells = 2;
+  /// Cell sizes asked on patches (CAD faces; local_size.h): the grid's spacing is set so that the
+  /// octree's cells of some level are the smallest size exactly (local_levels: within a factor
+  /// sqrt(3) of the spacing otherwise asked), and the octree refines down to each size near its
+  /// patch, its templates grading back to the grid's cells. Sizes below min_size are taken as it;
+  /// patches the surface does not have are passed over (check_local_sizes is the caller's).
+  /// The grid is then not laid again for quality with other spacings (the halvings, the core by
+  /// corners, the grid for walls), which would miss the sizes; only when its core is empty.
+  std::vector<LocalSize> local_sizes;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;
   FeatureOptions features;

@@ -72,6 +72,12 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  if (local_size_method(opt.mesh) != opt.mesh.method) {  // local sizes: the overlay path
+    say("local sizes on faces: the overlay path (its octree refines there)");
+    MeshCadOptions o = opt;
+    o.mesh.method = Method::Overlay;
+    return mesh_cad_part(shape, o, progress);
+  }
   double reference = 0;  // the B-rep's volume, once tessellated
   // mesh_and_snap of `run`, true when it gave a mesh; what defeated it (a labelling the repair
   // cannot use, a failed cut) is said when `why` is given, or kept in `error`.
@@ -110,6 +116,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   }
   r.tessellations = 1;
   say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
+  local_size_method(opt.mesh, &r.surface, "the part");  // each face asked for is one of the part's
   reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
   // One time budget for the polycube path over every tessellation of this call, from here: the first
   // tessellation serves both paths (on a part with many small faces it alone can take longer than

@@ -263,6 +263,15 @@ void check_size_bounds(const MeshSurfaceOptions& opt) {
     throw InputError(fmt("the min size %g is larger than the max size %g", opt.min_size, opt.max_size));
 }
 
+Method local_size_method(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh* surface, const std::string& what) {
+  if (opt.overlay.local_sizes.empty()) return opt.method;
+  if (surface) overlay::check_local_sizes(opt.overlay.local_sizes, *surface, what);
+  if (opt.method == Method::Polycube)
+    throw InputError("local sizes on faces are met by the overlay path only: the polycube path's blocks do not refine "
+                     "locally (use the auto or overlay method)");
+  return Method::Overlay;
+}
+
 double bounded_size(double size, const MeshSurfaceOptions& opt) {
   check_size_bounds(opt);
   if (opt.max_size > 0) size = std::min(size, opt.max_size);
@@ -310,6 +319,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
     for (const std::string& w : check.warnings)
       if (opt.log) opt.log(1, w);
     if (check.solids > 1) {
+      local_size_method(opt, &checked, opt.input_name);  // the faces asked for are on some solid
       // Each solid on its own, then put together; the checks are done.
       MeshSurfaceOptions so = opt;
       so.check_input = false;
@@ -332,16 +342,18 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
     }
   }
   const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
-  MeshSurfaceOptions so = opt;  // the element size fixed within its bounds
+  MeshSurfaceOptions so = opt;  // the element size fixed within its bounds, the method within the local sizes
+  so.method = local_size_method(opt, opt.check_input ? &surface : nullptr, opt.input_name);
+  if (so.method != opt.method && opt.log) opt.log(0, "local sizes on faces: the overlay path (its octree refines there)");
   if (opt.max_size != 0 || opt.min_size != 0) {
     so.size = element_size(surface, opt);
     if (opt.log) opt.log(0, fmt("size: %g (min size %g, max size %g; 0: none)", so.size, opt.min_size, opt.max_size));
   }
   MeshSurfaceOptions po = so;  // the polycube path's options: its deadline fixed now
   po.deadline = polycube_deadline(so);
-  if (opt.method == Method::Overlay) {
+  if (so.method == Method::Overlay) {
     run_overlay(surface, so, r);
-  } else if (opt.method == Method::Polycube) {
+  } else if (so.method == Method::Polycube) {
     mesh_polycube(surface, po, &r);
   } else {
     const double reference = mesh::enclosed_volume(surface.V, surface.F);

@@ -59,7 +59,8 @@ struct MeshSurfaceOptions {
   /// Method::Overlay, when set, the overlay path stops with TimeoutError once it passes or is
   /// cancelled (auto runs the overlay with a cancellable one of its own, no time limit).
   Deadline deadline;
-  /// The overlay path's options; its size, alignment and log are taken from here.
+  /// The overlay path's options; its size, alignment and log are taken from here. Its local_sizes
+  /// (cell sizes on faces) make Method::Auto the overlay path (local_size_method).
   overlay::OverlayOptions overlay;
   double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30 (see max_size, min_size)
   /// Bounds on the element size (0: none), as FreeCAD's Gmsh mesher's CharacteristicLengthMax / Min:
@@ -188,6 +189,13 @@ struct MeshSurfaceRun {
 
 /// InputError for a negative min_size or max_size, or min_size > max_size (both > 0).
 void check_size_bounds(const MeshSurfaceOptions& options);
+
+/// The method that meets options.overlay.local_sizes (cell sizes asked on faces): with none, the
+/// one asked; with some, the overlay path (only its octree refines locally), Method::Auto turned
+/// into Method::Overlay; Method::Polycube then is an InputError saying so. Also checks each local
+/// size against `surface` (overlay::check_local_sizes, `what` naming it) when that is given.
+Method local_size_method(const MeshSurfaceOptions& options, const mesh::SurfaceMesh* surface = nullptr,
+                         const std::string& what = "the surface");
 
 /// `size` (> 0) within [options.min_size, options.max_size], each bound when > 0; checks them first
 /// (check_size_bounds).

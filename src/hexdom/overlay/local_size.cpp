@@ -1,0 +1,67 @@
+#include "hexdom/overlay/local_size.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "hexdom/common/error.h"
+#include "hexdom/common/format.h"
+
+namespace hexdom::overlay {
+
+namespace {
+const double kSqrt3 = std::sqrt(3.0);
+}
+
+void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceMesh& surface, const std::string& what) {
+  int top = 0;
+  for (int t = 0; t < surface.patch.size(); ++t) top = std::max(top, surface.patch(t));
+  for (const LocalSize& l : sizes) {
+    if (!(l.size > 0) || !std::isfinite(l.size))
+      throw InputError(fmt("local size %g on face %.0f: a size must be positive", l.size, double(l.patch)));
+    bool found = false;
+    for (int t = 0; t < surface.patch.size() && !found; ++t) found = surface.patch(t) == l.patch;
+    if (!found)
+      throw InputError(fmt("local size on face %.0f: ", double(l.patch)) + what +
+                       fmt(" has no such face (its faces are numbered 1 to %.0f)", double(top)));
+  }
+}
+
+LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, double min_size, int max_levels) {
+  LocalLevels out;
+  if (sizes.empty() || !(spacing > 0)) return out;
+  double smallest = sizes.front().size;
+  for (const LocalSize& l : sizes) smallest = std::min(smallest, l.size);
+  smallest = std::max({smallest, min_size, spacing / std::pow(3.0, max_levels) / kSqrt3});
+  if (smallest >= spacing / kSqrt3) return out;
+  out.levels = std::max(1, static_cast<int>(std::lround(std::log(spacing / smallest) / std::log(3.0))));
+  out.levels = std::min(out.levels, max_levels);
+  out.factor = smallest * std::pow(3.0, out.levels) / spacing;
+  return out;
+}
+
+LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes) {
+  std::map<double, std::vector<int>> triangles;  // size -> triangles asking for it
+  for (const LocalSize& l : sizes)
+    for (int t = 0; t < surface.F.rows(); ++t)
+      if (surface.patch(t) == l.patch) triangles[l.size].push_back(t);
+  for (auto& [size, ts] : triangles) {
+    std::sort(ts.begin(), ts.end());
+    ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
+    Eigen::MatrixXi F(static_cast<int>(ts.size()), 3);
+    for (size_t i = 0; i < ts.size(); ++i) F.row(static_cast<int>(i)) = surface.F.row(ts[i]);
+    by_size_.emplace_back(size, mesh::TriangleProjector(surface.V, F));
+  }
+}
+
+bool LocalSizeField::split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const {
+  const Eigen::Vector3d centre = lo + size / 2;
+  const double reach = size.norm() / 2 + size.maxCoeff();
+  for (const auto& [s, proj] : by_size_) {
+    if (real_side <= s * kSqrt3 * (1 + 1e-9)) return false;  // this size and the larger ones are met
+    if ((proj.project(centre) - centre).norm() <= reach) return true;
+  }
+  return false;
+}
+
+}  // namespace hexdom::overlay

@@ -1,0 +1,57 @@
+// Sizes asked for the cells on chosen patches of the surface (CAD faces), as FreeCAD's mesh
+// regions and Gmsh's size fields on faces ask: the overlay path's octree (octree.h) refines its
+// grid by thirds down to them near those faces, its templates grading the cells back to the grid's.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hexdom/mesh/closest_point.h"
+#include "hexdom/mesh/mesh.h"
+
+namespace hexdom::overlay {
+
+/// A cell size asked for on the triangles of one patch (a CAD face: FreeCAD's Face{patch}).
+struct LocalSize {
+  int patch = 0;
+  double size = 0;
+};
+
+/// Throws InputError naming the first local size whose size is not positive and finite or whose
+/// patch has no triangle in `surface` (`what` names the surface in the message).
+void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceMesh& surface,
+                       const std::string& what = "the surface");
+
+/// How the grid's spacing is set so that the octree reaches the local sizes.
+struct LocalLevels {
+  double factor = 1;  ///< the grid's spacing times this: the smallest size is that spacing / 3^levels exactly
+  int levels = 0;     ///< octree levels the sizes need (0: none is smaller than the spacing / sqrt 3)
+};
+
+/// For a grid of longest spacing `spacing`: the smallest local size s (not below min_size when that
+/// is given, and not more than max_levels levels below the spacing) is met exactly by a spacing
+/// s * 3^L within a factor sqrt(3) of `spacing` (L its level, at least 1); other sizes get the
+/// level whose cells are nearest them (within a factor sqrt(3)). Sizes of at least spacing / sqrt(3)
+/// need no refinement: {1, 0} when all are.
+LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, double min_size, int max_levels = 4);
+
+/// Which octree cells the local sizes split: those whose box lies within its own longest side of a
+/// triangle of a patch asking for a size below that side / sqrt(3) (so that the cells there end
+/// within a factor sqrt(3) of the size, exactly at the smallest one with local_levels' spacing).
+/// `surface` is the one the grid is laid over (a stretched copy for a stretched grid: positions
+/// are measured there, sizes in real lengths, the caller giving the cell's real longest side).
+class LocalSizeField {
+ public:
+  LocalSizeField() = default;
+  LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes);
+  bool empty() const { return by_size_.empty(); }
+  /// Split the cell [lo, lo + size] (grid space), whose longest real side is `real_side`?
+  bool split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const;
+
+ private:
+  std::vector<std::pair<double, mesh::TriangleProjector>> by_size_;  // one per distinct size, smallest first
+};
+
+}  // namespace hexdom::overlay
