@@ -572,12 +572,30 @@ def _size_args(**bounds):
     return args
 
 
+def _face_size_args(face_sizes):
+    """The face_sizes= keyword for _hexdom: {face number (int >= 1): size (> 0)} from a dict or
+    pairs; empty or None: none. InputError naming the entry otherwise."""
+    if not face_sizes:
+        return {}
+    sizes = {}
+    for face, size in dict(face_sizes).items():
+        try:
+            face_number, value = int(face), float(size)
+        except (TypeError, ValueError):
+            raise InputError("face_sizes {{{!r}: {!r}}}: a face number and a size".format(face, size)) from None
+        if face_number < 1 or face_number != face or not value > 0:
+            raise InputError("face_sizes {{{!r}: {!r}}}: the face number must be at least 1 and the "
+                             "size positive".format(face, size))
+        sizes[face_number] = value
+    return {"face_sizes": sizes}
+
+
 def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"],
                  edge_weight=MESH_OPTIONS["edge_weight"], max_relabels=MESH_OPTIONS["max_relabels"],
                  relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
                  allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
                  method=MESH_OPTIONS["method"], polycube_seconds=None, max_size=None, min_size=None,
-                 cells_across=None):
+                 cells_across=None, face_sizes=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -589,7 +607,9 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     5 s under "auto", no limit under "polycube"; 0: no limit; see _hexdom.mesh_surface); with
     "polycube", _hexdom.TimeoutError (an Error) when it passes before there is a mesh.
     max_size, min_size: bounds on the element size (None or 0: none; `hexdom mesh --max-size /
-    --min-size`); cells_across: cells across a thin part (None: the core's 2). Raises
+    --min-size`); cells_across: cells across a thin part (None: the core's 2); face_sizes:
+    {patch id: size}, cell sizes on those patches (`hexdom mesh --face-size`; the overlay path
+    then meshes the surface). Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
     them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
     stages made, or None) and ``stage`` (the stage that failed)."""
@@ -600,7 +620,8 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                                  None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
                                  **_method_args(method, polycube_seconds),
                                  **_size_args(max_size=max_size, min_size=min_size,
-                                              cells_across=cells_across))
+                                              cells_across=cells_across),
+                                 **_face_size_args(face_sizes))
     except Error as e:
         _attach_partial(e, _mesh_run)
         raise
@@ -617,7 +638,8 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
-    min_size, cells_across go to it; the time
+    min_size, cells_across go to it, and face_sizes, {FreeCAD face number of the solid meshed:
+    size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
     or cells stay inverted, the B-rep is tessellated again with slightly smaller or larger triangles
@@ -629,13 +651,14 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
-                             "method", "polycube_seconds"} - set(SIZE_BOUNDS)
+                             "method", "polycube_seconds", "face_sizes"} - set(SIZE_BOUNDS)
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
     frame = kwargs.pop("frame", None)
     kwargs.update(_method_args(kwargs.pop("method", "auto"), kwargs.pop("polycube_seconds", None)))
     kwargs.update(_size_args(**{name: kwargs.pop(name, None) for name in SIZE_BOUNDS}))
+    kwargs.update(_face_size_args(kwargs.pop("face_sizes", None)))
     try:
         r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
                              level=int(level),

@@ -62,6 +62,16 @@ _QUALITY = [
 QUALITY_PROPERTIES = [name for name, _, _ in _QUALITY]
 
 
+def region_sizes(obj, surface_obj):
+    """The Mesh ``obj``'s mesh regions as face_sizes for the Surface ``surface_obj`` (its
+    triangles carry the face numbers of the Part it tessellates; none without a Part)."""
+    part = getattr(surface_obj, "Source", None)
+    shape = getattr(part, "Shape", None)
+    if not getattr(obj, "MeshRegionList", None) or shape is None or shape.isNull() or not shape.Solids:
+        return None
+    return pipeline.face_sizes(obj, shape) or None
+
+
 class HexMesh(BaseHexDomObject):
     """Proxy of a HexDom Mesh object."""
 
@@ -152,6 +162,12 @@ class HexMesh(BaseHexDomObject):
                             "overlay grid's mesh is taken if the polycube has none that meets the "
                             "targets")
             obj.PolycubeSeconds = float(core.MESH_OPTIONS["polycube_seconds"])
+        if not hasattr(obj, "MeshRegionList"):
+            obj.addProperty("App::PropertyLinkList", "MeshRegionList", "HexDom",
+                            "Pipeline: FreeCAD FEM mesh regions (ObjectsFem.makeMeshRegion(doc, "
+                            "this mesh, length), as for Gmsh): cells of their CharacteristicLength "
+                            "on the faces they reference (`hexdom mesh --face-size`); the overlay "
+                            "grid then meshes the part, refined by thirds near those faces")
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
@@ -190,6 +206,11 @@ class HexMesh(BaseHexDomObject):
         self.path = meshing_path(obj)
         if self.path == "overlay":
             return self.overlay(obj)
+        if getattr(obj, "MeshRegionList", None):
+            import FreeCAD
+            FreeCAD.Console.PrintWarning(
+                "HexDom: {}: its mesh regions are met by the pipeline and the overlay grid; the "
+                "polycube stages build the mesh without them\n".format(obj.Label))
         if seg is None or poly is None:
             hint = ""
             if seg is not None and poly is None:
@@ -250,7 +271,7 @@ class HexMesh(BaseHexDomObject):
         with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap)) as bar:
             run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
                           align=align, improve=bool(obj.Improve), allow_inverted=True,
-                          **pipeline.size_bounds(obj))
+                          face_sizes=region_sizes(obj, surface_obj), **pipeline.size_bounds(obj))
             mesh = run.mesh
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:

@@ -84,8 +84,38 @@ def size_bounds(mesh):
     return bounds
 
 
-def pipeline_options(mesh):
-    """The options of `hexdom mesh` the HexDom Mesh ``mesh`` runs the pipeline with."""
+def face_sizes(mesh, shape):
+    """{face number of ``shape``'s first solid (the one meshed): size} from the HexDom Mesh
+    ``mesh``'s MeshRegionList: FreeCAD's FEM mesh regions (or any object with References and a
+    CharacteristicLength), each face taking the smallest length that names it. Raises ValueError
+    (the Mesh's recompute error) naming the region for a length that is not positive, a reference that is not a face, or a face
+    that is not one of the solid's."""
+    regions = getattr(mesh, "MeshRegionList", None) or []
+    solid = shape.Solids[0]
+    sizes = {}
+    for region in regions:
+        length = getattr(region, "CharacteristicLength", 0.0)
+        length = float(getattr(length, "Value", length))
+        if not length > 0:
+            raise ValueError("mesh region {}: its CharacteristicLength must be positive".format(
+                region.Label))
+        for obj, subs in getattr(region, "References", []):
+            for sub in subs:
+                if not sub.startswith("Face"):
+                    raise ValueError("mesh region {}: {} of {}: HexDom takes sizes on faces "
+                                     "only".format(region.Label, sub, obj.Label))
+                face = obj.Shape.getElement(sub)
+                number = next((i for i, f in enumerate(solid.Faces, 1) if f.isSame(face)), None)
+                if number is None:
+                    raise ValueError("mesh region {}: {} of {} is not a face of the part "
+                                     "meshed".format(region.Label, sub, obj.Label))
+                sizes[number] = min(sizes.get(number, length), length)
+    return sizes
+
+
+def pipeline_options(mesh, shape=None):
+    """The options of `hexdom mesh` the HexDom Mesh ``mesh`` runs the pipeline with (with
+    ``shape``, the part's, also its mesh regions' face_sizes)."""
     method = getattr(mesh, "Method", "auto")
     options = dict(size=float(mesh.Size.Value), level=int(mesh.Level), improve=bool(mesh.Improve),
                    method=method,
@@ -93,6 +123,10 @@ def pipeline_options(mesh):
                    **size_bounds(mesh))
     if method == "auto" and hasattr(mesh, "PolycubeSeconds"):  # (polycube: no limit, as the CLI)
         options["polycube_seconds"] = float(mesh.PolycubeSeconds)
+    if shape is not None:
+        sizes = face_sizes(mesh, shape)
+        if sizes:
+            options["face_sizes"] = sizes
     return options
 
 
@@ -109,7 +143,7 @@ def run_pipeline(objs, store_mesh=None, run=None):
     shape = part.Shape
     if shape is None or shape.isNull() or not shape.Solids:
         raise ValueError("{}: {} has no solid to mesh".format(mesh.Label, part.Label))
-    options = pipeline_options(mesh)
+    options = pipeline_options(mesh, shape)
     snap = options.pop("snap")
     mesh.Proxy.failed_stage = None
     surface, size = None, 0.0

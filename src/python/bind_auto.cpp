@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "convert.h"
 #include "hexdom/autopolycube/autopolycube.h"
+#include "hexdom/common/format.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
@@ -75,7 +76,10 @@ const char* const kPolycubeSecondsDoc =
 const char* const kSizeBoundsDoc =
     "\nmax_size, min_size: bounds on the element size (0: none), as `hexdom mesh --max-size / --min-size`: the\n"
     "size (given or default) is brought within them, and cells made thinner for a thin part are not made\n"
-    "shorter than min_size. cells_across: cells across a part thin along an axis (0: cubic cells).";
+    "shorter than min_size. cells_across: cells across a part thin along an axis (0: cubic cells).\n"
+    "face_sizes: {face number: size}, cell sizes on faces (FreeCAD's Face<number>; for a surface, its patch\n"
+    "ids), as `hexdom mesh --face-size`: the overlay path meshes the part, its grid refined by thirds near\n"
+    "those faces (auto; the polycube method refuses them with InputError, as a face the part lacks).";
 
 py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   py::dict d;
@@ -106,8 +110,14 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame, const std::string& method,
                                                       std::optional<double> polycube_seconds, double max_size,
-                                                      double min_size, double cells_across) {
+                                                      double min_size, double cells_across,
+                                                      const std::map<int, double>& face_sizes) {
   pipeline::MeshSurfaceOptions opt;
+  for (const auto& [face, size] : face_sizes) {
+    if (face < 1 || !(size > 0))
+      throw InputError(fmt("face_sizes {%.0f: %g}: the face number must be at least 1 and the size positive", double(face), size));
+    opt.overlay.local_sizes.push_back({face, size});
+  }
   if (!(cells_across >= 0)) throw InputError("cells_across must not be negative (0: cubic cells)");
   opt.max_size = max_size;
   opt.min_size = min_size;
@@ -190,11 +200,12 @@ void bind_auto(py::module_& m) {
   m.def("mesh_surface",
         [module](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
-           std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across) {
+           std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
+           const std::map<int, double>& face_sizes) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           const pipeline::MeshSurfaceOptions opt =
               mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                   polycube_seconds, max_size, min_size, cells_across);
+                                   polycube_seconds, max_size, min_size, cells_across, face_sizes);
           pipeline::MeshSurfaceRun r;
           try {
             py::gil_scoped_release nogil;
@@ -210,6 +221,7 @@ void bind_auto(py::module_& m) {
         py::arg("align") = defaults.align, py::arg("frame") = py::none(), py::arg("method") = method_name(defaults.method),
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.max_size,
         py::arg("min_size") = defaults.min_size, py::arg("cells_across") = defaults.across_thin,
+        py::arg("face_sizes") = std::map<int, double>{},
         (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc).c_str());
 }
 

@@ -163,12 +163,13 @@ void bind_mesh_cad(py::module_& m) {
   m.def("mesh_cad",
         [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
-           std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across) {
+           std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
+           const std::map<int, double>& face_sizes) {
           pipeline::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                          polycube_seconds, max_size, min_size, cells_across);
+                                          polycube_seconds, max_size, min_size, cells_across, face_sizes);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           try {
@@ -188,7 +189,7 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("method") = pipeline::method_name(defaults.mesh.method),
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.mesh.max_size,
         py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
-        (mesh_cad_doc() + kSizeBoundsDoc).c_str());
+        py::arg("face_sizes") = std::map<int, double>{}, (mesh_cad_doc() + kSizeBoundsDoc).c_str());
 }
 
 void bind_cad(py::module_& m) {

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
+#include <map>
 #include <optional>
 
 #include "hexdom/common/error.h"
@@ -15,12 +16,14 @@ pybind11::dict run_dict(const pipeline::MeshSurfaceRun& r);
 /// The MeshSurfaceOptions of mesh_surface's and mesh_cad's keyword arguments (bind_auto.cpp).
 /// polycube_seconds: None keeps the default budget (auto: MeshSurfaceOptions::polycube_seconds;
 /// polycube: none); a number sets it, and with method "polycube" the deadline from now.
+/// face_sizes: cell size per face number (overlay::LocalSize), checked against the part later.
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame,
                                                   const std::string& method = "auto",
                                                   std::optional<double> polycube_seconds = std::nullopt,
-                                                  double max_size = 0, double min_size = 0, double cells_across = 2);
+                                                  double max_size = 0, double min_size = 0, double cells_across = 2,
+                                                  const std::map<int, double>& face_sizes = {});
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);

@@ -11,7 +11,7 @@ namespace hexdom::overlay {
 
 namespace {
 const double kSqrt3 = std::sqrt(3.0);
-}
+}  // namespace
 
 void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceMesh& surface, const std::string& what) {
   int top = 0;
@@ -32,11 +32,24 @@ LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, do
   if (sizes.empty() || !(spacing > 0)) return out;
   double smallest = sizes.front().size;
   for (const LocalSize& l : sizes) smallest = std::min(smallest, l.size);
-  smallest = std::max({smallest, min_size, spacing / std::pow(3.0, max_levels) / kSqrt3});
-  if (smallest >= spacing / kSqrt3) return out;
-  out.levels = std::max(1, static_cast<int>(std::lround(std::log(spacing / smallest) / std::log(3.0))));
-  out.levels = std::min(out.levels, max_levels);
-  out.factor = smallest * std::pow(3.0, out.levels) / spacing;
+  smallest = std::max(smallest, min_size);
+  const double tol = 1.2;  // a level's cells within this factor of the smallest size
+  if (smallest * tol >= spacing) return out;  // met by the grid's cells: no size is asked below them
+  // Level L meets it with a spacing in [smallest 3^L / tol, smallest 3^L tol]: the spacing as it is
+  // when it lies in one, otherwise the end nearest it (by ratio) that is at most tol times it.
+  double best = 0;
+  for (int level = 0; level <= max_levels; ++level) {
+    const double lo = smallest * std::pow(3.0, level) / tol, hi = smallest * std::pow(3.0, level) * tol;
+    if (lo <= spacing && spacing <= hi) return {1.0, level};
+    for (double end : {lo, hi}) {
+      if (end > spacing * tol) continue;
+      const double off = std::abs(std::log(end / spacing));
+      if (best == 0 || off < best) {
+        best = off;
+        out = {end / spacing, level};
+      }
+    }
+  }
   return out;
 }
 

@@ -26,20 +26,23 @@ void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceM
 
 /// How the grid's spacing is set so that the octree reaches the local sizes.
 struct LocalLevels {
-  double factor = 1;  ///< the grid's spacing times this: the smallest size is that spacing / 3^levels exactly
-  int levels = 0;     ///< octree levels the sizes need (0: none is smaller than the spacing / sqrt 3)
+  double factor = 1;  ///< the grid's spacing times this
+  int levels = 0;     ///< octree levels the smallest size needs (0: none; the spacing alone meets it)
 };
 
-/// For a grid of longest spacing `spacing`: the smallest local size s (not below min_size when that
-/// is given, and not more than max_levels levels below the spacing) is met exactly by a spacing
-/// s * 3^L within a factor sqrt(3) of `spacing` (L its level, at least 1); other sizes get the
-/// level whose cells are nearest them (within a factor sqrt(3)). Sizes of at least spacing / sqrt(3)
-/// need no refinement: {1, 0} when all are.
+/// For a grid of longest spacing `spacing` and the smallest local size s (not below min_size when
+/// that is given): the octree level L and the spacing h (spacing * factor) whose cells of level L
+/// (h / 3^L) are within a factor 1.2 of s: h is `spacing` when that already gives such a level,
+/// otherwise the spacing nearest it (by ratio) that does, and is at most 1.2 times it (the grid is
+/// made finer rather than coarser: within a factor 2.1 of `spacing`, at most 1.2 coarser).
+/// L = 0 with a factor below 1: the whole grid is made that much finer. L is at most max_levels.
+/// Other sizes get the level whose cells are nearest them (LocalSizeField). {1, 0} when no size
+/// is below spacing / 1.2 (sizes above the grid's cells do not coarsen it).
 LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, double min_size, int max_levels = 4);
 
 /// Which octree cells the local sizes split: those whose box lies within its own longest side of a
 /// triangle of a patch asking for a size below that side / sqrt(3) (so that the cells there end
-/// within a factor sqrt(3) of the size, exactly at the smallest one with local_levels' spacing).
+/// within a factor sqrt(3) of the size; within 1.2 of the smallest with local_levels' spacing).
 /// `surface` is the one the grid is laid over (a stretched copy for a stretched grid: positions
 /// are measured there, sizes in real lengths, the caller giving the cell's real longest side).
 class LocalSizeField {

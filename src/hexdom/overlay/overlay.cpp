@@ -227,16 +227,32 @@ struct Ranking {
   }
 };
 
-// Local sizes (opt.local_sizes): h0 scaled so that the smallest is met exactly at some octree
-// level (local_levels), said in the log; the levels they need (0: none).
-int scale_for_local_sizes(Eigen::Vector3d& h0, const OverlayOptions& opt) {
-  const LocalLevels l = local_levels(h0.maxCoeff(), opt.local_sizes, opt.min_size);
-  if (l.levels == 0) return 0;
-  h0 *= l.factor;
-  if (opt.log)
-    opt.log(0, fmt("overlay: local sizes: spacing %g, refined %.0f times by thirds near the faces asking for smaller cells",
-                   h0.maxCoeff(), double(l.levels)));
-  return l.levels;
+// Local sizes (opt.local_sizes) on a grid of spacing h: h scaled so that the smallest is met at
+// some octree level (local_levels; idempotent), said in the log, and the refinement it needs.
+Local local_refinement(Eigen::Vector3d& h, const OverlayOptions& opt, const LocalSizeField& field) {
+  if (field.empty()) return {};
+  const LocalLevels l = local_levels(h.maxCoeff(), opt.local_sizes, opt.min_size);
+  if (l.factor != 1 && opt.log)
+    opt.log(0, fmt("overlay: local sizes: spacing %g made %g, ", h.maxCoeff(), h.maxCoeff() * l.factor) +
+                   fmt("refined %.0f times by thirds near the faces asking for smaller cells", double(l.levels)));
+  h *= l.factor;
+  return {&field, l.levels};
+}
+
+// The factor (< 1) of h0 that gives walls `across` cells (measured on s, where the cells are
+// cubes): every spacing made smaller alike, within max_wall_refinement, the min size and
+// max_grid_cells; 1 when the walls have that many already. Says so.
+double walls_factor(const mesh::SurfaceMesh& s, const Eigen::Vector3d& h0, const Eigen::Vector3d& extent, double across,
+                    const OverlayOptions& opt) {
+  const double wall = wall_thickness(s, opt.wall_quantile);
+  double f = std::max(wall / across / h0.maxCoeff(), 1 / opt.max_wall_refinement);
+  if (opt.min_size > 0) f = std::max(f, opt.min_size / h0.minCoeff());
+  const Eigen::Vector3d n = extent.cwiseQuotient(h0).array() + 3;  // grid_around's cells, about
+  f = std::min(1.0, std::max(f, 1.01 * std::cbrt(n.prod() / opt.max_grid_cells)));
+  if (f < 1 && opt.log)
+    opt.log(0, fmt("overlay: walls of %.2f cells of spacing %g across (%g%% of the surface on thinner ones); the spacing "
+                   "made %.2f times smaller", wall / h0.maxCoeff(), h0.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
+  return f;
 }
 
 }  // namespace
@@ -266,34 +282,21 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     ss = s;
     ss.V = s.V * stretch.asDiagonal();
   }
-  // The factor (< 1) of h0 that gives walls `across` cells (measured where the cells are cubes):
-  // every spacing made smaller alike, within max_wall_refinement, the min size and max_grid_cells;
-  // 1 when the walls have that many already. Says so. Called once at most (wall_across before
-  // h0 changes, or wall_fallback when wall_across is off).
-  auto wall_factor = [&](double across) {
-    const double wall = wall_thickness(stretched ? ss : s, opt.wall_quantile);
-    double f = std::max(wall / across / h0.maxCoeff(), 1 / opt.max_wall_refinement);
-    if (opt.min_size > 0) f = std::max(f, opt.min_size / h0.minCoeff());
-    const Eigen::Vector3d n = extent.cwiseQuotient(h0).array() + 3;  // grid_around's cells, about
-    f = std::min(1.0, std::max(f, 1.01 * std::cbrt(n.prod() / opt.max_grid_cells)));
-    if (f < 1)
-      say(fmt("overlay: walls of %.2f cells of spacing %g across (%g%% of the surface on thinner ones); the spacing made %.2f "
-              "times smaller", wall / h0.maxCoeff(), h0.maxCoeff(), 100 * opt.wall_quantile, 1 / f));
-    return f;
-  };
+  auto wall_factor = [&](double across) { return walls_factor(stretched ? ss : s, h0, extent, across, opt); };
   if (opt.wall_across > 0) h0 *= wall_factor(opt.wall_across);
-  const int levels = scale_for_local_sizes(h0, opt);
   if (stretched) {
     FeatureOptions fo = opt.features;
     fo.regions = feat.region();
     sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
   }
-  const LocalSizeField field = levels > 0 ? LocalSizeField(stretched ? ss : s, opt.local_sizes) : LocalSizeField();
-  const Local local{levels > 0 ? &field : nullptr, levels};
+  const LocalSizeField field =
+      opt.local_sizes.empty() ? LocalSizeField() : LocalSizeField(stretched ? ss : s, opt.local_sizes);
   int grids = 0;
-  // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ).
-  auto one_grid = [&](const Eigen::Vector3d& h, const OverlayOptions& o) {
+  // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ); h
+  // is first made to meet the local sizes.
+  auto one_grid = [&](Eigen::Vector3d& h, const OverlayOptions& o) {
     ++grids;
+    const Local local = local_refinement(h, o, field);
     if (!stretched) return mesh_with_grid(s, feat, h, o, nullptr, local);
     const Stretch st{stretch, &s, &feat};
     OverlayResult r = mesh_with_grid(ss, *sfeat, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local);
@@ -307,7 +310,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   std::string why;
   int finer_for_quality = 0;
   for (int k = 0; k <= opt.refinements; ++k) {
-    const Eigen::Vector3d h = h0 / std::pow(2.0, k);
+    Eigen::Vector3d h = h0 / std::pow(2.0, k);
     if (k > 0 && h.minCoeff() < opt.min_size * (1 - 1e-9)) {
       why += fmt("; halving the spacing would give cells shorter than the min size %g", opt.min_size);
       if (have) say(fmt("overlay: a finer grid would have cells shorter than the min size %g; keeping this one", opt.min_size));
@@ -326,7 +329,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     say(fmt("overlay: spacing %g: ", h.maxCoeff()) + rank.summary(r));
     // Cells left inverted by the core by centres: the same grid with the core by corners too (its
     // buffer layer is thicker where the surface turns sharply), the better kept.
-    if (opt.core_by_centres && local.levels == 0 && inverted(r.quality) > 0 &&
+    if (opt.core_by_centres && field.empty() && inverted(r.quality) > 0 &&
         r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
       OverlayOptions corners = opt;
       corners.core_by_centres = false;
@@ -348,7 +351,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     if (!short_of || k == opt.refinements) break;
     // An octree grid is already refined where the part is thin: halving it as well would multiply
     // its cells (up to a million) by 8.
-    if (best.octree_levels > 0 || local.levels > 0) {
+    if (best.octree_levels > 0 && field.empty()) {
       say("overlay: the octree's grid is kept; no halving after it");
       break;
     }
@@ -371,13 +374,14 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   }
   // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
   // wall_fallback cells across, the better kept.
-  if (have && inverted(best.quality) > 0 && opt.wall_across == 0 && opt.wall_fallback > 0 && local.levels == 0) {
+  if (have && inverted(best.quality) > 0 && opt.wall_across == 0 && opt.wall_fallback > 0) {
     const double f = wall_factor(opt.wall_fallback);
     if (f < 1) {
       opt.deadline.check("overlay");
       try {
-        OverlayResult r = one_grid(h0 * f, opt);
-        say(fmt("overlay: spacing %g for the walls: ", (h0 * f).maxCoeff()) + rank.summary(r));
+        Eigen::Vector3d h = h0 * f;
+        OverlayResult r = one_grid(h, opt);
+        say(fmt("overlay: spacing %g for the walls: ", h.maxCoeff()) + rank.summary(r));
         if (rank.better(r, best)) best = std::move(r);
       } catch (const GeometryError& e) {
         say(std::string("overlay: the grid for the walls: ") + e.what());

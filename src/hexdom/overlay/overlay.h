@@ -65,13 +65,13 @@ struct OverlayOptions {
   /// first). A grid so refined is not halved further. 0: the grid's cells only.
   int octree_levels = 0;
   double wall_cells = 2;
-  /// Cell sizes asked on patches (CAD faces; local_size.h): the grid's spacing is set so that the
-  /// octree's cells of some level are the smallest size exactly (local_levels: within a factor
-  /// sqrt(3) of the spacing otherwise asked), and the octree refines down to each size near its
-  /// patch, its templates grading back to the grid's cells. Sizes below min_size are taken as it;
-  /// patches the surface does not have are passed over (check_local_sizes is the caller's).
-  /// The grid is then not laid again for quality with other spacings (the halvings, the core by
-  /// corners, the grid for walls), which would miss the sizes; only when its core is empty.
+  /// Cell sizes asked on patches (CAD faces; local_size.h). Each grid the path lays (the first,
+  /// the halvings where cells stay inverted, the grid for walls) has its spacing made to meet the
+  /// smallest size within a factor 1.2 at some octree level (local_levels: the spacing as it is when
+  /// it does, else at most 1.2 times coarser or up to 2.1 times finer), and the octree refines down
+  /// to each size near its patch, its templates grading back to the grid's cells. Sizes below
+  /// min_size are taken as it; patches the surface does not have are passed over
+  /// (check_local_sizes is the caller's). Not with the core by corners (it has no octree).
   std::vector<LocalSize> local_sizes;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;

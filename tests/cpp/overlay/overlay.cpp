@@ -397,20 +397,29 @@ TEST(OverlayWalls, InvertedCellsOnThinWallsGetOneMoreGridForThem) {
   EXPECT_LT(boundary_distance(with.mesh, shell), 1e-9 * diagonal(shell));
 }
 
-// Local sizes: the level that meets the smallest size exactly, within a factor sqrt(3) of the
-// spacing asked; none for sizes near or above the spacing; the min size bounds them.
-TEST(LocalSize, TheSmallestSizeIsMetExactlyAtSomeLevel) {
-  overlay::LocalLevels l = overlay::local_levels(2.92, {{3, 1.0}, {4, 2.0}}, 0);
+// Local sizes: the spacing as asked when one of its levels is within 1.2 of the smallest size,
+// else the nearest that gives one (at most 1.2 coarser); none for sizes at the spacing or above;
+// the min size bounds them.
+TEST(LocalSize, TheSmallestSizeIsMetWithinAFifthAtSomeLevel) {
+  overlay::LocalLevels l = overlay::local_levels(2.92, {{3, 1.0}, {4, 2.0}}, 0);  // 2.92 / 3 = 0.97
   EXPECT_EQ(l.levels, 1);
-  EXPECT_NEAR(2.92 * l.factor, 3.0, 1e-12);
-  l = overlay::local_levels(3.0, {{1, 0.1}}, 0);
-  EXPECT_EQ(l.levels, 3);  // 3 / 27 = 0.111: the nearest level, then the spacing made 2.7
-  EXPECT_NEAR(3.0 * l.factor / 27, 0.1, 1e-12);
-  EXPECT_EQ(overlay::local_levels(3.0, {{1, 2.0}}, 0).levels, 0);
+  EXPECT_EQ(l.factor, 1.0);
+  l = overlay::local_levels(3.0, {{1, 0.1}}, 0);  // 3 / 27 = 0.111
+  EXPECT_EQ(l.levels, 3);
+  EXPECT_EQ(l.factor, 1.0);
+  l = overlay::local_levels(2.92, {{1, 1.5}}, 0);  // level 1 would need 3.75 (1.28 coarser): the grid 1.8
+  EXPECT_EQ(l.levels, 0);
+  EXPECT_NEAR(2.92 * l.factor, 1.8, 1e-12);
+  l = overlay::local_levels(3.0, {{1, 0.45}}, 0);  // level 1 up to 1.62, level 2 from 3.375 (1.125 coarser)
+  EXPECT_EQ(l.levels, 2);
+  EXPECT_NEAR(3.0 * l.factor, 3.375, 1e-12);
+  EXPECT_EQ(overlay::local_levels(3.0, {{1, 2.6}}, 0).levels, 0);
+  EXPECT_EQ(overlay::local_levels(3.0, {{1, 2.6}}, 0).factor, 1.0);
+  EXPECT_EQ(overlay::local_levels(3.0, {{1, 30.0}}, 0).factor, 1.0);  // no coarsening
   EXPECT_EQ(overlay::local_levels(3.0, {}, 0).levels, 0);
-  l = overlay::local_levels(3.0, {{1, 0.1}}, 0.5);  // not below the min size
-  EXPECT_EQ(l.levels, 2);  // log3(3 / 0.5) = 1.63
-  EXPECT_NEAR(3.0 * l.factor / 9, 0.5, 1e-12);
+  l = overlay::local_levels(3.0, {{1, 0.1}}, 0.5);  // not below the min size: 0.5, level 1 at 1.8
+  EXPECT_EQ(l.levels, 1);
+  EXPECT_NEAR(3.0 * l.factor / 3, 0.6, 1e-12);
 }
 
 TEST(LocalSize, AFaceThePartLacksOrASizeNotPositiveIsAnInputError) {
@@ -430,8 +439,7 @@ TEST(LocalSize, AFaceThePartLacksOrASizeNotPositiveIsAnInputError) {
 }
 
 // A local size on one end of a box 30 x 20 x 10 (element size 2): the quads on that face have
-// the size asked (the level of thirds meets it exactly), those on the other end (their median) the
-// spacing the size gave, neighbours within a factor 2.2 of each other (the 3-refinement templates' pieces are
+// the size asked (their median within 20%), those on the other end the spacing the size gave, neighbours within a factor 2.2 of each other (the 3-refinement templates' pieces are
 // about 2.05 times the small cubes beside them by construction; issue 20 asks 2); valid, the
 // volume exact.
 TEST(LocalSize, AFaceOfABoxGetsItsSizeGradedToTheRest) {
@@ -470,16 +478,20 @@ TEST(LocalSize, AFaceOfABoxGetsItsSizeGradedToTheRest) {
   }
   ASSERT_FALSE(asked.empty());
   ASSERT_FALSE(other.empty());
+  // The grid's spacing: 1.8 (level 1 at 0.6 is within 1.2 of 0.5; level 2 would need 3.75).
+  const double h = 2.0 * overlay::local_levels(2.0, o.local_sizes, 0).factor;
+  EXPECT_NEAR(h, 1.8, 1e-9);
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
   int within = 0;
   for (double e : asked) {
     within += std::abs(e - 0.5) <= 0.1;
-    EXPECT_LT(e, 0.75);  // the longest: along the box's edges, where the buffer layer adds to the cells
+    EXPECT_LT(e, 0.85);  // the longest: along the box's edges, where the buffer layer adds to the cells
   }
-  EXPECT_GE(within, 0.8 * asked.size());
-  std::nth_element(asked.begin(), asked.begin() + asked.size() / 2, asked.end());
-  EXPECT_NEAR(asked[asked.size() / 2], 0.5, 0.05);
-  std::nth_element(other.begin(), other.begin() + other.size() / 2, other.end());
-  EXPECT_NEAR(other[other.size() / 2], 1.5, 0.3);  // the median: quads along the box's edges are longer
+  EXPECT_NEAR(median(asked), 0.5, 0.1);
+  EXPECT_NEAR(median(other), h, 0.2 * h);  // the median: quads along the box's edges are longer
   // Neighbours: sizes (the cube root of the volume) within a factor 2.2.
   std::vector<double> size(m.num_cells());
   for (int c = 0; c < m.num_cells(); ++c)

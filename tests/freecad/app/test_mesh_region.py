@@ -1,0 +1,121 @@
+"""Local sizes in FreeCAD (issue "element size that FEM users can steer"): FreeCAD's own FEM mesh
+region (ObjectsFem.makeMeshRegion on the HexDom Mesh, as on a Gmsh mesh object) gives cells of its
+CharacteristicLength on the faces it references, the mesh `hexdom mesh --face-size` gives; the
+README macro's FEM set-up (base fixed, upright pulled) still solves on it.
+
+Oracles: `_hexdom`'s pipeline on the shape FreeCAD holds (core.mesh_part on its BREP text, what
+`hexdom mesh` runs), FreeCAD's FemMesh (getNodesByFace finds the nodes within 1e-7 of a face),
+CalculiX through FreeCAD's FEM workbench."""
+
+import os
+import shutil
+
+import numpy as np
+import pytest
+
+import FreeCAD
+import ObjectsFem
+import Part
+
+import HexDomWorkbench as hexdom
+from HexDomWorkbench import api, core
+from HexDomWorkbench.document import RecomputeError
+
+import fc_fem
+
+TEST_DIR = os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(
+    os.path.dirname(os.path.abspath(__file__)))
+REPO = os.path.abspath(os.path.join(TEST_DIR, "..", ".."))
+BRACKET = os.path.join(REPO, "examples", "data", "bracket.step")
+
+needs_cad = pytest.mark.skipif(not api.has_cad(), reason="_hexdom built without OpenCASCADE")
+
+
+def _bracket(doc):
+    part = doc.addObject("Part::Feature", "Bracket")
+    part.Shape = Part.read(BRACKET)
+    doc.recompute()
+    return part
+
+
+def _face(shape, test):
+    """Name of the first face of ``shape`` for which test(face) holds."""
+    for i, face in enumerate(shape.Faces, 1):
+        if test(face):
+            return "Face{}".format(i)
+    raise AssertionError("no such face")
+
+
+def _hole(face):  # the 12 mm hole through the base plate, axis at x 40, y 20
+    s = face.Surface
+    return isinstance(s, Part.Cylinder) and abs(s.Radius - 6.0) < 1e-9 and abs(s.Center.x - 40) < 1e-9
+
+
+def _points(femmesh, nodes):
+    return np.array([[femmesh.Nodes[n].x, femmesh.Nodes[n].y, femmesh.Nodes[n].z] for n in sorted(nodes)])
+
+
+@needs_cad
+def test_a_mesh_region_on_the_hole_refines_there_and_the_fem_set_up_solves(doc, tmp_path):
+    part = _bracket(doc)
+    hole = _face(part.Shape, _hole)
+    objs = hexdom.mesh_part(doc, part, level=1)
+    mesh = objs["mesh"]
+    plain = len(mesh.FemMesh.getNodesByFace(part.Shape.getElement(hole)))
+    region = ObjectsFem.makeMeshRegion(doc, mesh, 1.0, "HoleRegion")
+    region.References = [(part, hole)]
+    assert list(mesh.MeshRegionList) == [region]
+    api.recompute_document(doc, [mesh])
+    assert mesh.MeshingPath == "overlay" and mesh.InvertedCount == 0, (mesh.MeshingPath, mesh.InvertedCount)
+    # The program's mesh with the same face size.
+    number = int(hole[4:])
+    run = core.mesh_part(part.Shape.exportBrepToString(), level=1, face_sizes={number: 1.0})
+    assert mesh.FemMesh.VolumeCount == len(run.mesh.types)
+    on_hole = mesh.FemMesh.getNodesByFace(part.Shape.getElement(hole))
+    assert len(on_hole) > 5 * plain, (len(on_hole), plain)
+    # Node spacing on the hole about 1: nearest neighbours among the hole's nodes.
+    P = _points(mesh.FemMesh, on_hole)
+    d = np.sqrt(((P[:, None, :] - P[None, :, :]) ** 2).sum(axis=2))
+    np.fill_diagonal(d, np.inf)
+    assert 0.6 <= np.median(d.min(axis=1)) <= 1.2, np.median(d.min(axis=1))
+    # The README macro's FEM set-up: base fixed, the upright's top pulled up by 1000 N.
+    bottom = _face(part.Shape, lambda f: abs(f.BoundBox.ZMax) < 1e-9)
+    top = _face(part.Shape, lambda f: abs(f.BoundBox.ZMin - 50.0) < 1e-9)
+    analysis, solver, _ = fc_fem.static_analysis(doc, 210000.0, 0.3, [(part, bottom)], [(part, top)],
+                                                 1000.0, (part, [top]))
+    analysis.addObject(mesh)
+    doc.recompute()
+    if shutil.which("ccx") is None:
+        pytest.skip("CalculiX ccx not on PATH: the set-up is written, not solved")
+    fea = fc_fem.write_inp(analysis, solver, tmp_path)
+    displacement = fc_fem.solve(fea, analysis)
+    fixed = mesh.FemMesh.getNodesByFace(part.Shape.getElement(bottom))
+    pulled = mesh.FemMesh.getNodesByFace(part.Shape.getElement(top))
+    assert fixed and pulled
+    assert max(displacement[n].Length for n in fixed) == 0.0
+    uz = sum(displacement[n].z for n in pulled) / len(pulled)
+    stretch = 1000.0 * 40.0 / (210000.0 * 10.0 * 40.0)  # the upright alone, above the base
+    assert stretch <= uz <= 10 * stretch, (uz, stretch)
+
+
+@needs_cad
+def test_a_mesh_region_on_an_edge_or_another_part_is_refused_naming_it(doc):
+    part = _bracket(doc)
+    other = doc.addObject("Part::Box", "Other")
+    doc.recompute()
+    objs = hexdom.mesh_part(doc, part, level=1)
+    mesh = objs["mesh"]
+    region = ObjectsFem.makeMeshRegion(doc, mesh, 1.0, "EdgeRegion")
+    region.References = [(part, "Edge3")]
+    with pytest.raises(RecomputeError, match="mesh region EdgeRegion: Edge3 of Bracket: HexDom takes sizes on faces only"):
+        api.recompute_document(doc, [mesh])
+    region.References = [(other, "Face1")]
+    with pytest.raises(RecomputeError, match="mesh region EdgeRegion: Face1 of Other is not a face of the part meshed"):
+        api.recompute_document(doc, [mesh])
+    region.CharacteristicLength = 0.0
+    region.References = [(part, "Face1")]
+    with pytest.raises(RecomputeError, match="mesh region EdgeRegion: its CharacteristicLength must be positive"):
+        api.recompute_document(doc, [mesh])
+    region.CharacteristicLength = 2.0
+    api.recompute_document(doc, [mesh])
+    assert mesh.InvertedCount == 0 and mesh.MeshingPath == "overlay"
