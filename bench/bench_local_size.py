@@ -6,8 +6,9 @@ corpus spread over its names, each with one face chosen by a fixed rule (its lar
 its smallest plane face of at least 1% of the area). Sizes: the default element size H (the box
 diagonal / 30) over each of --divisions. Per run: cells (and without the local size), seconds,
 inverted cells, worst hex scaled Jacobian (the program's report), and on the chosen face (FreeCAD
-finds the boundary quads whose four nodes lie on it): their count, median mean-edge length over
-the size asked, the share within 20% of it; neighbour size ratio (cube roots of volumes of cells
+finds the boundary quads whose four nodes lie on it): their count, the medians of their mean and
+of their longest edge over the size asked (they differ on the flat cells of a thin part's grid),
+the share of mean edges within 20% of it; neighbour size ratio (cube roots of volumes of cells
 sharing a face) at the 99th percentile and its largest.
 
 Run: /usr/bin/python3 bench/bench_local_size.py [--hexdom build/bin/hexdom] [--corpus DIR]
@@ -61,7 +62,8 @@ HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6
 
 
 def measure(path, face, size):
-    """(quads on the face, median mean edge / size, share within 20%, neighbour ratio 99%, max)."""
+    """(quads on the face, median mean edge / size, median longest edge / size, share of mean
+    edges within 20%, neighbour ratio 99%, max)."""
     import Part
     P, cells = hexes(path)
     owners = {}
@@ -106,12 +108,13 @@ def measure(path, face, size):
                 break
         if ok:
             x = P[list(q)]
-            quads.append(np.mean(np.linalg.norm(x - np.roll(x, 1, axis=0), axis=1)))
-    quads = np.array(quads) / size
+            e = np.linalg.norm(x - np.roll(x, 1, axis=0), axis=1)
+            quads.append((np.mean(e), np.max(e)))
+    quads = np.array(quads).reshape(-1, 2) / size
     if len(quads) == 0:
-        return 0, float("nan"), float("nan"), np.percentile(ratios, 99), max(ratios)
-    return (len(quads), float(np.median(quads)), float(np.mean(np.abs(quads - 1) <= 0.2)),
-            float(np.percentile(ratios, 99)), float(max(ratios)))
+        return 0, float("nan"), float("nan"), float("nan"), np.percentile(ratios, 99), max(ratios)
+    return (len(quads), float(np.median(quads[:, 0])), float(np.median(quads[:, 1])),
+            float(np.mean(np.abs(quads[:, 0] - 1) <= 0.2)), float(np.percentile(ratios, 99)), float(max(ratios)))
 
 
 def counts(report):
@@ -147,8 +150,9 @@ def main(argv):
         parts += found[::step][:a.limit]
     divisions = [float(d) for d in a.divisions.split(",")]
     work = tempfile.mkdtemp(prefix="hexdom-local-size-")
-    print("%-26s %5s %7s %8s %7s %6s %4s %6s %6s %6s %6s %5s %5s" % (
-        "part", "face", "size", "cells", "plain", "sec", "inv", "SJ", "quads", "med", "in20%", "r99", "rmax"))
+    print("%-26s %5s %7s %8s %7s %6s %4s %6s %6s %6s %6s %6s %5s %5s" % (
+        "part", "face", "size", "cells", "plain", "sec", "inv", "SJ", "quads", "med", "medmax", "in20%", "r99",
+        "rmax"))
     rows = []
     for part in parts:
         name = os.path.splitext(os.path.basename(part))[0]
@@ -168,15 +172,17 @@ def main(argv):
                 continue
             cells, inv = counts(rep)
             sj = rep["hex"]["sj_min"] if rep["hex"]["count"] else float("nan")
-            n, med, share, r99, rmax = measure(out, face, size)
-            rows.append((inv, med, share, r99))
-            print("%-26s %5d %7.3g %8d %7s %6.2f %4d %6.3f %6d %6.2f %6.2f %5.2f %5.2f" % (
-                name, face_no, size, cells, plain or "-", seconds, inv, sj, n, med, share, r99, rmax))
+            n, med, medmax, share, r99, rmax = measure(out, face, size)
+            rows.append((inv, med, share, r99, medmax))
+            print("%-26s %5d %7.3g %8d %7s %6.2f %4d %6.3f %6d %6.2f %6.2f %6.2f %5.2f %5.2f" % (
+                name, face_no, size, cells, plain or "-", seconds, inv, sj, n, med, medmax, share, r99, rmax))
             sys.stdout.flush()
     done = [r for r in rows if r is not None]
-    print("\nruns %d, failed %d; no inverted cell %d; face median within 20%%: %d; neighbour ratio 99%% <= 2: %d" % (
-        len(rows), len(rows) - len(done), sum(r[0] == 0 for r in done),
-        sum(abs(r[1] - 1) <= 0.2 for r in done), sum(r[3] <= 2 for r in done)))
+    print("\nruns %d, failed %d; no inverted cell %d; face median within 20%%: %d by the mean edge, %d by the "
+          "longest; neighbour ratio 99%% <= 2: %d" % (
+              len(rows), len(rows) - len(done), sum(r[0] == 0 for r in done),
+              sum(abs(r[1] - 1) <= 0.2 for r in done), sum(abs(r[4] - 1) <= 0.2 for r in done),
+              sum(r[3] <= 2 for r in done)))
     return 0
 
 

@@ -121,6 +121,30 @@ class _AddToAnalysis(CommandManager):
                  analysis.Name, obj.Name)])
 
 
+class _MeshRegion(CommandManager):
+    menutext = "Mesh region"
+    tooltip = ("Adds a FreeCAD FEM mesh region to the selected HexDom Mesh: cells of its "
+               "CharacteristicLength on the faces it references (`hexdom mesh --face-size`); pick "
+               "the faces and the length in its task panel, then recompute the Mesh")
+    is_active = "with_hex_mesh"
+
+    def Activated(self):
+        obj = manager.selected_mesh(hexdom_only=True)
+        if obj is None:
+            return
+        size = float(getattr(getattr(obj, "Size", None), "Value", 0.0) or 0.0)
+        length = round(size / 3.0, 6) if size > 0 else 1.0
+        before = set(o.Name for o in obj.Document.Objects)
+        if not manager.run_in_transaction(
+                obj.Document, "Mesh region", ["ObjectsFem"],
+                ["ObjectsFem.makeMeshRegion({}.Document, {}, {!r}, 'MeshRegion')".format(
+                    _doc_expr(obj), _doc_expr(obj), length)]):
+            return
+        added = [o for o in obj.Document.Objects if o.Name not in before]
+        if added and FreeCADGui.ActiveDocument is not None:
+            FreeCADGui.ActiveDocument.setEdit(added[0].Name)
+
+
 def _doc_expr(obj):
     return "App.getDocument({!r}).getObject({!r})".format(obj.Document.Name, obj.Name)
 
@@ -459,7 +483,7 @@ class _BuildPolycube(CommandManager):
 
 
 COMMANDS = [_ImportMesh(), _QualityReport(), _ExportMesh(), _AddToAnalysis()]
-PIPELINE_COMMANDS = [_MeshPart(), _Tessellate(), _Segment(), _ImportPatches(), _EditPatches(),
+PIPELINE_COMMANDS = [_MeshPart(), _MeshRegion(), _Tessellate(), _Segment(), _ImportPatches(), _EditPatches(),
                      _ImportStructure(), _BuildPolycube(), _GenerateMesh(), _ImproveQuality(),
                      _ExportStructure()]
 TOOLBAR = [c.command_name for c in COMMANDS]

@@ -3,7 +3,8 @@
 1. HexDom_MeshPart is registered with an icon and a tooltip, and sits in the "HexDom pipeline"
    toolbar; triggering that toolbar action on the selected STEP bracket (examples/data) adds a
    HexDom Surface, Segmentation, Polycube (Mode Automatic) and Mesh, all valid, the mesh with no
-   inverted cell. While the core works the GUI keeps processing events (a 50 ms timer keeps
+   inverted cell. Then HexDom_MeshRegion on the Mesh adds a FreeCAD FEM mesh region; on the hole's
+   face with a length of 1 the recomputed mesh is refined there (mesh_region_bracket.png). While the core works the GUI keeps processing events (a 50 ms timer keeps
    ticking; the longest gap is printed and checked). Screenshot of the mesh coloured by cell type
    (artifacts/mesh_part_bracket.png): hex blue must show; one of the patches
    (mesh_part_patches.png) too.
@@ -122,6 +123,49 @@ def edit_automatic_polycube(poly, mesh):
           "the Mesh recomputed from the kept blocks")
 
 
+def mesh_region(doc, part, mesh):
+    """HexDom_MeshRegion on the selected Mesh: a FreeCAD FEM mesh region in its MeshRegionList,
+    its task panel open; given the hole's face and a length of 1, the recomputed Mesh is the
+    overlay grid's, refined there (more than 3 times the hexes), with no inverted cell."""
+    import FreeCADGui
+    import Part
+    action = toolbar_action("HexDom pipeline", "Mesh region")
+    check(action is not None, "Mesh region is in the HexDom pipeline toolbar")
+    if action is None:
+        return
+    hexes = mesh.HexCount
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(mesh)
+    deadline = time.time() + 2.0  # (FreeCAD updates the actions' states on a timer)
+    while not action.isEnabled() and time.time() < deadline:
+        g.process_events()
+        time.sleep(0.05)
+    check(action.isEnabled(), "Mesh region is enabled with the HexDom Mesh selected")
+    action.trigger()
+    g.process_events()
+    regions = list(mesh.MeshRegionList)
+    check(len(regions) == 1, "one mesh region added to the Mesh's MeshRegionList")
+    check(FreeCADGui.Control.activeDialog(), "its task panel is open")
+    if len(regions) != 1:
+        return
+    hole = next("Face{}".format(i) for i, f in enumerate(part.Shape.Faces, 1)
+                if isinstance(f.Surface, Part.Cylinder) and abs(f.Surface.Radius - 6) < 1e-9
+                and abs(f.Surface.Center.x - 40) < 1e-9)  # (the fillet has radius 6 too)
+    regions[0].References = [(part, hole)]
+    regions[0].CharacteristicLength = 1.0
+    FreeCADGui.Control.closeDialog()
+    FreeCADGui.ActiveDocument.resetEdit()
+    mesh.Pipeline = True  # (the Polycube was edited above: the Mesh had left the pipeline)
+    doc.recompute()
+    g.process_events()
+    check(mesh.MeshingPath == "overlay" and mesh.InvertedCount == 0 and mesh.HexCount > 3 * hexes,
+          "with the region on {}: {} hex ({} before), {} inverted, path {}".format(
+              hole, mesh.HexCount, hexes, mesh.InvertedCount, mesh.MeshingPath))
+    path = screenshot("mesh_region_bracket.png", [mesh])
+    drawn, _ = colour_shares(path, {})
+    check(drawn > 0.05, "the refined mesh shows")
+
+
 def run():
     import FreeCAD
     import FreeCADGui
@@ -205,6 +249,7 @@ def run():
     check(drawn > 0.05, "the segmentation shows")
 
     edit_automatic_polycube(poly, mesh)
+    mesh_region(doc, part, mesh)
     FreeCAD.closeDocument(doc.Name)
     g.process_events()
 
