@@ -554,12 +554,13 @@ def _method_args(method, polycube_seconds=None):
     return args
 
 
-SIZE_BOUNDS = ("max_size", "min_size", "cells_across")
+SIZE_BOUNDS = ("max_size", "min_size", "cells_across", "growth_rate")
 
 
 def _size_args(**bounds):
-    """The max_size=, min_size= and cells_across= keywords for _hexdom that differ from the core's
-    defaults (MESH_OPTIONS); a negative one raises InputError."""
+    """The max_size=, min_size=, cells_across= and growth_rate= keywords for _hexdom that differ
+    from the core's defaults (MESH_OPTIONS); a negative one raises InputError (the core checks the
+    rest)."""
     args = {}
     for name in SIZE_BOUNDS:
         value = bounds.get(name)
@@ -595,7 +596,7 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                  relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
                  allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
                  method=MESH_OPTIONS["method"], polycube_seconds=None, max_size=None, min_size=None,
-                 cells_across=None, face_sizes=None):
+                 cells_across=None, face_sizes=None, growth_rate=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -609,7 +610,8 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     max_size, min_size: bounds on the element size (None or 0: none; `hexdom mesh --max-size /
     --min-size`); cells_across: cells across a thin part (None: the core's 2); face_sizes:
     {patch id: size}, cell sizes on those patches (`hexdom mesh --face-size`; the overlay path
-    then meshes the surface). Raises
+    then meshes the surface); growth_rate: how fast cells grow from those sizes back (None: the
+    core's 3^(1/4); `hexdom mesh --growth-rate`). Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
     them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
     stages made, or None) and ``stage`` (the stage that failed)."""
@@ -620,7 +622,7 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                                  None if frame is None else np.asarray(frame, np.float64).reshape(3, 3),
                                  **_method_args(method, polycube_seconds),
                                  **_size_args(max_size=max_size, min_size=min_size,
-                                              cells_across=cells_across),
+                                              cells_across=cells_across, growth_rate=growth_rate),
                                  **_face_size_args(face_sizes))
     except Error as e:
         _attach_partial(e, _mesh_run)
@@ -638,7 +640,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
-    min_size, cells_across go to it, and face_sizes, {FreeCAD face number of the solid meshed:
+    min_size, cells_across, growth_rate go to it, and face_sizes, {FreeCAD face number of the solid meshed:
     size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube

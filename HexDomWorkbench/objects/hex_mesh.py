@@ -168,6 +168,12 @@ class HexMesh(BaseHexDomObject):
                             "this mesh, length), as for Gmsh): cells of their CharacteristicLength "
                             "on the faces they reference (`hexdom mesh --face-size`); the overlay "
                             "grid then meshes the part, refined by thirds near those faces")
+        if not hasattr(obj, "GrowthRate"):
+            obj.addProperty("App::PropertyFloat", "GrowthRate", "HexDom",
+                            "With mesh regions: how fast cells grow from a region's length back to "
+                            "the element size, per cell, in (1, 3] (`hexdom mesh --growth-rate`); "
+                            "the band of small cells around the faces is wider the smaller it is")
+            obj.GrowthRate = float(core.MESH_OPTIONS.get("growth_rate", 3 ** 0.25))
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")

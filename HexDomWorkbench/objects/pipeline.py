@@ -73,14 +73,17 @@ def leave_pipeline(objs):
 
 
 def size_bounds(mesh):
-    """The HexDom Mesh ``mesh``'s MaxSize, MinSize and CellsAcross as the core's keywords
-    max_size, min_size and cells_across (those a document older than them lacks left out)."""
+    """The HexDom Mesh ``mesh``'s MaxSize, MinSize, CellsAcross and GrowthRate as the core's
+    keywords max_size, min_size, cells_across and growth_rate (those a document older than them
+    lacks left out)."""
     bounds = {}
     for prop, key in (("MaxSize", "max_size"), ("MinSize", "min_size")):
         if hasattr(mesh, prop):
             bounds[key] = float(getattr(mesh, prop).Value)
     if hasattr(mesh, "CellsAcross"):
         bounds["cells_across"] = float(mesh.CellsAcross)
+    if hasattr(mesh, "GrowthRate"):
+        bounds["growth_rate"] = float(mesh.GrowthRate)
     return bounds
 
 

@@ -204,6 +204,10 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt) {
          "repeat for more faces. The overlay path then meshes the part (its grid refined by thirds near those faces, "
          "graded back to the size): the smallest size is met exactly, others within a factor 1.7")
       ->allow_extra_args(false);
+  cmd.add_option("--growth-rate", opt.overlay.growth_rate,
+                 "with --face-size: how fast cells grow from the face's size back to the element size, per cell "
+                 "(in (1, 3]; the refined band around the face is wider the smaller it is)")
+      ->capture_default_str();
   cmd.add_option("-s,--level", opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")
       ->capture_default_str()->check(CLI::Range(0, 6));
   cmd.add_option("--octree-levels", opt.overlay.octree_levels, "overlay grid: cells split in 27, up to this many "

@@ -79,7 +79,9 @@ const char* const kSizeBoundsDoc =
     "shorter than min_size. cells_across: cells across a part thin along an axis (0: cubic cells).\n"
     "face_sizes: {face number: size}, cell sizes on faces (FreeCAD's Face<number>; for a surface, its patch\n"
     "ids), as `hexdom mesh --face-size`: the overlay path meshes the part, its grid refined by thirds near\n"
-    "those faces (auto; the polycube method refuses them with InputError, as a face the part lacks).";
+    "those faces (auto; the polycube method refuses them with InputError, as a face the part lacks).\n"
+    "growth_rate: how fast the cells grow from those sizes back to the element size, per cell, in (1, 3]\n"
+    "(`hexdom mesh --growth-rate`).";
 
 py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   py::dict d;
@@ -111,8 +113,9 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       const std::optional<Eigen::Matrix3d>& frame, const std::string& method,
                                                       std::optional<double> polycube_seconds, double max_size,
                                                       double min_size, double cells_across,
-                                                      const std::map<int, double>& face_sizes) {
+                                                      const std::map<int, double>& face_sizes, double growth_rate) {
   pipeline::MeshSurfaceOptions opt;
+  opt.overlay.growth_rate = growth_rate;
   for (const auto& [face, size] : face_sizes) {
     if (face < 1 || !(size > 0))
       throw InputError(fmt("face_sizes {%.0f: %g}: the face number must be at least 1 and the size positive", double(face), size));
@@ -201,11 +204,11 @@ void bind_auto(py::module_& m) {
         [module](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes) {
+           const std::map<int, double>& face_sizes, double growth_rate) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           const pipeline::MeshSurfaceOptions opt =
               mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                   polycube_seconds, max_size, min_size, cells_across, face_sizes);
+                                   polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate);
           pipeline::MeshSurfaceRun r;
           try {
             py::gil_scoped_release nogil;
@@ -221,7 +224,7 @@ void bind_auto(py::module_& m) {
         py::arg("align") = defaults.align, py::arg("frame") = py::none(), py::arg("method") = method_name(defaults.method),
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.max_size,
         py::arg("min_size") = defaults.min_size, py::arg("cells_across") = defaults.across_thin,
-        py::arg("face_sizes") = std::map<int, double>{},
+        py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.overlay.growth_rate,
         (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc).c_str());
 }
 

@@ -150,6 +150,7 @@ void bind_mesh_cad(py::module_& m) {
           d["max_size"] = o.max_size;
           d["min_size"] = o.min_size;
           d["cells_across"] = o.across_thin;
+          d["growth_rate"] = o.overlay.growth_rate;
           d["target_sj"] = o.target_sj;
           d["target_volume"] = o.target_volume;
           d["target_edge_ratio"] = o.target_edge_ratio;
@@ -164,12 +165,12 @@ void bind_mesh_cad(py::module_& m) {
         [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes) {
+           const std::map<int, double>& face_sizes, double growth_rate) {
           pipeline::MeshCadOptions opt;
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                          polycube_seconds, max_size, min_size, cells_across, face_sizes);
+                                          polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           try {
@@ -189,7 +190,8 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("method") = pipeline::method_name(defaults.mesh.method),
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.mesh.max_size,
         py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
-        py::arg("face_sizes") = std::map<int, double>{}, (mesh_cad_doc() + kSizeBoundsDoc).c_str());
+        py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.mesh.overlay.growth_rate,
+        (mesh_cad_doc() + kSizeBoundsDoc).c_str());
 }
 
 void bind_cad(py::module_& m) {

@@ -23,7 +23,8 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                   const std::string& method = "auto",
                                                   std::optional<double> polycube_seconds = std::nullopt,
                                                   double max_size = 0, double min_size = 0, double cells_across = 2,
-                                                  const std::map<int, double>& face_sizes = {});
+                                                  const std::map<int, double>& face_sizes = {},
+                                                  double growth_rate = overlay::kGrowthRate);
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);

@@ -180,6 +180,7 @@ def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_b
         (["--face-size", "10"], "--face-size 10: expected FACE=SIZE"),
         (["--face-size", "Face10=0"], "the face number must be at least 1 and the size positive"),
         (["--face-size", "10=1", "--method", "polycube"], "local sizes on faces are met by the overlay path only"),
+        (["--face-size", "10=1", "--growth-rate", "1"], "growth rate 1: it must be above 1 and at most 3"),
     ],
 )
 def test_a_local_size_the_part_cannot_take_is_refused_without_output(hexdom_bin, tmp_path, args, message):
@@ -188,3 +189,17 @@ def test_a_local_size_the_part_cannot_take_is_refused_without_output(hexdom_bin,
     assert run.returncode == 1, (run.returncode, run.stderr)
     assert message in run.stderr, run.stderr
     assert not out.exists()
+
+
+def test_a_faster_growth_rate_gives_a_narrower_refined_band(hexdom_bin, tmp_path):
+    # The bracket's hole at 1: growth 3 refines only the cells touching the hole, 1.15 a band
+    # about seven small cells wide; the quads on the hole keep their size.
+    runs = {}
+    for growth in ("1.15", "3"):
+        out = tmp_path / ("g" + growth + ".vtu")
+        run = _mesh_default(hexdom_bin, BRACKET, out, "--face-size", "10=1", "--growth-rate", growth)
+        assert run.returncode == 0, run.stderr
+        g = oracles.read_vtu(str(out))
+        runs[growth] = (g.GetNumberOfCells(), np.median(_quads_on_hole(g)))
+    assert runs["1.15"][0] > 1.5 * runs["3"][0], runs
+    assert all(abs(q - 1.0) <= 0.2 for _, q in runs.values()), runs

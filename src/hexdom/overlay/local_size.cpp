@@ -53,7 +53,10 @@ LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, do
   return out;
 }
 
-LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes) {
+LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth) {
+  if (!(growth > 1 && growth <= 3))
+    throw InputError(fmt("growth rate %g: it must be above 1 and at most 3", growth));
+  band_ = std::max(0.0, std::log(3.0) / std::log(growth) - 1);
   std::map<double, std::vector<int>> triangles;  // size -> triangles asking for it
   for (const LocalSize& l : sizes)
     for (int t = 0; t < surface.F.rows(); ++t)
@@ -69,7 +72,7 @@ LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vect
 
 bool LocalSizeField::split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const {
   const Eigen::Vector3d centre = lo + size / 2;
-  const double reach = size.norm() / 2 + size.maxCoeff();
+  const double reach = size.norm() / 2 + band_ * size.maxCoeff() / 3;
   for (const auto& [s, proj] : by_size_) {
     if (real_side <= s * kSqrt3 * (1 + 1e-9)) return false;  // this size and the larger ones are met
     if ((proj.project(centre) - centre).norm() <= reach) return true;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,10 @@ struct LocalSize {
   int patch = 0;
   double size = 0;
 };
+
+/// The growth rate the band of each level is drawn for by default: 3^(1/4), about 1.32 (cells grow
+/// by a factor 3 from one level to the next over about four cells).
+inline const double kGrowthRate = std::pow(3.0, 0.25);
 
 /// Throws InputError naming the first local size whose size is not positive and finite or whose
 /// patch has no triangle in `surface` (`what` names the surface in the message).
@@ -40,21 +45,27 @@ struct LocalLevels {
 /// is below spacing / 1.2 (sizes above the grid's cells do not coarsen it).
 LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, double min_size, int max_levels = 4);
 
-/// Which octree cells the local sizes split: those whose box lies within its own longest side of a
-/// triangle of a patch asking for a size below that side / sqrt(3) (so that the cells there end
-/// within a factor sqrt(3) of the size; within 1.2 of the smallest with local_levels' spacing).
+/// Which octree cells the local sizes split: those near a triangle of a patch asking for a size
+/// below the cell's longest side / sqrt(3) (so that the cells there end within a factor sqrt(3) of
+/// the size; within 1.2 of the smallest with local_levels' spacing). Near: the distance from the
+/// cell's centre is at most its half diagonal plus a band of (ln 3 / ln growth - 1) of its
+/// children's sides, so that across a level's band, from the face outwards, the cell size grows by
+/// about `growth` per cell on average before the next level (3 times larger) begins: 3 children at
+/// the default kGrowthRate, one at growth sqrt(3), none from growth 3 (only the cells touching
+/// the face). InputError for a growth not in (1, 3].
 /// `surface` is the one the grid is laid over (a stretched copy for a stretched grid: positions
 /// are measured there, sizes in real lengths, the caller giving the cell's real longest side).
 class LocalSizeField {
  public:
   LocalSizeField() = default;
-  LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes);
+  LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth = kGrowthRate);
   bool empty() const { return by_size_.empty(); }
   /// Split the cell [lo, lo + size] (grid space), whose longest real side is `real_side`?
   bool split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const;
 
  private:
   std::vector<std::pair<double, mesh::TriangleProjector>> by_size_;  // one per distinct size, smallest first
+  double band_ = 3;  // children's sides beyond the half diagonal
 };
 
 }  // namespace hexdom::overlay

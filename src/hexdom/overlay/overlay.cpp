@@ -290,7 +290,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
   }
   const LocalSizeField field =
-      opt.local_sizes.empty() ? LocalSizeField() : LocalSizeField(stretched ? ss : s, opt.local_sizes);
+      opt.local_sizes.empty() ? LocalSizeField() : LocalSizeField(stretched ? ss : s, opt.local_sizes, opt.growth_rate);
   int grids = 0;
   // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ); h
   // is first made to meet the local sizes.

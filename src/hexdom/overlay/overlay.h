@@ -73,6 +73,9 @@ struct OverlayOptions {
   /// min_size are taken as it; patches the surface does not have are passed over
   /// (check_local_sizes is the caller's). Not with the core by corners (it has no octree).
   std::vector<LocalSize> local_sizes;
+  /// How fast the cells grow from a local size back to the grid's (LocalSizeField): the band of
+  /// each level is drawn so that sizes grow by about this much per cell; in (1, 3].
+  double growth_rate = kGrowthRate;
   bool align = true;    ///< lay the grid in the frame the faces fit (see pipeline::MeshSurfaceOptions::align)
   segmentation::CubeFrameOptions frame_options;
   FeatureOptions features;

@@ -187,7 +187,8 @@ struct MeshSurfaceRun {
   std::vector<MeshSurfaceRun> solids;
 };
 
-/// InputError for a negative min_size or max_size, or min_size > max_size (both > 0).
+/// InputError for a negative min_size or max_size, min_size > max_size (both > 0), or a growth
+/// rate (overlay.growth_rate) not in (1, 3].
 void check_size_bounds(const MeshSurfaceOptions& options);
 
 /// The method that meets options.overlay.local_sizes (cell sizes asked on faces): with none, the

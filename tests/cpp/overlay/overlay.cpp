@@ -503,3 +503,31 @@ TEST(LocalSize, AFaceOfABoxGetsItsSizeGradedToTheRest) {
               "ratio %.2f\n", asked.size(), within, other.size(), worst);
   EXPECT_LE(worst, 2.2);
 }
+
+// The growth rate draws the band of each level: a slower growth (1.1) refines a wider band around
+// the face (more cells), a faster one (3: only the cells touching the face) a narrower one; the
+// quads on the face keep the size asked. Out of (1, 3]: InputError.
+TEST(LocalSize, TheGrowthRateWidensOrNarrowsTheRefinedBand) {
+  const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);
+  int patch = -1;
+  for (int t = 0; t < s.F.rows() && patch < 0; ++t)
+    if ((s.V(s.F(t, 0), 0) == 30) + (s.V(s.F(t, 1), 0) == 30) + (s.V(s.F(t, 2), 0) == 30) == 3) patch = s.patch(t);
+  ASSERT_GE(patch, 0);
+  std::map<double, int> cells;
+  for (double growth : {1.1, overlay::kGrowthRate, 3.0}) {
+    overlay::OverlayOptions o;
+    o.size = 2.0;
+    o.local_sizes = {{patch, 0.6}};
+    o.growth_rate = growth;
+    const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+    EXPECT_EQ(inverted(r.quality), 0) << growth;
+    EXPECT_EQ(r.octree_levels, 1) << growth;
+    cells[growth] = r.mesh.num_cells();
+  }
+  std::printf("growth 1.1: %d cells, %.3f: %d, 3: %d\n", cells[1.1], overlay::kGrowthRate, cells[overlay::kGrowthRate],
+              cells[3.0]);
+  EXPECT_GT(cells[1.1], cells[overlay::kGrowthRate]);
+  EXPECT_GT(cells[overlay::kGrowthRate], cells[3.0]);
+  EXPECT_THROW(overlay::LocalSizeField(s, {{patch, 0.6}}, 1.0), InputError);
+  EXPECT_THROW(overlay::LocalSizeField(s, {{patch, 0.6}}, 3.5), InputError);
+}

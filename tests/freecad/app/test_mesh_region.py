@@ -1,7 +1,7 @@
 """Local sizes in FreeCAD (issue "element size that FEM users can steer"): FreeCAD's own FEM mesh
 region (ObjectsFem.makeMeshRegion on the HexDom Mesh, as on a Gmsh mesh object) gives cells of its
-CharacteristicLength on the faces it references, the mesh `hexdom mesh --face-size` gives; the
-README macro's FEM set-up (base fixed, upright pulled) still solves on it.
+CharacteristicLength on the faces it references, the mesh `hexdom mesh --face-size` gives (and
+the Mesh's GrowthRate, `--growth-rate`'s); the README macro's FEM set-up (base fixed, upright pulled) still solves on it.
 
 Oracles: `_hexdom`'s pipeline on the shape FreeCAD holds (core.mesh_part on its BREP text, what
 `hexdom mesh` runs), FreeCAD's FemMesh (getNodesByFace finds the nodes within 1e-7 of a face),
@@ -78,6 +78,15 @@ def test_a_mesh_region_on_the_hole_refines_there_and_the_fem_set_up_solves(doc, 
     d = np.sqrt(((P[:, None, :] - P[None, :, :]) ** 2).sum(axis=2))
     np.fill_diagonal(d, np.inf)
     assert 0.6 <= np.median(d.min(axis=1)) <= 1.2, np.median(d.min(axis=1))
+    # A faster growth (3: only the cells touching the hole refined): fewer cells, the program's.
+    hexes = mesh.HexCount
+    mesh.GrowthRate = 3.0
+    api.recompute_document(doc, [mesh])
+    fast = core.mesh_part(part.Shape.exportBrepToString(), level=1, face_sizes={number: 1.0}, growth_rate=3.0)
+    assert mesh.FemMesh.VolumeCount == len(fast.mesh.types) and mesh.HexCount < hexes, (mesh.HexCount, hexes)
+    mesh.GrowthRate = 3 ** 0.25
+    api.recompute_document(doc, [mesh])
+    assert mesh.HexCount == hexes
     # The README macro's FEM set-up: base fixed, the upright's top pulled up by 1000 N.
     bottom = _face(part.Shape, lambda f: abs(f.BoundBox.ZMax) < 1e-9)
     top = _face(part.Shape, lambda f: abs(f.BoundBox.ZMin - 50.0) < 1e-9)
