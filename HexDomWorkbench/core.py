@@ -573,22 +573,22 @@ def _size_args(**bounds):
     return args
 
 
-def _face_size_args(face_sizes):
-    """The face_sizes= keyword for _hexdom: {face number (int >= 1): size (> 0)} from a dict or
-    pairs; empty or None: none. InputError naming the entry otherwise."""
+def _face_size_args(face_sizes, keyword="face_sizes", what="face"):
+    """The face_sizes= (or edge_sizes=) keyword for _hexdom: {number (int >= 1): size (> 0)} from
+    a dict or pairs; empty or None: none. InputError naming the entry otherwise."""
     if not face_sizes:
         return {}
     sizes = {}
-    for face, size in dict(face_sizes).items():
+    for number, size in dict(face_sizes).items():
         try:
-            face_number, value = int(face), float(size)
+            n, value = int(number), float(size)
         except (TypeError, ValueError):
-            raise InputError("face_sizes {{{!r}: {!r}}}: a face number and a size".format(face, size)) from None
-        if face_number < 1 or face_number != face or not value > 0:
-            raise InputError("face_sizes {{{!r}: {!r}}}: the face number must be at least 1 and the "
-                             "size positive".format(face, size))
-        sizes[face_number] = value
-    return {"face_sizes": sizes}
+            raise InputError("{} {{{!r}: {!r}}}: a {} number and a size".format(keyword, number, size, what)) from None
+        if n < 1 or n != number or not value > 0:
+            raise InputError("{} {{{!r}: {!r}}}: the {} number must be at least 1 and the size "
+                             "positive".format(keyword, number, size, what))
+        sizes[n] = value
+    return {keyword: sizes}
 
 
 def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"],
@@ -640,8 +640,9 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
-    min_size, cells_across, growth_rate go to it, and face_sizes, {FreeCAD face number of the solid meshed:
-    size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path); the time
+    min_size, cells_across, growth_rate go to it, and face_sizes, {FreeCAD face number of the
+    solid meshed: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
+    likewise along edges (Edge<number>, `--edge-size`); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
     or cells stay inverted, the B-rep is tessellated again with slightly smaller or larger triangles
@@ -653,7 +654,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
-                             "method", "polycube_seconds", "face_sizes"} - set(SIZE_BOUNDS)
+                             "method", "polycube_seconds", "face_sizes", "edge_sizes"} - set(SIZE_BOUNDS)
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
@@ -661,6 +662,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     kwargs.update(_method_args(kwargs.pop("method", "auto"), kwargs.pop("polycube_seconds", None)))
     kwargs.update(_size_args(**{name: kwargs.pop(name, None) for name in SIZE_BOUNDS}))
     kwargs.update(_face_size_args(kwargs.pop("face_sizes", None)))
+    kwargs.update(_face_size_args(kwargs.pop("edge_sizes", None), "edge_sizes", "edge"))
     try:
         r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
                              level=int(level),

@@ -64,12 +64,17 @@ QUALITY_PROPERTIES = [name for name, _, _ in _QUALITY]
 
 def region_sizes(obj, surface_obj):
     """The Mesh ``obj``'s mesh regions as face_sizes for the Surface ``surface_obj`` (its
-    triangles carry the face numbers of the Part it tessellates; none without a Part)."""
+    triangles carry the face numbers of the Part it tessellates; none without a Part). Regions on
+    edges need the pipeline (the B-rep's edges): ValueError saying so."""
     part = getattr(surface_obj, "Source", None)
     shape = getattr(part, "Shape", None)
     if not getattr(obj, "MeshRegionList", None) or shape is None or shape.isNull() or not shape.Solids:
         return None
-    return pipeline.face_sizes(obj, shape) or None
+    sizes = pipeline.region_sizes(obj, shape)
+    if "edge_sizes" in sizes:
+        raise ValueError("{}: mesh regions on edges are met by the pipeline (set Pipeline)".format(
+            obj.Label))
+    return sizes.get("face_sizes")
 
 
 class HexMesh(BaseHexDomObject):

@@ -87,15 +87,16 @@ def size_bounds(mesh):
     return bounds
 
 
-def face_sizes(mesh, shape):
-    """{face number of ``shape``'s first solid (the one meshed): size} from the HexDom Mesh
-    ``mesh``'s MeshRegionList: FreeCAD's FEM mesh regions (or any object with References and a
-    CharacteristicLength), each face taking the smallest length that names it. Raises ValueError
-    (the Mesh's recompute error) naming the region for a length that is not positive, a reference that is not a face, or a face
-    that is not one of the solid's."""
+def region_sizes(mesh, shape):
+    """{"face_sizes": {face number: size}, "edge_sizes": {edge number: size}} (the empty ones left
+    out) of ``shape``'s first solid (the one meshed) from the HexDom Mesh ``mesh``'s MeshRegionList:
+    FreeCAD's FEM mesh regions (or any object with References and a CharacteristicLength), each
+    face or edge taking the smallest length that names it. Raises ValueError (the Mesh's recompute
+    error) naming the region for a length that is not positive, a reference that is neither a face
+    nor an edge, or one that is not the solid's."""
     regions = getattr(mesh, "MeshRegionList", None) or []
     solid = shape.Solids[0]
-    sizes = {}
+    sizes = {"Face": {}, "Edge": {}}
     for region in regions:
         length = getattr(region, "CharacteristicLength", 0.0)
         length = float(getattr(length, "Value", length))
@@ -104,21 +105,25 @@ def face_sizes(mesh, shape):
                 region.Label))
         for obj, subs in getattr(region, "References", []):
             for sub in subs:
-                if not sub.startswith("Face"):
-                    raise ValueError("mesh region {}: {} of {}: HexDom takes sizes on faces "
-                                     "only".format(region.Label, sub, obj.Label))
-                face = obj.Shape.getElement(sub)
-                number = next((i for i, f in enumerate(solid.Faces, 1) if f.isSame(face)), None)
+                kind = "Face" if sub.startswith("Face") else "Edge" if sub.startswith("Edge") else None
+                if kind is None:
+                    raise ValueError("mesh region {}: {} of {}: HexDom takes sizes on faces and "
+                                     "edges only".format(region.Label, sub, obj.Label))
+                element = obj.Shape.getElement(sub)
+                items = solid.Faces if kind == "Face" else solid.Edges
+                number = next((i for i, f in enumerate(items, 1) if f.isSame(element)), None)
                 if number is None:
-                    raise ValueError("mesh region {}: {} of {} is not a face of the part "
-                                     "meshed".format(region.Label, sub, obj.Label))
-                sizes[number] = min(sizes.get(number, length), length)
-    return sizes
+                    raise ValueError("mesh region {}: {} of {} is not a {} of the part "
+                                     "meshed".format(region.Label, sub, obj.Label, kind.lower()))
+                found = sizes[kind]
+                found[number] = min(found.get(number, length), length)
+    return {key: sizes[kind] for key, kind in (("face_sizes", "Face"), ("edge_sizes", "Edge"))
+            if sizes[kind]}
 
 
 def pipeline_options(mesh, shape=None):
     """The options of `hexdom mesh` the HexDom Mesh ``mesh`` runs the pipeline with (with
-    ``shape``, the part's, also its mesh regions' face_sizes)."""
+    ``shape``, the part's, also its mesh regions' face_sizes and edge_sizes)."""
     method = getattr(mesh, "Method", "auto")
     options = dict(size=float(mesh.Size.Value), level=int(mesh.Level), improve=bool(mesh.Improve),
                    method=method,
@@ -127,9 +132,7 @@ def pipeline_options(mesh, shape=None):
     if method == "auto" and hasattr(mesh, "PolycubeSeconds"):  # (polycube: no limit, as the CLI)
         options["polycube_seconds"] = float(mesh.PolycubeSeconds)
     if shape is not None:
-        sizes = face_sizes(mesh, shape)
-        if sizes:
-            options["face_sizes"] = sizes
+        options.update(region_sizes(mesh, shape))
     return options
 
 
@@ -157,6 +160,9 @@ def run_pipeline(objs, store_mesh=None, run=None):
                 result = call("hexdom mesh", core.mesh_part, shape.exportBrepToString(),
                               snap=snap, allow_inverted=True, **options)
             else:  # no OpenCASCADE in the core: FreeCAD's tessellation, not snapped
+                if options.pop("edge_sizes", None):
+                    raise ValueError("{}: mesh regions on edges need _hexdom built with "
+                                     "OpenCASCADE".format(mesh.Label))
                 size = options["size"] or part_size(shape)
                 if options.get("max_size"):  # the triangles within the bounds, as the core's
                     size = min(size, options["max_size"])

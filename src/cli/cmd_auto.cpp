@@ -162,27 +162,31 @@ const char* const kMeshHelp =
       "fit them) is segmented and given its polycube in that turned frame; the mesh is in the model's\n"
       "coordinates (--no-align: the model's axes).";
 
-// "10=1.5" or "Face10=1.5": a cell size on a face; InputError naming the text otherwise.
-overlay::LocalSize parse_face_size(const std::string& text) {
+// "10=1.5" or "Face10=1.5" (`prefix` "Face"; "Edge" for edges): a number and a size; InputError
+// naming the option and the text otherwise.
+std::pair<int, double> parse_local_size(const std::string& text, const std::string& option, const std::string& prefix) {
   const size_t eq = text.find('=');
-  std::string face = text.substr(0, eq == std::string::npos ? 0 : eq);
-  if (face.rfind("Face", 0) == 0) face = face.substr(4);
-  overlay::LocalSize l;
+  std::string item = text.substr(0, eq == std::string::npos ? 0 : eq);
+  if (item.rfind(prefix, 0) == 0) item = item.substr(prefix.size());
+  std::pair<int, double> l{0, 0.0};
   try {
     size_t used = 0, used2 = 0;
-    l.patch = std::stoi(face, &used);
-    l.size = std::stod(text.substr(eq + 1), &used2);
-    if (used != face.size() || used2 != text.size() - eq - 1) throw std::invalid_argument(text);
+    l.first = std::stoi(item, &used);
+    l.second = std::stod(text.substr(eq + 1), &used2);
+    if (used != item.size() || used2 != text.size() - eq - 1) throw std::invalid_argument(text);
   } catch (const std::logic_error&) {
-    throw InputError("--face-size " + text + ": expected FACE=SIZE, a face number (or Face<number>) and a size, as 10=1.5");
+    throw InputError(option + " " + text + ": expected " + (prefix == "Face" ? "FACE" : "EDGE") + "=SIZE, a number (or " +
+                     prefix + "<number>) and a size, as 10=1.5");
   }
-  if (l.patch < 1 || !(l.size > 0))
-    throw InputError("--face-size " + text + ": the face number must be at least 1 and the size positive");
+  if (l.first < 1 || !(l.second > 0))
+    throw InputError(option + " " + text + ": the " + (prefix == "Face" ? "face" : "edge") +
+                     " number must be at least 1 and the size positive");
   return l;
 }
 
-// `hexdom mesh`'s options of the element size: --size, its bounds, cells across, level, octree.
-void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt) {
+// `hexdom mesh`'s options of the element size: --size, its bounds, cells across, local sizes on faces
+// (into opt) and edges (into edge_sizes), growth rate, level, octree.
+void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vector<std::pair<int, double>>& edge_sizes) {
   cmd.add_option("--size", opt.size, "target element size H; 0: the bounding-box diagonal / 30")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd.add_option("--max-size", opt.max_size, "largest element size: the size (given or default) is at most this; 0: no bound")
@@ -198,11 +202,22 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt) {
   cmd.add_option_function<std::vector<std::string>>(
          "--face-size",
          [&opt](const std::vector<std::string>& items) {
-           for (const std::string& item : items) opt.overlay.local_sizes.push_back(parse_face_size(item));
+           for (const std::string& item : items) {
+             const auto [face, size] = parse_local_size(item, "--face-size", "Face");
+             opt.overlay.local_sizes.push_back({face, size, {}});
+           }
          },
          "cell size on one face, as FACE=SIZE (FACE: the face's number, FreeCAD's Face<number>, or Face<number>); "
          "repeat for more faces. The overlay path then meshes the part (its grid refined by thirds near those faces, "
          "graded back to the size): the smallest size is met exactly, others within a factor 1.7")
+      ->allow_extra_args(false);
+  cmd.add_option_function<std::vector<std::string>>(
+         "--edge-size",
+         [&edge_sizes](const std::vector<std::string>& items) {
+           for (const std::string& item : items) edge_sizes.push_back(parse_local_size(item, "--edge-size", "Edge"));
+         },
+         "CAD files: cell size along one edge, as EDGE=SIZE (EDGE: FreeCAD's Edge<number>, or Edge<number>); repeat "
+         "for more edges. As --face-size: the overlay path, its grid refined near the edge")
       ->allow_extra_args(false);
   cmd.add_option("--growth-rate", opt.overlay.growth_rate,
                  "with --face-size: how fast cells grow from the face's size back to the element size, per cell "
@@ -221,6 +236,7 @@ void add_mesh(CLI::App& app) {
     bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
     int solid = 0;
     std::string method = "auto";
+    std::vector<std::pair<int, double>> edge_sizes;
     pipeline::MeshSurfaceOptions opt;
   };
   auto a = std::make_shared<Args>();
@@ -239,7 +255,7 @@ void add_mesh(CLI::App& app) {
                   "the first tessellation). polycube: no limit unless given, then counted from the start; when it passes "
                   "before there is a mesh, an error (exit 5) and no output file")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  add_size_options(*cmd, a->opt);
+  add_size_options(*cmd, a->opt, a->edge_sizes);
   cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
   cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
   cmd->add_option("--sliver-ratio", a->opt.polycube.sliver_ratio,
@@ -305,6 +321,7 @@ void add_mesh(CLI::App& app) {
       co.mesh = a->opt;
       co.log = print_log;
       co.snap = !a->no_snap;
+      co.edge_sizes = a->edge_sizes;
       if (a->opt.verbose) co.snap_options.log = print_log;
       pipeline::MeshCadRun cr;
       try {
@@ -326,6 +343,8 @@ void add_mesh(CLI::App& app) {
         print_log(0, fmt("tessellate: the mesh is the one of the tessellation at %.2f x the size (%.0f triangles)",
                          cr.tessellation_factor, cr.stats.triangles));
     } else {
+      if (!a->edge_sizes.empty())
+        throw InputError("--edge-size needs a CAD part (.step, .iges, .brep): " + a->in + " is a triangle surface");
       surface = io::read_surface(a->in);
       try {
         pipeline::mesh_surface(surface, a->opt, &run);

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "hexdom/common/format.h"
 #include "convert.h"
 #include "hexdom/pipeline/mesh_cad.h"
 #include "hexdom/cad/project.h"
@@ -165,8 +166,14 @@ void bind_mesh_cad(py::module_& m) {
         [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes, double growth_rate) {
+           const std::map<int, double>& face_sizes, double growth_rate, const std::map<int, double>& edge_sizes) {
           pipeline::MeshCadOptions opt;
+          for (const auto& [edge, size] : edge_sizes) {
+            if (edge < 1 || !(size > 0))
+              throw InputError(fmt("edge_sizes {%.0f: %g}: the edge number must be at least 1 and the size positive",
+                                   double(edge), size));
+            opt.edge_sizes.emplace_back(edge, size);
+          }
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
@@ -191,7 +198,11 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.mesh.max_size,
         py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
         py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.mesh.overlay.growth_rate,
-        (mesh_cad_doc() + kSizeBoundsDoc).c_str());
+        py::arg("edge_sizes") = std::map<int, double>{},
+        (mesh_cad_doc() + kSizeBoundsDoc +
+         "\nedge_sizes: {edge number: size}, cell sizes along CAD edges (FreeCAD's Edge<number>), as `hexdom mesh "
+         "--edge-size`.")
+            .c_str());
 }
 
 void bind_cad(py::module_& m) {

@@ -141,7 +141,7 @@ def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_b
     run0 = _mesh_default(hexdom_bin, BRACKET, plain, "--method", "overlay")
     run = _mesh_default(hexdom_bin, BRACKET, local, "--face-size", "10=1")
     assert run0.returncode == 0 and run.returncode == 0, (run0.stderr, run.stderr)
-    assert "local sizes on faces: the overlay path" in run.stderr, run.stderr
+    assert "local sizes: the overlay path" in run.stderr, run.stderr
     g0, g = oracles.read_vtu(str(plain)), oracles.read_vtu(str(local))
     q0, q = _quads_on_hole(g0), _quads_on_hole(g)
     assert len(q) > 5 * len(q0), (len(q), len(q0))
@@ -179,8 +179,10 @@ def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_b
         (["--face-size", "11=1"], "local size on face 11: the part has no such face (its faces are numbered 1 to 10)"),
         (["--face-size", "10"], "--face-size 10: expected FACE=SIZE"),
         (["--face-size", "Face10=0"], "the face number must be at least 1 and the size positive"),
-        (["--face-size", "10=1", "--method", "polycube"], "local sizes on faces are met by the overlay path only"),
+        (["--face-size", "10=1", "--method", "polycube"], "local sizes on faces and edges are met by the overlay path only"),
         (["--face-size", "10=1", "--growth-rate", "1"], "growth rate 1: it must be above 1 and at most 3"),
+        (["--edge-size", "Edge99=1"], "Edge99 does not exist (the solid has 24 edges)"),
+        (["--edge-size", "20"], "--edge-size 20: expected EDGE=SIZE"),
     ],
 )
 def test_a_local_size_the_part_cannot_take_is_refused_without_output(hexdom_bin, tmp_path, args, message):
@@ -203,3 +205,26 @@ def test_a_faster_growth_rate_gives_a_narrower_refined_band(hexdom_bin, tmp_path
         runs[growth] = (g.GetNumberOfCells(), np.median(_quads_on_hole(g)))
     assert runs["1.15"][0] > 1.5 * runs["3"][0], runs
     assert all(abs(q - 1.0) <= 0.2 for _, q in runs.values()), runs
+
+
+def test_a_local_size_along_the_hole_s_rim(hexdom_bin, tmp_path):
+    # Edge20 of the bracket is the hole's top rim (a circle of radius 6 at z = 10, 37.7 long): at
+    # 1, 29 to 54 boundary nodes on it (node spacing within 30% of 1: the buffer puts curve nodes
+    # where the grid's staircase meets the curve, 30 here); without it, the overlay mesh's 12.
+    # A triangle surface has no edges: refused.
+    counts = {}
+    for name, extra in (("plain", ["--method", "overlay"]), ("rim", ["--edge-size", "Edge20=1"])):
+        out = tmp_path / (name + ".vtu")
+        run = _mesh_default(hexdom_bin, BRACKET, out, *extra)
+        assert run.returncode == 0, run.stderr
+        P, _, _ = oracles.grid_arrays(oracles.read_vtu(str(out)))
+        on = (np.abs(np.hypot(P[:, 0] - 40, P[:, 1] - 20) - 6) < 1e-6) & (np.abs(P[:, 2] - 10) < 1e-6)
+        counts[name] = int(on.sum())
+    assert 29 <= counts["rim"] <= 54 and counts["rim"] > 2 * counts["plain"], counts
+    stl = tmp_path / "box.stl"
+    from test_cli_input_checks import _box, _write_stl
+    _write_stl(stl, _box((0, 0, 0), (10, 10, 10)))
+    out = tmp_path / "box.vtu"
+    run = _mesh_default(hexdom_bin, stl, out, "--edge-size", "1=1")
+    assert run.returncode == 1 and "--edge-size needs a CAD part" in run.stderr, run.stderr
+    assert not out.exists()

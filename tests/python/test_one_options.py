@@ -122,8 +122,8 @@ def test_the_size_bounds_give_the_program_s_mesh(core, hexdom_bin, tmp_path):
 
 
 def test_face_sizes_give_the_program_s_mesh(core, hexdom_bin, tmp_path):
-    """face_sizes through core.mesh_part (_hexdom) and `hexdom mesh --face-size` on the bundled
-    bracket: the same cells, the same nodes; bad entries refused by both front ends' checks."""
+    """face_sizes and edge_sizes through core.mesh_part (_hexdom) and `hexdom mesh --face-size /
+    --edge-size` on the bundled bracket: the same cells, the same nodes; bad entries refused."""
     step = Path(__file__).resolve().parents[2] / "examples" / "data" / "bracket.step"
     if not core.has_opencascade():
         pytest.skip("_hexdom built without OpenCASCADE")
@@ -141,3 +141,12 @@ def test_face_sizes_give_the_program_s_mesh(core, hexdom_bin, tmp_path):
         core.mesh_part(str(step), face_sizes={12: 1.0})
     with pytest.raises(core.InputError, match="met by the overlay path only"):
         core.mesh_part(str(step), face_sizes={10: 1.0}, method="polycube")
+    # Along an edge (Edge20, the hole's top rim) likewise.
+    subprocess.run([str(hexdom_bin), "mesh", str(step), "-o", str(out), "--edge-size", "Edge20=1.5"],
+                   check=True, capture_output=True)
+    cli = core.read_mesh(str(out))
+    run = core.mesh_part(str(step), edge_sizes={20: 1.5})
+    assert run.mesh.counts == cli.counts
+    assert np.abs(run.mesh.V - cli.V).max() < 1e-6
+    with pytest.raises(core.InputError, match="Edge25 does not exist"):
+        core.mesh_part(str(step), edge_sizes={25: 1.0})

@@ -13,6 +13,8 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 
@@ -101,6 +103,33 @@ Projection project_to_edge(const Shape& shape, int edge_id, const Eigen::MatrixX
     throw GeometryError(s.source + ": projecting onto Edge" + std::to_string(edge_id) + " failed: " + occt_message(e));
   }
   return r;
+}
+
+Eigen::MatrixXd edge_points(const Shape& shape, int edge_id, double spacing) {
+  const Shape::Impl& s = shape.impl();
+  if (edge_id < 1 || edge_id > s.edges.Extent())
+    throw InputError(s.source, 0, "Edge" + std::to_string(edge_id) + " does not exist (the solid has " +
+                                      std::to_string(s.edges.Extent()) + " edges)");
+  if (!(spacing > 0)) throw InputError("edge_points: the spacing must be positive");
+  const EdgeCurve e = edge_curve(TopoDS::Edge(s.edges(edge_id)));
+  if (e.curve.IsNull()) throw GeometryError(s.source + ": Edge" + std::to_string(edge_id) + " has no 3D curve (degenerated)");
+  try {
+    // The length from a fine polygon, then points evenly in the parameter, 4 per spacing.
+    auto at = [&](double u) {
+      const gp_Pnt p = e.curve->Value(u);
+      return Eigen::RowVector3d(p.X(), p.Y(), p.Z());
+    };
+    double length = 0;
+    const int probe = 256;
+    for (int i = 0; i < probe; ++i)
+      length += (at(e.first + (e.last - e.first) * (i + 1) / probe) - at(e.first + (e.last - e.first) * i / probe)).norm();
+    const int n = static_cast<int>(std::min(1e5 - 1, std::max(1.0, std::ceil(4 * length / spacing))));
+    Eigen::MatrixXd P(n + 1, 3);
+    for (int i = 0; i <= n; ++i) P.row(i) = at(e.first + (e.last - e.first) * i / n);
+    return P;
+  } catch (const Standard_Failure& f) {
+    throw GeometryError(s.source + ": sampling Edge" + std::to_string(edge_id) + " failed: " + occt_message(f));
+  }
 }
 
 Projection project_to_shape(const Shape& shape, const Eigen::MatrixXd& P) {

@@ -22,6 +22,12 @@ Projection project_to_face(const Shape& shape, int face_id, const Eigen::MatrixX
 /// Nearest points of the edge `edge_id` (1-based, FreeCAD's Edge{edge_id}) to the rows of `P`.
 Projection project_to_edge(const Shape& shape, int edge_id, const Eigen::MatrixXd& P);
 
+/// Points along the edge `edge_id` (1-based, FreeCAD's Edge{edge_id}), from its first end to its
+/// last, no two consecutive ones farther apart than about `spacing` (> 0) along it, at least 2,
+/// at most 100,000. Throws InputError for an id out of range, GeometryError for a degenerated
+/// edge (no 3D curve).
+Eigen::MatrixXd edge_points(const Shape& shape, int edge_id, double spacing);
+
 /// Nearest points of the whole boundary, with the id of the face each lies on.
 Projection project_to_shape(const Shape& shape, const Eigen::MatrixXd& P);
 

@@ -17,12 +17,18 @@ void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceM
   int top = 0;
   for (int t = 0; t < surface.patch.size(); ++t) top = std::max(top, surface.patch(t));
   for (const LocalSize& l : sizes) {
+    const std::string where = l.polyline.rows() > 0 ? std::string("an edge") : fmt("face %.0f", double(l.patch));
     if (!(l.size > 0) || !std::isfinite(l.size))
-      throw InputError(fmt("local size %g on face %.0f: a size must be positive", l.size, double(l.patch)));
+      throw InputError(fmt("local size %g on ", l.size) + where + ": a size must be positive");
+    if (l.polyline.rows() > 0) {
+      if (l.polyline.rows() < 2 || l.polyline.cols() != 3 || !l.polyline.allFinite())
+        throw InputError("local size on an edge: its polyline needs 2 or more finite points (x, y, z)");
+      continue;
+    }
     bool found = false;
     for (int t = 0; t < surface.patch.size() && !found; ++t) found = surface.patch(t) == l.patch;
     if (!found)
-      throw InputError(fmt("local size on face %.0f: ", double(l.patch)) + what +
+      throw InputError("local size on " + where + ": " + what +
                        fmt(" has no such face (its faces are numbered 1 to %.0f)", double(top)));
   }
 }
@@ -53,29 +59,46 @@ LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, do
   return out;
 }
 
-LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth) {
+LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth,
+                               const Eigen::Matrix3d& transform) {
   if (!(growth > 1 && growth <= 3))
     throw InputError(fmt("growth rate %g: it must be above 1 and at most 3", growth));
   band_ = std::max(0.0, std::log(3.0) / std::log(growth) - 1);
   std::map<double, std::vector<int>> triangles;  // size -> triangles asking for it
-  for (const LocalSize& l : sizes)
+  std::map<double, std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>> segments;
+  for (const LocalSize& l : sizes) {
+    if (l.polyline.rows() > 0) {
+      const Eigen::MatrixXd P = l.polyline * transform;
+      auto& list = segments[l.size];
+      for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) list.emplace_back(P.row(i).transpose(), P.row(i + 1).transpose());
+      continue;
+    }
     for (int t = 0; t < surface.F.rows(); ++t)
       if (surface.patch(t) == l.patch) triangles[l.size].push_back(t);
+  }
+  std::map<double, Sized> all;
   for (auto& [size, ts] : triangles) {
     std::sort(ts.begin(), ts.end());
     ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
     Eigen::MatrixXi F(static_cast<int>(ts.size()), 3);
     for (size_t i = 0; i < ts.size(); ++i) F.row(static_cast<int>(i)) = surface.F.row(ts[i]);
-    by_size_.emplace_back(size, mesh::TriangleProjector(surface.V, F));
+    all[size].triangles = mesh::TriangleProjector(surface.V, F);
+  }
+  for (auto& [size, list] : segments) all[size].segments = std::move(list);
+  for (auto& [size, sized] : all) {
+    sized.size = size;
+    by_size_.push_back(std::move(sized));
   }
 }
 
 bool LocalSizeField::split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const {
   const Eigen::Vector3d centre = lo + size / 2;
   const double reach = size.norm() / 2 + band_ * size.maxCoeff() / 3;
-  for (const auto& [s, proj] : by_size_) {
-    if (real_side <= s * kSqrt3 * (1 + 1e-9)) return false;  // this size and the larger ones are met
-    if ((proj.project(centre) - centre).norm() <= reach) return true;
+  for (const Sized& s : by_size_) {
+    if (real_side <= s.size * kSqrt3 * (1 + 1e-9)) return false;  // this size and the larger ones are met
+    if (!s.triangles.empty() && (s.triangles.project(centre) - centre).norm() <= reach) return true;
+    for (const auto& [a, b] : s.segments)
+      if ((mesh::closest_point_on_segment(centre, a, b) - centre).norm() <= reach) return true;
   }
   return false;
 }

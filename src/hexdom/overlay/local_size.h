@@ -14,18 +14,22 @@
 
 namespace hexdom::overlay {
 
-/// A cell size asked for on the triangles of one patch (a CAD face: FreeCAD's Face{patch}).
+/// A cell size asked for on the triangles of one patch (a CAD face: FreeCAD's Face{patch}), or,
+/// when `polyline` has rows, along that polyline (a CAD edge's points, in the surface's
+/// coordinates; `patch` is then not used).
 struct LocalSize {
   int patch = 0;
   double size = 0;
+  Eigen::MatrixXd polyline;  ///< #points by 3, or empty
 };
 
 /// The growth rate the band of each level is drawn for by default: 3^(1/4), about 1.32 (cells grow
 /// by a factor 3 from one level to the next over about four cells).
 inline const double kGrowthRate = std::pow(3.0, 0.25);
 
-/// Throws InputError naming the first local size whose size is not positive and finite or whose
-/// patch has no triangle in `surface` (`what` names the surface in the message).
+/// Throws InputError naming the first local size whose size is not positive and finite, whose
+/// patch has no triangle in `surface` (`what` names the surface in the message) or whose polyline
+/// has fewer than 2 points.
 void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceMesh& surface,
                        const std::string& what = "the surface");
 
@@ -45,7 +49,8 @@ struct LocalLevels {
 /// is below spacing / 1.2 (sizes above the grid's cells do not coarsen it).
 LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, double min_size, int max_levels = 4);
 
-/// Which octree cells the local sizes split: those near a triangle of a patch asking for a size
+/// Which octree cells the local sizes split: those near a triangle of a patch (or a polyline)
+/// asking for a size
 /// below the cell's longest side / sqrt(3) (so that the cells there end within a factor sqrt(3) of
 /// the size; within 1.2 of the smallest with local_levels' spacing). Near: the distance from the
 /// cell's centre is at most its half diagonal plus a band of (ln 3 / ln growth - 1) of its
@@ -58,13 +63,21 @@ LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, do
 class LocalSizeField {
  public:
   LocalSizeField() = default;
-  LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth = kGrowthRate);
+  /// `transform` maps the polylines' points into the surface's space (row-wise: p * transform);
+  /// the surface itself is already there.
+  LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth = kGrowthRate,
+                 const Eigen::Matrix3d& transform = Eigen::Matrix3d::Identity());
   bool empty() const { return by_size_.empty(); }
   /// Split the cell [lo, lo + size] (grid space), whose longest real side is `real_side`?
   bool split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const;
 
  private:
-  std::vector<std::pair<double, mesh::TriangleProjector>> by_size_;  // one per distinct size, smallest first
+  struct Sized {
+    double size = 0;
+    mesh::TriangleProjector triangles;                              // the patches' asking for it
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;  // the polylines'
+  };
+  std::vector<Sized> by_size_;  // one per distinct size, smallest first
   double band_ = 3;  // children's sides beyond the half diagonal
 };
 

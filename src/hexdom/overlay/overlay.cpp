@@ -289,8 +289,11 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     fo.regions = feat.region();
     sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
   }
-  const LocalSizeField field =
-      opt.local_sizes.empty() ? LocalSizeField() : LocalSizeField(stretched ? ss : s, opt.local_sizes, opt.growth_rate);
+  // The polylines of local sizes on edges go where the surface went: into the frame, stretched.
+  const Eigen::Matrix3d to_grid = (frame.turned() ? Eigen::Matrix3d(frame.rotation.transpose()) : Eigen::Matrix3d::Identity()) *
+                                  Eigen::Matrix3d(stretch.asDiagonal());
+  const LocalSizeField field = opt.local_sizes.empty() ? LocalSizeField()
+                                                       : LocalSizeField(stretched ? ss : s, opt.local_sizes, opt.growth_rate, to_grid);
   int grids = 0;
   // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ); h
   // is first made to meet the local sizes.

@@ -1,9 +1,11 @@
 #include "hexdom/pipeline/mesh_cad.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <exception>
 
+#include "hexdom/cad/project.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/surface_check.h"
@@ -72,8 +74,21 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  if (!opt.edge_sizes.empty()) {  // the edges as polylines among the local sizes
+    MeshCadOptions o = opt;
+    o.edge_sizes.clear();
+    for (const auto& [edge, size] : opt.edge_sizes) {
+      if (!(size > 0) || !std::isfinite(size))
+        throw InputError(fmt("local size %g on Edge", size) + fmt("%.0f: a size must be positive", double(edge)));
+      overlay::LocalSize l;
+      l.size = size;
+      l.polyline = cad::edge_points(shape, edge, size / 4);
+      o.mesh.overlay.local_sizes.push_back(std::move(l));
+    }
+    return mesh_cad_part(shape, o, progress);
+  }
   if (local_size_method(opt.mesh) != opt.mesh.method) {  // local sizes: the overlay path
-    say("local sizes on faces: the overlay path (its octree refines there)");
+    say("local sizes: the overlay path (its octree refines there)");
     MeshCadOptions o = opt;
     o.mesh.method = Method::Overlay;
     return mesh_cad_part(shape, o, progress);

@@ -28,6 +28,10 @@ struct MeshCadOptions {
   /// When the first tessellation gave a mesh, only with inverted cells, only this many of them are
   /// tried (each try is a whole run).
   int retessellate_inverted = 2;
+  /// Cell sizes along CAD edges: (edge id, FreeCAD's Edge{id}; size). Each edge's points
+  /// (cad::edge_points, a quarter of the size apart) become a polyline local size of
+  /// mesh.overlay.local_sizes (the overlay path then meshes the part, as for sizes on faces).
+  std::vector<std::pair<int, double>> edge_sizes;
   bool snap = true;          ///< snap the boundary nodes onto the B-rep (each tessellation's mesh)
   cad::SnapOptions snap_options;
   LogCallback log;  ///< one line per new tessellation

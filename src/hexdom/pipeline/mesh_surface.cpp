@@ -269,7 +269,7 @@ Method local_size_method(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh*
   if (opt.overlay.local_sizes.empty()) return opt.method;
   if (surface) overlay::check_local_sizes(opt.overlay.local_sizes, *surface, what);
   if (opt.method == Method::Polycube)
-    throw InputError("local sizes on faces are met by the overlay path only: the polycube path's blocks do not refine "
+    throw InputError("local sizes on faces and edges are met by the overlay path only: the polycube path's blocks do not refine "
                      "locally (use the auto or overlay method)");
   return Method::Overlay;
 }
@@ -346,7 +346,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
   const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
   MeshSurfaceOptions so = opt;  // the element size fixed within its bounds, the method within the local sizes
   so.method = local_size_method(opt, opt.check_input ? &surface : nullptr, opt.input_name);
-  if (so.method != opt.method && opt.log) opt.log(0, "local sizes on faces: the overlay path (its octree refines there)");
+  if (so.method != opt.method && opt.log) opt.log(0, "local sizes: the overlay path (its octree refines there)");
   if (opt.max_size != 0 || opt.min_size != 0) {
     so.size = element_size(surface, opt);
     if (opt.log) opt.log(0, fmt("size: %g (min size %g, max size %g; 0: none)", so.size, opt.min_size, opt.max_size));

@@ -101,6 +101,35 @@ TEST(ProjectToEdge, LineEdgeClampsToItsEnds) {
   EXPECT_THROW(cad::project_to_edge(s, 13, P), InputError);
 }
 
+// Points along an edge: on it (their projections onto it are themselves), from end to end, no
+// two consecutive ones farther apart than the spacing; a circle's points on the circle.
+TEST(EdgePoints, FollowTheEdgeAtTheSpacing) {
+  cad::Shape s = cad::read_shape(write_part(test::make_cylinder(), "edge_points"));
+  const cad::ShapeInfo info = cad::shape_info(s);
+  int circles = 0;
+  for (int e = 1; e <= info.edges; ++e) {
+    const Eigen::MatrixXd P = cad::edge_points(s, e, 0.5);
+    ASSERT_GE(P.rows(), 2);
+    EXPECT_LT(cad::project_to_edge(s, e, P).distance.maxCoeff(), 1e-7);
+    double longest = 0, length = 0;
+    for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) {
+      longest = std::max(longest, (P.row(i + 1) - P.row(i)).norm());
+      length += (P.row(i + 1) - P.row(i)).norm();
+    }
+    EXPECT_LE(longest, 0.5);
+    const Eigen::VectorXd r = P.leftCols(2).rowwise().norm();
+    const bool flat = P.col(2).maxCoeff() - P.col(2).minCoeff() < 1e-9;  // (the seam is at radius 5 too)
+    if (flat && (r.array() - 5).abs().maxCoeff() < 1e-9) {  // a rim: radius 5, closed, 2 pi 5 long
+      ++circles;
+      EXPECT_NEAR(length, 2 * M_PI * 5, 0.01);
+      EXPECT_LT((P.row(0) - P.row(P.rows() - 1)).norm(), 1e-9);
+    }
+  }
+  EXPECT_EQ(circles, 2);
+  EXPECT_THROW(cad::edge_points(s, info.edges + 1, 0.5), InputError);
+  EXPECT_THROW(cad::edge_points(s, 1, 0), InputError);
+}
+
 TEST(ProjectToShape, NamesTheNearestFace) {
   cad::Shape s = cad::read_shape(write_part(test::make_box(), "proj_shape"));
   Eigen::MatrixXd P(3, 3);

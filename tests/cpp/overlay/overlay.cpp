@@ -531,3 +531,34 @@ TEST(LocalSize, TheGrowthRateWidensOrNarrowsTheRefinedBand) {
   EXPECT_THROW(overlay::LocalSizeField(s, {{patch, 0.6}}, 1.0), InputError);
   EXPECT_THROW(overlay::LocalSizeField(s, {{patch, 0.6}}, 3.5), InputError);
 }
+
+// A local size along a polyline (a CAD edge's points): the box's edge along x at y = z = 0 gets
+// boundary nodes about the size apart along it, the parallel edge at y = 20, z = 10 those of the
+// spacing; a polyline of one point is an InputError.
+TEST(LocalSize, APolylineGetsItsSizeAlongIt) {
+  const auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);
+  overlay::LocalSize edge;
+  edge.size = 0.6;
+  edge.polyline.resize(31, 3);
+  for (int i = 0; i <= 30; ++i) edge.polyline.row(i) << i, 0, 0;
+  overlay::OverlayOptions o;
+  o.size = 2.0;
+  o.local_sizes = {edge};
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_EQ(r.octree_levels, 1);
+  auto nodes_along = [&](double y, double z) {
+    int n = 0;
+    for (int v = 0; v < r.mesh.num_nodes(); ++v) n += std::abs(r.mesh.V(v, 1) - y) < 1e-9 && std::abs(r.mesh.V(v, 2) - z) < 1e-9;
+    return n;
+  };
+  const int near = nodes_along(0, 0), far = nodes_along(20, 10);
+  std::printf("nodes along the edge asked: %d, along the far one: %d\n", near, far);
+  EXPECT_GE(near, 30 / (0.6 * 1.2));  // 30 long: cells within 20% of 0.6
+  EXPECT_LE(near, 30 / (0.6 / 1.2) + 1);
+  EXPECT_LT(far, near / 2);
+  overlay::LocalSize dot;
+  dot.size = 1;
+  dot.polyline = Eigen::MatrixXd::Zero(1, 3);
+  EXPECT_THROW(overlay::check_local_sizes({dot}, s), InputError);
+}

@@ -1,6 +1,6 @@
 """Local sizes in FreeCAD (issue "element size that FEM users can steer"): FreeCAD's own FEM mesh
 region (ObjectsFem.makeMeshRegion on the HexDom Mesh, as on a Gmsh mesh object) gives cells of its
-CharacteristicLength on the faces it references, the mesh `hexdom mesh --face-size` gives (and
+CharacteristicLength on the faces (and along the edges) it references, the mesh `hexdom mesh --face-size` gives (and
 the Mesh's GrowthRate, `--growth-rate`'s); the README macro's FEM set-up (base fixed, upright pulled) still solves on it.
 
 Oracles: `_hexdom`'s pipeline on the shape FreeCAD holds (core.mesh_part on its BREP text, what
@@ -108,22 +108,44 @@ def test_a_mesh_region_on_the_hole_refines_there_and_the_fem_set_up_solves(doc, 
 
 
 @needs_cad
-def test_a_mesh_region_on_an_edge_or_another_part_is_refused_naming_it(doc):
+def test_a_mesh_region_on_an_edge_refines_along_it(doc):
+    # The hole's top rim (a circle of radius 6 at z = 10): the program's mesh with --edge-size,
+    # many more nodes on the rim than without it.
+    part = _bracket(doc)
+    rim = next("Edge{}".format(i) for i, e in enumerate(part.Shape.Edges, 1)
+               if isinstance(e.Curve, Part.Circle) and abs(e.Curve.Radius - 6) < 1e-9
+               and abs(e.Curve.Center.x - 40) < 1e-9 and abs(e.Curve.Center.z - 10) < 1e-9)
+    objs = hexdom.mesh_part(doc, part, level=1)
+    mesh = objs["mesh"]
+    plain = len(mesh.FemMesh.getNodesByEdge(part.Shape.getElement(rim)))
+    region = ObjectsFem.makeMeshRegion(doc, mesh, 1.0, "RimRegion")
+    region.References = [(part, rim)]
+    api.recompute_document(doc, [mesh])
+    assert mesh.MeshingPath == "overlay" and mesh.InvertedCount == 0
+    run = core.mesh_part(part.Shape.exportBrepToString(), level=1, edge_sizes={int(rim[4:]): 1.0})
+    assert mesh.FemMesh.VolumeCount == len(run.mesh.types)
+    on_rim = len(mesh.FemMesh.getNodesByEdge(part.Shape.getElement(rim)))
+    # 37.7 long: 29 to 54 nodes for a node spacing within 30% of 1 (16 without the region).
+    assert on_rim > 2 * plain and 29 <= on_rim <= 54, (on_rim, plain)
+
+
+@needs_cad
+def test_a_mesh_region_on_a_vertex_or_another_part_is_refused_naming_it(doc):
     part = _bracket(doc)
     other = doc.addObject("Part::Box", "Other")
     doc.recompute()
     objs = hexdom.mesh_part(doc, part, level=1)
     mesh = objs["mesh"]
-    region = ObjectsFem.makeMeshRegion(doc, mesh, 1.0, "EdgeRegion")
-    region.References = [(part, "Edge3")]
-    with pytest.raises(RecomputeError, match="mesh region EdgeRegion: Edge3 of Bracket: HexDom takes sizes on faces only"):
+    region = ObjectsFem.makeMeshRegion(doc, mesh, 1.0, "BadRegion")
+    region.References = [(part, "Vertex3")]
+    with pytest.raises(RecomputeError, match="mesh region BadRegion: Vertex3 of Bracket: HexDom takes sizes on faces and edges only"):
         api.recompute_document(doc, [mesh])
     region.References = [(other, "Face1")]
-    with pytest.raises(RecomputeError, match="mesh region EdgeRegion: Face1 of Other is not a face of the part meshed"):
+    with pytest.raises(RecomputeError, match="mesh region BadRegion: Face1 of Other is not a face of the part meshed"):
         api.recompute_document(doc, [mesh])
     region.CharacteristicLength = 0.0
     region.References = [(part, "Face1")]
-    with pytest.raises(RecomputeError, match="mesh region EdgeRegion: its CharacteristicLength must be positive"):
+    with pytest.raises(RecomputeError, match="mesh region BadRegion: its CharacteristicLength must be positive"):
         api.recompute_document(doc, [mesh])
     region.CharacteristicLength = 2.0
     api.recompute_document(doc, [mesh])

@@ -47,6 +47,7 @@ TessellateStats tessellation_stats(const Shape&, const mesh::SurfaceMesh&) { no_
 
 Projection project_to_face(const Shape&, int, const Eigen::MatrixXd&) { no_occt("project onto CAD faces"); }
 Projection project_to_edge(const Shape&, int, const Eigen::MatrixXd&) { no_occt("project onto CAD edges"); }
+Eigen::MatrixXd edge_points(const Shape&, int, double) { no_occt("sample CAD edges"); }
 Projection project_to_shape(const Shape&, const Eigen::MatrixXd&) { no_occt("project onto CAD shapes"); }
 
 SnapResult snap_to_brep(const Shape&, const mesh::Mesh&, const mesh::SurfaceMesh&, const SnapOptions&) {
