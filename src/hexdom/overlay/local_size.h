@@ -50,11 +50,10 @@ struct LocalLevels {
 LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, double min_size, int max_levels = 4);
 
 /// Which octree cells the local sizes split: those near a triangle of a patch (or a polyline)
-/// asking for a size
-/// below the cell's longest side / sqrt(3) (so that the cells there end within a factor sqrt(3) of
-/// the size; within 1.2 of the smallest with local_levels' spacing). Near: the distance from the
-/// cell's centre is at most its half diagonal plus a band of (ln 3 / ln growth - 1) of its
-/// children's sides, so that across a level's band, from the face outwards, the cell size grows by
+/// asking for a size below the cell's longest side / sqrt(3) (so that the cells there end within
+/// a factor sqrt(3) of the size; within 1.2 of the smallest with local_levels' spacing). Near: the
+/// distance from the cell's centre is at most its half diagonal plus a band of (ln 3 / ln growth -
+/// 1) of its children's sides, so that across a level's band, from the face outwards, the cell size grows by
 /// about `growth` per cell on average before the next level (3 times larger) begins: 3 children at
 /// the default kGrowthRate, one at growth sqrt(3), none from growth 3 (only the cells touching
 /// the face). InputError for a growth not in (1, 3].
@@ -67,7 +66,10 @@ class LocalSizeField {
   /// the surface itself is already there.
   LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth = kGrowthRate,
                  const Eigen::Matrix3d& transform = Eigen::Matrix3d::Identity());
+  /// No size applies: none was given, or none of their patches is on the surface.
   bool empty() const { return by_size_.empty(); }
+  /// The smallest size that applies (0 when empty).
+  double smallest() const { return by_size_.empty() ? 0.0 : by_size_.front().size; }
   /// Split the cell [lo, lo + size] (grid space), whose longest real side is `real_side`?
   bool split(const Eigen::Vector3d& lo, const Eigen::Vector3d& size, double real_side) const;
 

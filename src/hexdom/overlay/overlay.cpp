@@ -231,7 +231,8 @@ struct Ranking {
 // some octree level (local_levels; idempotent), said in the log, and the refinement it needs.
 Local local_refinement(Eigen::Vector3d& h, const OverlayOptions& opt, const LocalSizeField& field) {
   if (field.empty()) return {};
-  const LocalLevels l = local_levels(h.maxCoeff(), opt.local_sizes, opt.min_size);
+  // (Only the sizes on this surface: a solid of several meshed alone may have none of the faces.)
+  const LocalLevels l = local_levels(h.maxCoeff(), {LocalSize{0, field.smallest(), {}}}, opt.min_size);
   if (l.factor != 1 && opt.log)
     opt.log(0, fmt("overlay: local sizes: spacing %g made %g, ", h.maxCoeff(), h.maxCoeff() * l.factor) +
                    fmt("refined %.0f times by thirds near the faces asking for smaller cells", double(l.levels)));
