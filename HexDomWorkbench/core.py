@@ -574,8 +574,9 @@ def _size_args(**bounds):
 
 
 def _face_size_args(face_sizes, keyword="face_sizes", what="face"):
-    """The face_sizes= (or edge_sizes=) keyword for _hexdom: {number (int >= 1): size (> 0)} from
-    a dict or pairs; empty or None: none. InputError naming the entry otherwise."""
+    """The face_sizes= (or edge_sizes=) keyword for _hexdom: {number: size} from a dict or pairs,
+    as int and float (the core refuses numbers below 1 and sizes not positive); empty or None:
+    none. InputError naming an entry that is not a whole number and a number."""
     if not face_sizes:
         return {}
     sizes = {}
@@ -583,10 +584,9 @@ def _face_size_args(face_sizes, keyword="face_sizes", what="face"):
         try:
             n, value = int(number), float(size)
         except (TypeError, ValueError):
-            raise InputError("{} {{{!r}: {!r}}}: a {} number and a size".format(keyword, number, size, what)) from None
-        if n < 1 or n != number or not value > 0:
-            raise InputError("{} {{{!r}: {!r}}}: the {} number must be at least 1 and the size "
-                             "positive".format(keyword, number, size, what))
+            n, value = None, None
+        if n is None or n != number:
+            raise InputError("{} {{{!r}: {!r}}}: a {} number and a size".format(keyword, number, size, what))
         sizes[n] = value
     return {keyword: sizes}
 

@@ -62,7 +62,7 @@ _QUALITY = [
 QUALITY_PROPERTIES = [name for name, _, _ in _QUALITY]
 
 
-def region_sizes(obj, surface_obj):
+def overlay_face_sizes(obj, surface_obj):
     """The Mesh ``obj``'s mesh regions as face_sizes for the Surface ``surface_obj`` (its
     triangles carry the face numbers of the Part it tessellates; none without a Part). Regions on
     edges need the pipeline (the B-rep's edges): ValueError saying so."""
@@ -282,7 +282,7 @@ class HexMesh(BaseHexDomObject):
         with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap)) as bar:
             run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
                           align=align, improve=bool(obj.Improve), allow_inverted=True,
-                          face_sizes=region_sizes(obj, surface_obj), **pipeline.size_bounds(obj))
+                          face_sizes=overlay_face_sizes(obj, surface_obj), **pipeline.size_bounds(obj))
             mesh = run.mesh
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:

@@ -209,7 +209,7 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
          },
          "cell size on one face, as FACE=SIZE (FACE: the face's number, FreeCAD's Face<number>, or Face<number>); "
          "repeat for more faces. The overlay path then meshes the part (its grid refined by thirds near those faces, "
-         "graded back to the size): the smallest size is met exactly, others within a factor 1.7")
+         "graded back to the size): the smallest size within 20%, others within a factor 1.7")
       ->allow_extra_args(false);
   cmd.add_option_function<std::vector<std::string>>(
          "--edge-size",
@@ -220,7 +220,7 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
          "for more edges. As --face-size: the overlay path, its grid refined near the edge")
       ->allow_extra_args(false);
   cmd.add_option("--growth-rate", opt.overlay.growth_rate,
-                 "with --face-size: how fast cells grow from the face's size back to the element size, per cell "
+                 "with --face-size / --edge-size: how fast cells grow from their size back to the element size, per cell "
                  "(in (1, 3]; the refined band around the face is wider the smaller it is)")
       ->capture_default_str();
   cmd.add_option("-s,--level", opt.level, "subdivision level: blocks are grid cells of h = size * 2^level")

@@ -13,6 +13,10 @@ namespace {
 const double kSqrt3 = std::sqrt(3.0);
 }  // namespace
 
+void check_growth_rate(double growth) {
+  if (!(growth > 1 && growth <= 3)) throw InputError(fmt("growth rate %g: it must be above 1 and at most 3", growth));
+}
+
 void check_local_sizes(const std::vector<LocalSize>& sizes, const mesh::SurfaceMesh& surface, const std::string& what) {
   int top = 0;
   for (int t = 0; t < surface.patch.size(); ++t) top = std::max(top, surface.patch(t));
@@ -61,8 +65,7 @@ LocalLevels local_levels(double spacing, const std::vector<LocalSize>& sizes, do
 
 LocalSizeField::LocalSizeField(const mesh::SurfaceMesh& surface, const std::vector<LocalSize>& sizes, double growth,
                                const Eigen::Matrix3d& transform) {
-  if (!(growth > 1 && growth <= 3))
-    throw InputError(fmt("growth rate %g: it must be above 1 and at most 3", growth));
+  check_growth_rate(growth);
   band_ = std::max(0.0, std::log(3.0) / std::log(growth) - 1);
   std::map<double, std::vector<int>> triangles;  // size -> triangles asking for it
   std::map<double, std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>> segments;

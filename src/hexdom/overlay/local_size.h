@@ -27,6 +27,9 @@ struct LocalSize {
 /// by a factor 3 from one level to the next over about four cells).
 inline const double kGrowthRate = std::pow(3.0, 0.25);
 
+/// InputError unless 1 < growth <= 3 (LocalSizeField's growth rate).
+void check_growth_rate(double growth);
+
 /// Throws InputError naming the first local size whose size is not positive and finite, whose
 /// patch has no triangle in `surface` (`what` names the surface in the message) or whose polyline
 /// has fewer than 2 points.

@@ -74,7 +74,8 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
-  if (!opt.edge_sizes.empty()) {  // the edges as polylines among the local sizes
+  // Local sizes: the edges' as polylines among them, and the overlay path that meets them.
+  if (!opt.edge_sizes.empty() || local_size_method(opt.mesh) != opt.mesh.method) {
     MeshCadOptions o = opt;
     o.edge_sizes.clear();
     for (const auto& [edge, size] : opt.edge_sizes) {
@@ -85,12 +86,10 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       l.polyline = cad::edge_points(shape, edge, size / 4);
       o.mesh.overlay.local_sizes.push_back(std::move(l));
     }
-    return mesh_cad_part(shape, o, progress);
-  }
-  if (local_size_method(opt.mesh) != opt.mesh.method) {  // local sizes: the overlay path
-    say("local sizes: the overlay path (its octree refines there)");
-    MeshCadOptions o = opt;
-    o.mesh.method = Method::Overlay;
+    if (local_size_method(o.mesh) != o.mesh.method) {
+      say("local sizes: the overlay path (its octree refines there)");
+      o.mesh.method = Method::Overlay;
+    }
     return mesh_cad_part(shape, o, progress);
   }
   double reference = 0;  // the B-rep's volume, once tessellated

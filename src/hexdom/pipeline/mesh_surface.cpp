@@ -261,8 +261,7 @@ void check_size_bounds(const MeshSurfaceOptions& opt) {
     throw InputError(fmt("the min size (%g) and the max size (%g) must not be negative", opt.min_size, opt.max_size));
   if (opt.min_size > 0 && opt.max_size > 0 && opt.min_size > opt.max_size)
     throw InputError(fmt("the min size %g is larger than the max size %g", opt.min_size, opt.max_size));
-  if (!(opt.overlay.growth_rate > 1 && opt.overlay.growth_rate <= 3))
-    throw InputError(fmt("growth rate %g: it must be above 1 and at most 3", opt.overlay.growth_rate));
+  overlay::check_growth_rate(opt.overlay.growth_rate);
 }
 
 Method local_size_method(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh* surface, const std::string& what) {
