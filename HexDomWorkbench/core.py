@@ -49,8 +49,11 @@ Interrupt = _hexdom.Interrupt
 Interrupted = _hexdom.Interrupted
 
 TRIANGLE, QUAD, TET, HEX, WEDGE = 5, 9, 10, 12, 13
-TYPE_NAMES = {TRIANGLE: "triangle", QUAD: "quad", TET: "tet", HEX: "hex", WEDGE: "prism"}
-NODE_COUNT = {TRIANGLE: 3, QUAD: 4, TET: 4, HEX: 8, WEDGE: 6}
+TET10, HEX20, WEDGE15 = 24, 25, 26  # second order: corners, then a node per edge (VTK's order)
+TYPE_NAMES = {TRIANGLE: "triangle", QUAD: "quad", TET: "tet", HEX: "hex", WEDGE: "prism",
+              TET10: "tet10", HEX20: "hex20", WEDGE15: "wedge15"}
+NODE_COUNT = {TRIANGLE: 3, QUAD: 4, TET: 4, HEX: 8, WEDGE: 6, TET10: 10, HEX20: 20, WEDGE15: 15}
+ORDERS = (1, 2)
 
 
 @dataclass
@@ -58,12 +61,17 @@ class Mesh:
     """Mixed hex / prism / tet (or surface) mesh in VTK node order."""
 
     V: np.ndarray  # (#V, 3) float64
-    cells: np.ndarray  # (#C, 8) int32, -1 padded
+    cells: np.ndarray  # (#C, 8) int32, -1 padded; (#C, 20) for a second-order mesh
     types: np.ndarray  # (#C,) int32 VTK cell types
     region: np.ndarray  # (#C,) int32
 
     def count(self, vtk_type):
         return int(np.count_nonzero(self.types == vtk_type))
+
+    @property
+    def order(self):
+        """2 for a mesh of hex20 / wedge15 / tet10 cells, else 1."""
+        return 2 if np.isin(self.types, (TET10, HEX20, WEDGE15)).any() else 1
 
     @property
     def counts(self):
@@ -397,6 +405,30 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
     return Mesh(*m), report
 
 
+def second_order(mesh, surface, source=None, snap=None, solid=0, min_sj=None):
+    """The first-order ``mesh`` made second order (hex20 / wedge15 / tet10, `hexdom mesh --order 2`):
+    a node on every cell edge, those of the boundary on the B-rep of ``source`` (path or BREP text;
+    ``snap`` the report snap_to_brep gave for this mesh, whose kind and entity say which CAD edge or
+    vertex each boundary node is on, and ``surface`` the tessellation it used) or, without a source,
+    on the triangle Surface ``surface``; each pulled back towards its edge's midpoint only where a
+    cell would fall below min(min_sj, its straight value). Returns (Mesh, report dict:
+    boundary_mid_nodes, edge_targets, face_targets, max_offset, diagonal, placed, shortened,
+    straight, max_gap, worst_sj, inverted, seconds)."""
+    args = {}
+    if source is not None:
+        if not has_opencascade():
+            raise Error("built without OpenCASCADE: cannot put mid-edge nodes on a B-rep")
+        if snap is None:
+            raise InputError("second_order: a B-rep source needs the snap report of the mesh (its kind and entity)")
+        args = dict(source=os.fspath(source) if isinstance(source, os.PathLike) else source,
+                    kind=[int(k) for k in snap["kind"]], entity=[int(e) for e in snap["entity"]], solid=int(solid))
+    if min_sj is not None:
+        args["min_sj"] = float(min_sj)
+    m, report = _hexdom.second_order(mesh.V, mesh.cells, mesh.types, mesh.region, surface.V, surface.F,
+                                     surface.patch, **args)
+    return Mesh(*m), dict(report)
+
+
 # ------------------------------------------------------------------------------------------------
 # Automatic path (issue 9): autopolycube builds a polycube structure and the patch surface that goes
 # with it from a labelled surface; mesh_surface runs segment -> autopolycube -> generate -> improve.
@@ -493,10 +525,13 @@ class MeshRun:
     polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
     face_only: list = None    # overlay mesh: per node, 1 when it goes onto a CAD face only (snap_to_brep's face_only)
     solids: int = 1           # solids meshed (each its own region when more than one)
+    second_order: dict = None  # order 2: how the mid-edge nodes were placed (_hexdom.mesh_surface's)
 
     @property
     def inverted(self):
-        return sum(self.quality[t]["inverted"] for t in ("hex", "prism", "tet"))
+        """Inverted cells: of the curved cells for a second-order mesh."""
+        types = ("hex20", "wedge15", "tet10") if self.quality.get("order", 1) == 2 else ("hex", "prism", "tet")
+        return sum(self.quality[t]["inverted"] for t in types)
 
 
 def _mesh_run(r):
@@ -507,7 +542,8 @@ def _mesh_run(r):
                    keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
                    choice=str(r["choice"]), frame=dict(r["frame"]),
                    method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")),
-                   face_only=list(r.get("face_only", [])), solids=int(r.get("solids", 1)))
+                   face_only=list(r.get("face_only", [])), solids=int(r.get("solids", 1)),
+                   second_order=None if r.get("second_order") is None else dict(r["second_order"]))
 
 
 def _cad_run(r):
@@ -521,7 +557,8 @@ def _cad_run(r):
     if r.get("snap") is not None:
         run.snap = dict(r["snap"])
         run.snap["max_distance"] = run.snap["max_after"]
-        run.quality = run.snap["quality"]  # the same report (the run's is after the snap too)
+        if run.second_order is None:  # the same report (the run's is after the snap too)
+            run.quality = run.snap["quality"]
         run.seconds["snap"] = float(r["snap_seconds"])
     return run
 
@@ -552,6 +589,13 @@ def _method_args(method, polycube_seconds=None):
     if polycube_seconds is not None:
         args["polycube_seconds"] = float(polycube_seconds)
     return args
+
+
+def _order_args(order):
+    """The order= keyword for _hexdom (none for 1); InputError for an order other than 1 or 2."""
+    if order not in ORDERS:
+        raise InputError("element order {!r}: the order is 1 or 2".format(order))
+    return {} if int(order) == 1 else {"order": int(order)}
 
 
 SIZE_BOUNDS = ("max_size", "min_size", "cells_across", "growth_rate")
@@ -596,7 +640,7 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                  relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
                  allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
                  method=MESH_OPTIONS["method"], polycube_seconds=None, max_size=None, min_size=None,
-                 cells_across=None, face_sizes=None, growth_rate=None):
+                 cells_across=None, face_sizes=None, growth_rate=None, order=1):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -611,7 +655,8 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     --min-size`); cells_across: cells across a thin part (None: the core's 2); face_sizes:
     {patch id: size}, cell sizes on those patches (`hexdom mesh --face-size`; the overlay path
     then meshes the surface); growth_rate: how fast cells grow from those sizes back (None: the
-    core's 3^(1/4); `hexdom mesh --growth-rate`). Raises
+    core's 3^(1/4); `hexdom mesh --growth-rate`); order: 1 or 2 (hex20 / wedge15 / tet10, the
+    boundary's mid-edge nodes on the surface; `hexdom mesh --order`). Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
     them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
     stages made, or None) and ``stage`` (the stage that failed)."""
@@ -623,7 +668,7 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                                  **_method_args(method, polycube_seconds),
                                  **_size_args(max_size=max_size, min_size=min_size,
                                               cells_across=cells_across, growth_rate=growth_rate),
-                                 **_face_size_args(face_sizes))
+                                 **_face_size_args(face_sizes), **_order_args(order))
     except Error as e:
         _attach_partial(e, _mesh_run)
         raise
@@ -640,7 +685,8 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     BREP text (FreeCAD: shape.exportBrepToString()) is tessellated with triangles of ``size`` (CAD
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
-    min_size, cells_across, growth_rate go to it, and face_sizes, {FreeCAD face number of the
+    min_size, cells_across, growth_rate, order (2: hex20 / wedge15 / tet10 with the boundary's
+    mid-edge nodes on the B-rep) go to it, and face_sizes, {FreeCAD face number of the
     solid meshed: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
     likewise along edges (Edge<number>, `--edge-size`); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
@@ -654,7 +700,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
-                             "method", "polycube_seconds", "face_sizes", "edge_sizes"} - set(SIZE_BOUNDS)
+                             "method", "polycube_seconds", "face_sizes", "edge_sizes", "order"} - set(SIZE_BOUNDS)
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
@@ -663,6 +709,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     kwargs.update(_size_args(**{name: kwargs.pop(name, None) for name in SIZE_BOUNDS}))
     kwargs.update(_face_size_args(kwargs.pop("face_sizes", None)))
     kwargs.update(_face_size_args(kwargs.pop("edge_sizes", None), "edge_sizes", "edge"))
+    kwargs.update(_order_args(kwargs.pop("order", 1)))
     try:
         r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
                              level=int(level),

@@ -45,17 +45,20 @@ class MeshPartError(RecomputeError):
 
 def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improve=True,
                    method="auto", polycube_seconds=None, max_size=0.0, min_size=0.0,
-                   cells_across=None):
+                   cells_across=None, order=1):
     """Adds the four objects of mesh_part to ``doc`` without recomputing; returns them as a dict
     (surface, segmentation, polycube, mesh; no polycube with method "overlay"). The Mesh runs the
     pipeline (Pipeline) with Size ``size`` (0: `hexdom mesh`'s default), Level ``level``, Improve
     ``improve``, Method ``method``, PolycubeSeconds ``polycube_seconds`` (None: the default),
     MaxSize ``max_size`` and MinSize ``min_size`` (0: no bound) and CellsAcross ``cells_across``
-    (None: the default); the three others wait to be filled by it (FromPipeline). Raises
-    ValueError for a ``part`` without a solid, a negative level, size, bound or budget, a min size
-    above the max size, or an unknown method."""
+    (None: the default), ElementOrder "1st" or "2nd" for ``order`` 1 or 2; the three others wait
+    to be filled by it (FromPipeline). Raises ValueError for a ``part`` without a solid, a
+    negative level, size, bound or budget, a min size above the max size, an unknown method or an
+    order other than 1 and 2."""
     if method not in hex_mesh.METHODS:
         raise ValueError("method must be one of {}".format(", ".join(hex_mesh.METHODS)))
+    if order not in (1, 2):
+        raise ValueError("order must be 1 or 2, not {!r}".format(order))
     shape = getattr(part, "Shape", None)
     if shape is None or shape.isNull() or not shape.Solids:
         raise ValueError("{}: select a Part solid to mesh".format(getattr(part, "Label", part)))
@@ -88,6 +91,7 @@ def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improv
     mesh.MinSize = float(min_size or 0.0)
     if cells_across is not None:
         mesh.CellsAcross = int(cells_across)
+    mesh.ElementOrder = hex_mesh.ELEMENT_ORDERS[order - 1]
     for key, suffix in (("surface", "_surface"), ("segmentation", "_segmentation"),
                         ("polycube", "_polycube"), ("mesh", "_mesh")):
         if key in objs:
@@ -143,11 +147,12 @@ def check_mesh_part(objs, allow_inverted=False):
 
 def mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improve=True, recompute=True,
               allow_inverted=False, method="auto", polycube_seconds=None, max_size=0.0,
-              min_size=0.0, cells_across=None):
+              min_size=0.0, cells_across=None, order=1):
     """Meshes the Part solid ``part`` with no manual step, as `hexdom mesh` does (element size
     ``size``, 0: its default; ``level``; ``improve``; ``method`` "auto", "polycube" or "overlay";
     ``polycube_seconds``, None: the default budget; ``max_size``, ``min_size``: bounds on the
-    size, 0: none; ``cells_across`` a thin part, None: the default),
+    size, 0: none; ``cells_across`` a thin part, None: the default; ``order`` 1 or 2, hex20 /
+    wedge15 / tet10 as `hexdom mesh --order 2`),
     keeping every stage as an editable document object: HexDom Surface, Segmentation, Polycube
     and Mesh (see the module doc: the Mesh runs the pipeline once and fills the others).
     Returns a dict with keys surface, segmentation, polycube, mesh.
@@ -157,7 +162,7 @@ def mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improve=Tru
     the mesh, unless ``allow_inverted``."""
     objs = make_mesh_part(doc, part, size=size, level=level, improve=improve, method=method,
                           polycube_seconds=polycube_seconds, max_size=max_size, min_size=min_size,
-                          cells_across=cells_across)
+                          cells_across=cells_across, order=order)
     if recompute:
         doc.recompute()
         check_mesh_part(objs, allow_inverted)

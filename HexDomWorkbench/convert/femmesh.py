@@ -7,6 +7,14 @@ differently (see /work/shared/REFERENCE.md, "FreeCAD 0.20.2 facts"):
 - tetrahedron: smds = vtk[0, 2, 1, 3]
 - pentahedron (wedge), triangle, quadrangle: the same order.
 
+Second order (FreeCAD's own .inp import, femmesh/importInpMesh.py, gives SMDS's order from
+CalculiX's, which is VTK's for C3D20 and C3D10): the corners as above, the mid-edge nodes on the
+edges between them in the same pattern, so that
+
+- hexahedron 20: smds = vtk[0, 3, 2, 1, 4, 7, 6, 5, 11, 10, 9, 8, 15, 14, 13, 12, 16, 19, 18, 17]
+- tetrahedron 10: smds = vtk[0, 2, 1, 3, 6, 5, 4, 7, 9, 8]
+- pentahedron 15: the same order.
+
 Each permutation is its own inverse, so one table serves both directions. Nodes get ids 1..#V in
 row order and cells ids 1..#C in row order, so cell id ``c + 1`` is row ``c`` (ElementColor and
 the region list rely on it).
@@ -23,8 +31,12 @@ _SMDS_ORDER = {
     core.WEDGE: (6, (0, 1, 2, 3, 4, 5)),
     core.TRIANGLE: (3, (0, 1, 2)),
     core.QUAD: (4, (0, 1, 2, 3)),
+    core.HEX20: (20, (0, 3, 2, 1, 4, 7, 6, 5, 11, 10, 9, 8, 15, 14, 13, 12, 16, 19, 18, 17)),
+    core.TET10: (10, (0, 2, 1, 3, 6, 5, 4, 7, 9, 8)),
+    core.WEDGE15: (15, tuple(range(15))),
 }
-_VOLUME_TYPES = (core.HEX, core.TET, core.WEDGE)
+_VOLUME_TYPES = (core.HEX, core.TET, core.WEDGE, core.HEX20, core.TET10, core.WEDGE15)
+_SECOND_ORDER = {10: core.TET10, 15: core.WEDGE15, 20: core.HEX20}
 
 # Linear corner count of an SMDS element (quadratic elements list their corners first) -> VTK type.
 _VOLUME_BY_NODE_COUNT = {4: core.TET, 10: core.TET, 6: core.WEDGE, 15: core.WEDGE,
@@ -65,8 +77,10 @@ def to_femmesh(mesh):
     return fem
 
 
-def from_femmesh(fem, with_ids=False):
-    """Returns the core.Mesh held by a Fem.FemMesh (linear corners of its volumes, VTK order).
+def from_femmesh(fem, with_ids=False, corners_only=False):
+    """Returns the core.Mesh held by a Fem.FemMesh (VTK order): second order (hex20 / wedge15 /
+    tet10, cells #C x 20) when every volume is second order and not ``corners_only``, else the
+    first-order cells of the volumes' corners.
 
     Cells come in increasing element id, nodes in increasing node id. A mesh without volumes gives
     its faces instead. Region ids are 0 (FemMesh has no place for them; HexDom Mesh objects keep
@@ -83,11 +97,13 @@ def from_femmesh(fem, with_ids=False):
     if not cell_ids:
         cell_ids = sorted(fem.Faces)
         by_count = _FACE_BY_NODE_COUNT
-    cells = np.full((len(cell_ids), 8), -1, dtype=np.int32)
+    elements = [fem.getElementNodes(eid) for eid in cell_ids]
+    second = (not corners_only and by_count is _VOLUME_BY_NODE_COUNT and elements
+              and all(len(e) in _SECOND_ORDER for e in elements))
+    cells = np.full((len(cell_ids), 20 if second else 8), -1, dtype=np.int32)
     types = np.zeros(len(cell_ids), dtype=np.int32)
-    for row, eid in enumerate(cell_ids):
-        smds = fem.getElementNodes(eid)
-        t = by_count.get(len(smds))
+    for row, (eid, smds) in enumerate(zip(cell_ids, elements)):
+        t = _SECOND_ORDER[len(smds)] if second else by_count.get(len(smds))
         if t is None:
             raise ValueError("element {} has {} nodes: HexDom meshes hold tetrahedra, wedges and "
                              "hexahedra (and triangles, quads) only".format(eid, len(smds)))

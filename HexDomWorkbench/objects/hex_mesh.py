@@ -42,6 +42,7 @@ from .base_object import BaseHexDomObject, is_of_type, set_read_only
 
 TYPE = "HexDom::Mesh"
 METHODS = ["auto", "polycube", "overlay"]
+ELEMENT_ORDERS = ["1st", "2nd"]
 
 # (property, type, group, tooltip); quality figures are read-only.
 _QUALITY = [
@@ -49,7 +50,8 @@ _QUALITY = [
     ("PrismCount", "App::PropertyInteger", "Number of prisms (wedges)"),
     ("TetCount", "App::PropertyInteger", "Number of tetrahedra"),
     ("InvertedCount", "App::PropertyInteger",
-     "Number of cells with scaled Jacobian <= 0 or degenerate, all types"),
+     "Number of cells with scaled Jacobian <= 0 or degenerate, all types (second order: the curved "
+     "cells, at their nodes and Gauss points)"),
     ("MinHexSJ", "App::PropertyFloat", "Minimum scaled Jacobian of the hexahedra (0 if none)"),
     ("MeanHexSJ", "App::PropertyFloat", "Mean scaled Jacobian of the hexahedra (0 if none)"),
     ("MinPrismSJ", "App::PropertyFloat", "Minimum scaled Jacobian of the prisms (0 if none)"),
@@ -57,7 +59,7 @@ _QUALITY = [
     ("MinTetSJ", "App::PropertyFloat", "Minimum scaled Jacobian of the tetrahedra (0 if none)"),
     ("MeanTetSJ", "App::PropertyFloat", "Mean scaled Jacobian of the tetrahedra (0 if none)"),
     ("MaxEdgeRatio", "App::PropertyFloat", "Largest edge ratio (longest / shortest edge)"),
-    ("MeshVolume", "App::PropertyFloat", "Sum of the cell volumes"),
+    ("MeshVolume", "App::PropertyFloat", "Sum of the cell volumes (second order: the curved cells')"),
 ]
 QUALITY_PROPERTIES = [name for name, _, _ in _QUALITY]
 
@@ -179,6 +181,13 @@ class HexMesh(BaseHexDomObject):
                             "the element size, per cell, in (1, 3] (`hexdom mesh --growth-rate`); "
                             "the band of small cells around the faces is wider the smaller it is")
             obj.GrowthRate = float(core.MESH_OPTIONS.get("growth_rate", 3 ** 0.25))
+        if not hasattr(obj, "ElementOrder"):
+            obj.addProperty("App::PropertyEnumeration", "ElementOrder", "HexDom",
+                            "1st: hex8, wedge6, tet4; 2nd: hex20, wedge15, tet10 (as FreeCAD's Gmsh "
+                            "mesh), a node on every cell edge, those of the boundary on the CAD "
+                            "faces and edges (`hexdom mesh --order 2`)")
+            obj.ElementOrder = ELEMENT_ORDERS
+            obj.ElementOrder = "1st"
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
@@ -237,19 +246,37 @@ class HexMesh(BaseHexDomObject):
         if obj.Level < 0:
             raise ValueError("{}: Level must be 0 or more".format(obj.Label))
         snap = snap_source(obj)
+        second = element_order(obj) == 2
         with Progress("Meshing " + obj.Label,
-                          1 + bool(obj.Improve) + bool(snap)) as bar:
+                          1 + bool(obj.Improve) + bool(snap) + second) as bar:
             mesh = bar.run("generate", core.generate, surface, structure, level=obj.Level)
             bar.step("generated {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if obj.Improve:
                 mesh = bar.run("improve", core.improve, mesh, surface, max_edge_ratio=core.TARGET_EDGE_RATIO)
                 bar.step("improved")
+            info = None
             if snap:
                 brep, cad_surface = snap
                 mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface,
                                      max_edge_ratio=core.TARGET_EDGE_RATIO)
                 self.brep_distance = float(info["max_distance"])
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
+            if second:
+                mesh = self.second_order(bar, mesh, surface, snap, info)
+        return mesh
+
+    @staticmethod
+    def second_order(bar, mesh, surface, snap, info):
+        """The stage-built ``mesh`` made second order: the boundary's mid-edge nodes on the B-rep
+        when it was snapped (``snap``: (BREP text, its tessellation), ``info`` the snap's report),
+        else on ``surface``."""
+        if snap:
+            brep, cad_surface = snap
+            mesh, report = bar.run("second order", core.second_order, mesh, cad_surface, brep, info)
+        else:
+            mesh, report = bar.run("second order", core.second_order, mesh, surface)
+        bar.step("second order: {} boundary mid-edge nodes, {} kept off the geometry".format(
+            report["boundary_mid_nodes"], report["shortened"] + report["straight"]))
         return mesh
 
     def onChanged(self, obj, prop):
@@ -279,7 +306,8 @@ class HexMesh(BaseHexDomObject):
         # Laid in the frame the faces fit when the Segmentation has one (as Mesh Part's choice).
         align = segmentation.frame_matrix(seg) is not None
         snap = snap_source(obj)
-        with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap)) as bar:
+        second = element_order(obj) == 2
+        with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap) + second) as bar:
             run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
                           align=align, improve=bool(obj.Improve), allow_inverted=True,
                           face_sizes=overlay_face_sizes(obj, surface_obj), **pipeline.size_bounds(obj))
@@ -294,6 +322,8 @@ class HexMesh(BaseHexDomObject):
                                      face_only=getattr(run, "face_only", None) or None)
                 self.brep_distance = float(info["max_distance"])
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
+            if second:
+                mesh = self.second_order(bar, mesh, surface, snap, info if snap else None)
         return mesh
 
     def execute(self, obj):
@@ -312,6 +342,11 @@ class HexMesh(BaseHexDomObject):
                     obj.PolycubeNote = ""
         else:
             update_quality(obj)
+
+
+def element_order(obj):
+    """1 or 2: the HexDom Mesh ``obj``'s ElementOrder ("1st" for a document older than it)."""
+    return 2 if getattr(obj, "ElementOrder", "1st") == "2nd" else 1
 
 
 def meshing_path(obj):
@@ -385,9 +420,12 @@ def update_quality(obj, mesh=None):
         values[stem + "Count"] = int(stats["count"])
         values["Min{}SJ".format(stem)] = _finite(stats["sj_min"])
         values["Mean{}SJ".format(stem)] = _finite(stats["sj_mean"])
-        values["InvertedCount"] += int(stats["inverted"])
+        if report.get("order", 1) == 1:
+            values["InvertedCount"] += int(stats["inverted"])
         if stats["count"]:
             values["MaxEdgeRatio"] = max(values["MaxEdgeRatio"], _finite(stats["edge_ratio_max"]))
+    if report.get("order", 1) == 2:  # the curved cells' (nodes and Gauss points)
+        values["InvertedCount"] = sum(int(report[k]["inverted"]) for k in ("hex20", "wedge15", "tet10"))
     for name, value in values.items():
         if getattr(obj, name) != value:
             setattr(obj, name, value)

@@ -129,6 +129,8 @@ def pipeline_options(mesh, shape=None):
                    method=method,
                    snap=bool(getattr(mesh, "SnapToCAD", True)) and core_has("snap_to_brep"),
                    **size_bounds(mesh))
+    if getattr(mesh, "ElementOrder", "1st") == "2nd":
+        options["order"] = 2
     if method == "auto" and hasattr(mesh, "PolycubeSeconds"):  # (polycube: no limit, as the CLI)
         options["polycube_seconds"] = float(mesh.PolycubeSeconds)
     if shape is not None:

@@ -101,7 +101,7 @@ class VPHexMesh(VPBaseHexDomObject):
             if color_by == "Plain" or obj.FemMesh.NodeCount == 0:
                 colors = {}
             else:
-                mesh, _, cell_ids = femmesh.from_femmesh(obj.FemMesh, with_ids=True)
+                mesh, _, cell_ids = femmesh.from_femmesh(obj.FemMesh, with_ids=True, corners_only=True)
                 by_row = cell_colors(mesh, color_by)
                 colors = {int(cell_ids[row - 1]): rgb for row, rgb in by_row.items()}
             vobj.ElementColor = colors

@@ -243,6 +243,10 @@ void add_mesh(CLI::App& app) {
   cmd->add_option("input", a->in, "closed triangle surface (.k, .stl, .obj, .vtk) or CAD part (.step, .stp, .iges, .igs, .brep, .brp)")
       ->required();
   cmd->add_option("-o,--output", a->out, "mesh to write (.vtk, .vtu, .inp, .k)")->required();
+  cmd->add_option("--order", a->opt.order,
+                  "element order: 1 (hex8, wedge6, tet4) or 2 (hex20, wedge15, tet10: a node on every cell edge, those of "
+                  "the boundary on the B-rep or the input surface; .vtk, .vtu, .inp)")
+      ->capture_default_str()->check(CLI::Range(1, 2));
   cmd->add_option("--method", a->method,
                   "meshing path: polycube (aligned, coarsest), overlay (a grid laid over the part: meshes any closed "
                   "solid), or auto: the polycube, and the overlay grid too when the polycube fails or misses a target, "
@@ -283,6 +287,9 @@ void add_mesh(CLI::App& app) {
     a->opt.method = pipeline::method_from_name(a->method);
     a->opt.input_name = a->in;  // the input checks' messages name the file
     pipeline::check_size_bounds(a->opt);  // --min-size above --max-size: an error before any work
+    if (a->opt.order == 2 && io::format_of(a->out) == io::Format::K)
+      throw InputError(a->out, 0, "LS-DYNA .k files are written with first-order solids only: write .inp, .vtk or .vtu "
+                                  "for --order 2");
     // --method polycube honours the budget only when it is given; it starts now, before reading.
     if (a->opt.method == pipeline::Method::Polycube && cmd->count("--polycube-seconds") > 0)
       a->opt.deadline = Deadline::in(a->opt.polycube_seconds);
@@ -366,7 +373,7 @@ void add_mesh(CLI::App& app) {
     std::snprintf(line, sizeof line, "%s volume %.10g (%+.3f%%)\n", reference, reference_volume,
                   reference_volume != 0 ? 100.0 * (run.quality.total_volume - reference_volume) / reference_volume : 0.0);
     std::cout << line;
-    const int inverted = run.quality.hex.inverted + run.quality.prism.inverted + run.quality.tet.inverted;
+    const int inverted = quality::inverted_cells(run.quality);
     if (inverted > 0 && !a->allow_inverted)
       throw MeshingError(std::to_string(inverted) + " inverted cells remain after improvement; " + a->out +
                          " was written so that they can be inspected (--allow-inverted to accept)");

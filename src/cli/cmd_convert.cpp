@@ -23,7 +23,7 @@ void add_convert(CLI::App& app) {
               << m.count(mesh::CellType::Hex) << " hex, " << m.count(mesh::CellType::Wedge)
               << " prism, " << m.count(mesh::CellType::Tet) << " tet, "
               << m.count(mesh::CellType::Triangle) + m.count(mesh::CellType::Quad)
-              << " surface cells)" << std::endl;
+              << " surface cells" << (m.second_order() ? ", second order)" : ")") << std::endl;
   });
 }
 

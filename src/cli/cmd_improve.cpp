@@ -46,7 +46,7 @@ void add_improve(CLI::App& app) {
     if (!a->report.empty())
       io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(r.after) << "\n"; });
     std::cout << "before:\n" << quality::to_text(r.before) << "after:\n" << quality::to_text(r.after);
-    const int inverted = r.after.hex.inverted + r.after.prism.inverted + r.after.tet.inverted;
+    const int inverted = quality::inverted_cells(r.after);
     if (inverted > 0 && !a->allow_inverted)
       throw MeshingError(std::to_string(inverted) + " inverted cells remain after improvement; " + a->out +
                          " was written so that they can be inspected (--allow-inverted to accept)");

@@ -83,6 +83,29 @@ const char* const kSizeBoundsDoc =
     "growth_rate: how fast the cells grow from those sizes back to the element size, per cell, in (1, 3]\n"
     "(`hexdom mesh --growth-rate`).";
 
+const char* const kOrderDoc =
+    "\norder: 1 (hex8, wedge6, tet4) or 2 (hex20, wedge15, tet10: the mesh's cells then have 20 columns, VTK's\n"
+    "quadratic order, types 25 / 26 / 24), as `hexdom mesh --order`: a node on every cell edge, those of the\n"
+    "boundary on the input surface (mesh_cad: on the B-rep), pulled back towards the edge's midpoint only where\n"
+    "a cell would lose quality; the dict's second_order says how many (None for order 1).";
+
+py::dict second_order_dict(const optimize::SecondOrderReport& so) {
+  py::dict o;
+  o["boundary_mid_nodes"] = so.boundary_mid_nodes;
+  o["edge_targets"] = so.edge_targets;
+  o["face_targets"] = so.face_targets;
+  o["max_offset"] = so.max_offset;
+  o["diagonal"] = so.diagonal;
+  o["placed"] = so.curve.placed;
+  o["shortened"] = so.curve.shortened;
+  o["straight"] = so.curve.straight;
+  o["max_gap"] = so.curve.max_gap;
+  o["worst_sj"] = so.curve.worst_sj;
+  o["inverted"] = so.curve.inverted;
+  o["seconds"] = so.seconds;
+  return o;
+}
+
 py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   py::dict d;
   d["mesh"] = mesh_tuple(r.mesh);
@@ -105,6 +128,7 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["frame"] = frame_dict(r.frame);
   d["stage"] = r.stage;
   d["solids"] = std::max<size_t>(1, r.solids.size());
+  d["second_order"] = r.mesh.second_order() ? py::object(second_order_dict(r.second_order)) : py::object(py::none());
   return d;
 }
 
@@ -113,8 +137,11 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       const std::optional<Eigen::Matrix3d>& frame, const std::string& method,
                                                       std::optional<double> polycube_seconds, double max_size,
                                                       double min_size, double cells_across,
-                                                      const std::map<int, double>& face_sizes, double growth_rate) {
+                                                      const std::map<int, double>& face_sizes, double growth_rate,
+                                                      int order) {
   pipeline::MeshSurfaceOptions opt;
+  pipeline::check_order(order);
+  opt.order = order;
   opt.overlay.growth_rate = growth_rate;
   for (const auto& [face, size] : face_sizes) {
     if (face < 1 || !(size > 0))
@@ -204,11 +231,11 @@ void bind_auto(py::module_& m) {
         [module](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes, double growth_rate) {
+           const std::map<int, double>& face_sizes, double growth_rate, int order) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           const pipeline::MeshSurfaceOptions opt =
               mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                   polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate);
+                                   polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order);
           pipeline::MeshSurfaceRun r;
           try {
             py::gil_scoped_release nogil;
@@ -225,7 +252,8 @@ void bind_auto(py::module_& m) {
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.max_size,
         py::arg("min_size") = defaults.min_size, py::arg("cells_across") = defaults.across_thin,
         py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.overlay.growth_rate,
-        (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc).c_str());
+        py::arg("order") = defaults.order,
+        (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc + kOrderDoc).c_str());
 }
 
 }  // namespace hexdom::python

@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "hexdom/common/format.h"
 #include "convert.h"
+#include "hexdom/cad/second_order.h"
 #include "hexdom/pipeline/mesh_cad.h"
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
@@ -152,6 +153,7 @@ void bind_mesh_cad(py::module_& m) {
           d["min_size"] = o.min_size;
           d["cells_across"] = o.across_thin;
           d["growth_rate"] = o.overlay.growth_rate;
+          d["order"] = o.order;
           d["target_sj"] = o.target_sj;
           d["target_volume"] = o.target_volume;
           d["target_edge_ratio"] = o.target_edge_ratio;
@@ -159,14 +161,14 @@ void bind_mesh_cad(py::module_& m) {
         },
         "The defaults of `hexdom mesh`'s options (pipeline::MeshCadOptions, the CLI's defaults), by the keyword\n"
         "names of mesh_cad and mesh_surface: size (0: the bounding-box diagonal / 30), max_size, min_size (0: no\n"
-        "bound), cells_across, level, method, improve,\n"
+        "bound), cells_across, growth_rate, order, level, method, improve,\n"
         "align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps, threads (0: one per core), and\n"
         "the targets the candidates are measured against: target_sj, target_volume, target_edge_ratio.");
   m.def("mesh_cad",
         [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes, double growth_rate, const std::map<int, double>& edge_sizes) {
+           const std::map<int, double>& face_sizes, double growth_rate, const std::map<int, double>& edge_sizes, int order) {
           pipeline::MeshCadOptions opt;
           for (const auto& [edge, size] : edge_sizes) {
             if (edge < 1 || !(size > 0))
@@ -177,7 +179,7 @@ void bind_mesh_cad(py::module_& m) {
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                          polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate);
+                                          polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           try {
@@ -198,11 +200,53 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("polycube_seconds") = py::none(), py::arg("max_size") = defaults.mesh.max_size,
         py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
         py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.mesh.overlay.growth_rate,
-        py::arg("edge_sizes") = std::map<int, double>{},
+        py::arg("edge_sizes") = std::map<int, double>{}, py::arg("order") = defaults.mesh.order,
         (mesh_cad_doc() + kSizeBoundsDoc +
          "\nedge_sizes: {edge number: size}, cell sizes along CAD edges (FreeCAD's Edge<number>), as `hexdom mesh "
-         "--edge-size`.")
+         "--edge-size`." + kOrderDoc)
             .c_str());
+}
+
+// second_order: a first-order mesh made second order on a B-rep or a surface.
+void bind_second_order(py::module_& m) {
+  m.def("second_order",
+        [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
+           const std::optional<Eigen::VectorXi>& region, const RefV& sV, const RefF& sF, const RefI& face_id,
+           const std::optional<std::string>& source, const std::vector<int>& kind, const std::vector<int>& entity,
+           int solid, double min_sj) {
+          const mesh::Mesh mesh = make_mesh(V, cells, types, region);
+          const mesh::SurfaceMesh surface = surface_of(sV, sF, face_id);
+          optimize::CurveOptions curve;
+          curve.min_sj = min_sj;
+          mesh::Mesh out;
+          optimize::SecondOrderReport report;
+          if (source) {
+            if (static_cast<int>(kind.size()) != mesh.num_nodes() || static_cast<int>(entity.size()) != mesh.num_nodes())
+              throw InputError("second_order: kind and entity (snap_to_brep's) need " + std::to_string(mesh.num_nodes()) +
+                               " entries each, got " + std::to_string(kind.size()) + " and " + std::to_string(entity.size()));
+            std::vector<cad::SnapKind> kinds(kind.size());
+            for (size_t i = 0; i < kind.size(); ++i) kinds[i] = static_cast<cad::SnapKind>(kind[i]);
+            py::gil_scoped_release nogil;
+            cad::SecondOrderResult r = cad::second_order_on_brep(read_source(*source, solid), mesh, kinds, entity, surface, curve);
+            out = std::move(r.mesh);
+            report = r.report;
+          } else {
+            py::gil_scoped_release nogil;
+            out = optimize::second_order_on_surface(mesh, surface, curve, &report);
+          }
+          return py::make_tuple(mesh_tuple(out), second_order_dict(report));
+        },
+        py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("region"), py::arg("surface_V"), py::arg("surface_F"),
+        py::arg("face_id"), py::arg("source") = py::none(), py::arg("kind") = std::vector<int>{},
+        py::arg("entity") = std::vector<int>{}, py::arg("solid") = 0, py::arg("min_sj") = optimize::CurveOptions{}.min_sj,
+        "A first-order volume mesh made second order (hex20 / wedge15 / tet10, cells #C x 20 in VTK's quadratic\n"
+        "order), as `hexdom mesh --order 2` makes it: a node on every cell edge, those of the boundary on the\n"
+        "B-rep of `source` (file path or BREP text; kind and entity: snap_to_brep's report for this mesh, which\n"
+        "CAD edge or vertex each boundary node is on) or, without a source, on the triangle surface; each moved\n"
+        "back towards its edge's midpoint where a cell would fall below min(min_sj, its straight value).\n"
+        "Returns ((V, cells, types, region), report: boundary_mid_nodes, edge_targets, face_targets, max_offset,\n"
+        "diagonal, placed, shortened, straight, max_gap, worst_sj, inverted, seconds).");
+
 }
 
 void bind_cad(py::module_& m) {
@@ -324,6 +368,7 @@ void bind_cad(py::module_& m) {
         py::arg("smooth") = 3, py::arg("optimize") = 20, py::arg("max_edge_ratio") = 0.0,
         py::arg("face_only") = std::vector<int>(), kSnapDoc);
 
+  bind_second_order(m);
   bind_mesh_cad(m);
 }
 

@@ -24,13 +24,17 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                   std::optional<double> polycube_seconds = std::nullopt,
                                                   double max_size = 0, double min_size = 0, double cells_across = 2,
                                                   const std::map<int, double>& face_sizes = {},
-                                                  double growth_rate = overlay::kGrowthRate);
+                                                  double growth_rate = overlay::kGrowthRate, int order = 1);
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);
 /// The text of the polycube_seconds= keyword's documentation, shared by mesh_surface and mesh_cad.
 extern const char* const kPolycubeSecondsDoc;
 extern const char* const kSizeBoundsDoc;
+/// The figures of a second-order mesh's making, as _hexdom's dicts hold them.
+pybind11::dict second_order_dict(const optimize::SecondOrderReport& report);
+/// The order= keyword's documentation, shared by mesh_surface and mesh_cad.
+extern const char* const kOrderDoc;
 void bind_segmentation(pybind11::module_& m);
 void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);

@@ -1,12 +1,14 @@
 // Conversions between numpy arrays and the core's types, shared by every bind_<stage>.cpp.
 // Surfaces come in as (V #V x 3, F #F x 3, patch #F); meshes as (V, cells #C x 8 -1 padded, VTK
-// types, region); quality reports go out as dicts keyed hex / prism / tet.
+// types, region), a second-order mesh's cells #C x 20 in VTK's quadratic order with types 25 / 26 /
+// 24; quality reports go out as dicts keyed hex / prism / tet (and hex20 / wedge15 / tet10).
 #pragma once
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,7 +25,8 @@ namespace py = pybind11;
 using RefV = Eigen::Ref<const Eigen::MatrixXd>;
 using RefF = Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
 using RefI = Eigen::Ref<const Eigen::VectorXi>;
-using CellArray = mesh::CellMatrix;
+/// Cells from Python: 8 columns (first order) or 20 (second order), -1 padded.
+using CellArray = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 /// A checked SurfaceMesh; InputError names the first bad shape or index.
 inline mesh::SurfaceMesh surface_of(const RefV& V, const RefF& F, const RefI& patch) {
@@ -40,19 +43,54 @@ inline mesh::SurfaceMesh surface_of(const RefV& V, const RefF& F, const RefI& pa
 }
 
 /// A validated Mesh (region 0 when absent); GeometryError names the first bad cell.
+/// Cells of VTK's second-order types (25, 26, 24) make a second-order mesh; all cells must then be.
 inline mesh::Mesh make_mesh(const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
                             const std::optional<Eigen::VectorXi>& region) {
+  const Eigen::Index nc = cells.rows();
+  if (types.size() != nc)
+    throw GeometryError("cells (" + std::to_string(nc) + ") and types (" + std::to_string(types.size()) + ") differ in length");
+  const bool second = nc > 0 && (types(0) == 24 || types(0) == 25 || types(0) == 26);
+  const Eigen::Index width = second ? 20 : 8;
+  if (nc > 0 && cells.cols() < (second ? 10 : 3))
+    throw GeometryError("cells have " + std::to_string(cells.cols()) + " columns: " + std::to_string(width) + " expected");
   mesh::Mesh m;
   m.V = V;
-  m.cells = cells;
+  m.cells = mesh::CellMatrix::Constant(nc, 8, -1);
   m.types = types;
-  m.region = region ? *region : Eigen::VectorXi::Zero(cells.rows());
+  if (second) m.mid = mesh::MidMatrix::Constant(nc, 12, -1);
+  for (Eigen::Index c = 0; c < nc; ++c) {
+    const bool quadratic = types(c) == 24 || types(c) == 25 || types(c) == 26;
+    if (quadratic != second)
+      throw GeometryError("cell " + std::to_string(c) + " is " + (quadratic ? "second" : "first") + " order, cell 0 " +
+                          (second ? "second" : "first") + " order: a mesh of mixed order is not supported");
+    const mesh::CellType t = quadratic ? mesh::first_order_of_vtk(types(c)) : static_cast<mesh::CellType>(types(c));
+    if (quadratic) m.types(c) = static_cast<int>(t);
+    const int n = quadratic ? mesh::node_count(t) : static_cast<int>(std::min<Eigen::Index>(8, cells.cols()));
+    const int ne = quadratic ? mesh::edge_count(t) : 0;
+    if (n + ne > cells.cols())
+      throw GeometryError("cell " + std::to_string(c) + " has " + std::to_string(n + ne) + " nodes, but cells have " +
+                          std::to_string(cells.cols()) + " columns");
+    for (int i = 0; i < n; ++i) m.cells(c, i) = cells(c, i);
+    for (int e = 0; e < ne; ++e) m.mid(c, e) = cells(c, n + e);
+  }
+  m.region = region ? *region : Eigen::VectorXi::Zero(nc);
   mesh::validate(m);
   return m;
 }
 
 inline py::tuple surface_tuple(const mesh::SurfaceMesh& s) { return py::make_tuple(s.V, s.F, s.patch); }
-inline py::tuple mesh_tuple(const mesh::Mesh& m) { return py::make_tuple(m.V, m.cells, m.types, m.region); }
+inline py::tuple mesh_tuple(const mesh::Mesh& m) {
+  if (!m.second_order()) return py::make_tuple(m.V, m.cells, m.types, m.region);
+  CellArray cells = CellArray::Constant(m.num_cells(), 20, -1);
+  Eigen::VectorXi types(m.num_cells());
+  int nodes[20];
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const int k = mesh::cell_nodes(m, c, nodes);
+    for (int i = 0; i < k; ++i) cells(c, i) = nodes[i];
+    types(c) = m.vtk_type(c);
+  }
+  return py::make_tuple(m.V, cells, types, m.region);
+}
 
 inline py::dict type_dict(const quality::TypeStats& s) {
   py::dict d;
@@ -73,6 +111,19 @@ inline py::dict report_dict(const quality::QualityReport& r) {
   d["prism"] = type_dict(r.prism);
   d["tet"] = type_dict(r.tet);
   d["total_volume"] = r.total_volume;
+  d["order"] = r.second_order ? 2 : 1;
+  if (r.second_order) {
+    const std::pair<const char*, const quality::SecondOrderStats*> types[] = {
+        {"hex20", &r.hex20}, {"wedge15", &r.wedge15}, {"tet10", &r.tet10}};
+    for (const auto& [name, s] : types) {
+      py::dict t;
+      t["count"] = s->count;
+      t["sj_min"] = s->sj_min;
+      t["inverted"] = s->inverted;
+      t["volume"] = s->volume;
+      d[name] = t;
+    }
+  }
   return d;
 }
 

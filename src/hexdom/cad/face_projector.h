@@ -1,5 +1,5 @@
 // Nearest points on one trimmed face or one edge of a B-rep, kept between queries. Internal to
-// hexdom_cad (it includes OCCT): project.cpp and snap.cpp use it.
+// hexdom_cad (it includes OCCT): project.cpp, snap.cpp and second_order.cpp use it.
 #pragma once
 
 #include <BRepBndLib.hxx>
@@ -149,6 +149,28 @@ class FaceProjector {
   Bnd_Box box_;
   mutable GeomAPI_ProjectPointOnSurf proj_;  // not for use from two threads at once
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, tol_ = 1e-7;
+};
+
+/// The face and edge projectors of one shape, built on first use and kept for every query of a snap
+/// (one thread): snap.cpp, second_order.cpp.
+class Projectors {
+ public:
+  explicit Projectors(const Shape::Impl& s)
+      : s_(s), faces_(s.faces.Extent() + 1), curves_(s.edges.Extent() + 1), have_curve_(s.edges.Extent() + 1, 0) {}
+  FaceProjector& face(int id) {
+    if (!faces_[id]) faces_[id] = std::make_unique<FaceProjector>(TopoDS::Face(s_.faces(id)));
+    return *faces_[id];
+  }
+  const EdgeCurve& curve(int id) {
+    if (!have_curve_[id]) curves_[id] = edge_curve(TopoDS::Edge(s_.edges(id))), have_curve_[id] = 1;
+    return curves_[id];
+  }
+
+ private:
+  const Shape::Impl& s_;
+  std::vector<std::unique_ptr<FaceProjector>> faces_;
+  std::vector<EdgeCurve> curves_;
+  std::vector<char> have_curve_;
 };
 
 }  // namespace hexdom::cad

@@ -77,6 +77,7 @@ void say(const SnapOptions& opt, const std::string& m) {
 /// triangle missing or naming no face, a vertex index out of range), GeometryError for a cell that
 /// is not a volume cell.
 void check_input(const Shape::Impl& s, const mesh::Mesh& input, const mesh::SurfaceMesh& tess) {
+  mesh::require_first_order(input, "snapping to the B-rep");
   const int nfaces = s.faces.Extent();
   if (tess.F.rows() == 0) throw InputError(s.source, 0, "snap_to_brep needs the tessellation of the part (it has no triangles)");
   if (tess.patch.size() != tess.F.rows())
@@ -167,28 +168,6 @@ struct Targets {
   std::vector<char> placed;
   SnapResult& r;
   std::unordered_map<int, gp_Pnt2d> uv;  ///< face nodes: the parameters of their target on the face
-};
-
-/// The face and edge projectors of one shape, built on first use and kept for every query of a snap
-/// (one thread).
-class Projectors {
- public:
-  explicit Projectors(const Shape::Impl& s)
-      : s_(s), faces_(s.faces.Extent() + 1), curves_(s.edges.Extent() + 1), have_curve_(s.edges.Extent() + 1, 0) {}
-  FaceProjector& face(int id) {
-    if (!faces_[id]) faces_[id] = std::make_unique<FaceProjector>(TopoDS::Face(s_.faces(id)));
-    return *faces_[id];
-  }
-  const EdgeCurve& curve(int id) {
-    if (!have_curve_[id]) curves_[id] = edge_curve(TopoDS::Edge(s_.edges(id))), have_curve_[id] = 1;
-    return curves_[id];
-  }
-
- private:
-  const Shape::Impl& s_;
-  std::vector<std::unique_ptr<FaceProjector>> faces_;
-  std::vector<EdgeCurve> curves_;
-  std::vector<char> have_curve_;
 };
 
 /// Projectors for the threads of a restoration: a call takes one no other thread is using (a

@@ -60,7 +60,12 @@ mesh::SurfaceMesh read_surface(const std::string& path) {
 
 void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions& options) {
   switch (format_of(path)) {
-    case Format::K: write_k(path, m); break;
+    case Format::K:
+      if (m.second_order())
+        throw InputError(path, 0, "LS-DYNA .k files are written with first-order solids only: the mesh is second order "
+                                  "(write .inp, .vtk or .vtu, or mesh with order 1)");
+      write_k(path, m);
+      break;
     case Format::Vtk: write_vtk(path, m, options.binary); break;
     case Format::Vtu: write_vtu(path, m); break;
     case Format::Inp: write_inp(path, m); break;

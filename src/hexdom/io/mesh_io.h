@@ -22,7 +22,8 @@ mesh::SurfaceMesh read_surface(const std::string& path);
 struct WriteOptions {
   bool binary = false;  ///< legacy VTK only
 };
-/// Writes a mesh in the format of the extension. STL and OBJ take surface cells only.
+/// Writes a mesh in the format of the extension. STL and OBJ take surface cells only; a second-order
+/// mesh goes to .vtk, .vtu and .inp (.k refuses it with an InputError naming the file).
 void write_mesh(const std::string& path, const mesh::Mesh& mesh, const WriteOptions& options = {});
 
 }  // namespace hexdom::io

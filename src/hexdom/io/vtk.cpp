@@ -10,6 +10,7 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/io/text.h"
+#include "hexdom/mesh/second_order.h"
 
 namespace hexdom::io {
 
@@ -248,7 +249,23 @@ class VtkReader {
     Eigen::MatrixXd V(npts, 3);
     for (long i = 0; i < npts; ++i)
       for (int k = 0; k < 3; ++k) V(i, k) = pts[3 * i + k];
-    return b.finish(std::move(V));
+    mesh::Mesh m = b.finish(std::move(V));
+    if (first_second_order >= 0) {
+      for (long c = 0; c < ncells; ++c)
+        if (mids[c][0] < 0)
+          sc.fail_at(type_lines.at(c) ? type_lines.at(c) : cell_line(c, -1),
+                     "cell " + std::to_string(c) + " is first order, but cell " + std::to_string(first_second_order) +
+                         " is second order: a mesh of mixed order is not supported");
+      m.mid.resize(ncells, 12);
+      for (long c = 0; c < ncells; ++c)
+        for (int e = 0; e < 12; ++e) m.mid(c, e) = mids[c][e];
+      try {
+        mesh::mid_edge_ends(m);
+      } catch (const GeometryError& e) {
+        sc.fail(e.what());
+      }
+    }
+    return m;
   }
 
  private:
@@ -430,8 +447,8 @@ class VtkReader {
   // Cell c into the builder, after checking its nodes, type and region id.
   void add_cell(mesh::MeshBuilder& b, long c) {
     const long k = static_cast<long>(offsets[c + 1] - offsets[c]);
-    int n[8];
-    if (k < 3 || k > 8) sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
+    int n[20];
+    if (k < 3 || k > 20) sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
     for (long j = 0; j < k; ++j) {
       int64_t v = conn[offsets[c] + j];
       if (v < 0 || v >= npts)
@@ -454,16 +471,27 @@ class VtkReader {
     }
     const long tline = type_lines.at(c) ? type_lines.at(c) : cell_line(c, -1);
     CellType ct;
+    const bool second = t == 24 || t == 25 || t == 26;
     try {
-      ct = mesh::cell_type_from_vtk(t);
+      ct = second ? mesh::first_order_of_vtk(t) : mesh::cell_type_from_vtk(t);
     } catch (const std::invalid_argument&) {
       sc.fail_at(tline, "cell " + std::to_string(c) + ": unsupported VTK cell type " + std::to_string(t64) +
-                            " (supported: 5 triangle, 9 quad, 10 tet, 12 hex, 13 wedge)");
+                            " (supported: 5 triangle, 9 quad, 10 tet, 12 hex, 13 wedge, 24 tet10, 25 hex20, 26 wedge15)");
     }
-    if (mesh::node_count(ct) != k)
+    const int expected = mesh::node_count(ct) + (second ? mesh::edge_count(ct) : 0);
+    if (expected != k)
       sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " of type " + std::to_string(t) + " has " +
-                                       std::to_string(k) + " nodes, expected " + std::to_string(mesh::node_count(ct)));
-    if (ct == CellType::Hex) {
+                                       std::to_string(k) + " nodes, expected " + std::to_string(expected));
+    mids.emplace_back();
+    mids.back().fill(-1);
+    if (second) {
+      if (first_second_order < 0) first_second_order = c;
+      std::copy(n + mesh::node_count(ct), n + k, mids.back().begin());
+      b.add(ct, n, rid);
+    } else if (first_second_order >= 0) {
+      sc.fail_at(tline, "cell " + std::to_string(c) + " is first order, but cell " + std::to_string(first_second_order) +
+                            " is second order: a mesh of mixed order is not supported");
+    } else if (ct == CellType::Hex) {
       std::array<int, 8> h;
       std::copy(n, n + 8, h.begin());
       try {
@@ -488,6 +516,8 @@ class VtkReader {
   // 5.1 layout: the connectivity array), offsets (5.1), cell types, region ids.
   LineIndex cell_lines, offset_lines, type_lines, region_lines;
   bool classic_cells = true;
+  std::vector<std::array<int, 12>> mids;  // per cell: its mid-edge nodes (second order), else -1
+  long first_second_order = -1;          // the first second-order cell, or -1
   long types_line = 0;
   int region_score = 1000;
   long ncell_data = -1;
@@ -526,23 +556,24 @@ void write_vtk(const std::string& path, const mesh::Mesh& m, bool binary) {
     }
     if (binary) out << '\n';
     long size = 0;
-    for (int c = 0; c < m.num_cells(); ++c) size += 1 + mesh::node_count(m.type(c));
+    int nodes[20];
+    for (int c = 0; c < m.num_cells(); ++c) size += 1 + mesh::cell_nodes(m, c, nodes);
     out << "CELLS " << m.num_cells() << ' ' << size << '\n';
     for (int c = 0; c < m.num_cells(); ++c) {
-      int32_t k = mesh::node_count(m.type(c));
+      int32_t k = mesh::cell_nodes(m, c, nodes);
       if (binary) {
         put_be(out, &k, 4);
-        for (int j = 0; j < k; ++j) { int32_t v = m.cells(c, j); put_be(out, &v, 4); }
+        for (int j = 0; j < k; ++j) { int32_t v = nodes[j]; put_be(out, &v, 4); }
       } else {
         out << k;
-        for (int j = 0; j < k; ++j) out << ' ' << m.cells(c, j);
+        for (int j = 0; j < k; ++j) out << ' ' << nodes[j];
         out << '\n';
       }
     }
     if (binary) out << '\n';
     out << "CELL_TYPES " << m.num_cells() << '\n';
     for (int c = 0; c < m.num_cells(); ++c) {
-      int32_t t = m.types(c);
+      int32_t t = m.vtk_type(c);
       if (binary) put_be(out, &t, 4);
       else out << t << '\n';
     }
@@ -604,11 +635,12 @@ void write_vtu(const std::string& path, const mesh::Mesh& m) {
     out << "      </Points>\n      <Cells>\n";
     std::vector<int64_t> conn, offsets;
     std::vector<uint8_t> types;
+    int nodes[20];
     for (int c = 0; c < m.num_cells(); ++c) {
-      int k = mesh::node_count(m.type(c));
-      for (int j = 0; j < k; ++j) conn.push_back(m.cells(c, j));
+      const int k = mesh::cell_nodes(m, c, nodes);
+      conn.insert(conn.end(), nodes, nodes + k);
       offsets.push_back(static_cast<int64_t>(conn.size()));
-      types.push_back(static_cast<uint8_t>(m.types(c)));
+      types.push_back(static_cast<uint8_t>(m.vtk_type(c)));
     }
     data_array(out, "Int64", "connectivity", 1, conn);
     data_array(out, "Int64", "offsets", 1, offsets);

@@ -10,15 +10,18 @@ namespace hexdom::io {
 /// Reads a legacy VTK UNSTRUCTURED_GRID (or POLYDATA of triangles and quads), ASCII or binary, with
 /// CELLS in the classic layout or the 5.1 OFFSETS/CONNECTIVITY layout. Cell types 5, 9, 10, 12 and
 /// 13 are read; a hexahedron (12) with repeated nodes becomes a prism or a tet (as the original
-/// HexDom wrote them). Region ids come from the cell scalars or field array named "region",
+/// HexDom wrote them). Second-order volume cells (25 hex20, 26 wedge15, 24 tet10) give a
+/// second-order mesh; a file that mixes them with first-order cells is refused. Region ids come from the cell scalars or field array named "region",
 /// "BlockId", "RegionId", "gmsh:physical" or "medit:ref" (the first present), else 0.
 /// Throws InputError "path:line: ..." for anything malformed or unsupported.
 mesh::Mesh read_vtk(const std::string& path);
 
-/// Writes a legacy VTK 4.2 UNSTRUCTURED_GRID with native cell types and an int cell array "region".
+/// Writes a legacy VTK 4.2 UNSTRUCTURED_GRID with native cell types (a second-order mesh's: 25, 26,
+/// 24) and an int cell array "region".
 void write_vtk(const std::string& path, const mesh::Mesh& mesh, bool binary = false);
 
-/// Writes a VTK XML UnstructuredGrid (.vtu) with base64-encoded binary arrays and "region".
+/// Writes a VTK XML UnstructuredGrid (.vtu) with base64-encoded binary arrays and "region"; cell
+/// types as write_vtk.
 void write_vtu(const std::string& path, const mesh::Mesh& mesh);
 
 }  // namespace hexdom::io

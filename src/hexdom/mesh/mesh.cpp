@@ -40,6 +40,33 @@ CellType cell_type_from_vtk(int t) {
   }
 }
 
+int edge_count(CellType type) {
+  switch (type) {
+    case CellType::Tet: return 6;
+    case CellType::Hex: return 12;
+    case CellType::Wedge: return 9;
+    default: return 0;
+  }
+}
+
+int second_order_vtk_type(CellType type) {
+  switch (type) {
+    case CellType::Tet: return 24;
+    case CellType::Hex: return 25;
+    case CellType::Wedge: return 26;
+    default: return 0;
+  }
+}
+
+CellType first_order_of_vtk(int t) {
+  switch (t) {
+    case 24: return CellType::Tet;
+    case 25: return CellType::Hex;
+    case 26: return CellType::Wedge;
+    default: throw std::invalid_argument("VTK cell type " + std::to_string(t) + " is not a second-order volume cell");
+  }
+}
+
 int Mesh::count(CellType t) const {
   return static_cast<int>((types.array() == static_cast<int>(t)).count());
 }
@@ -51,6 +78,9 @@ void validate(const Mesh& m) {
     throw GeometryError("cells (" + std::to_string(n) + "), types (" + std::to_string(m.types.size()) +
                         ") and region (" + std::to_string(m.region.size()) + ") differ in length");
   if (!m.V.allFinite()) throw GeometryError("node coordinates contain NaN or infinity");
+  if (m.second_order() && m.mid.rows() != n)
+    throw GeometryError("mid-edge nodes are given for " + std::to_string(m.mid.rows()) + " cells, but there are " +
+                        std::to_string(n) + " cells");
   for (int c = 0; c < n; ++c) {
     CellType t;
     try {
@@ -62,7 +92,28 @@ void validate(const Mesh& m) {
       if (m.cells(c, i) < 0 || m.cells(c, i) >= m.num_nodes())
         throw GeometryError("cell " + std::to_string(c) + " refers to node " + std::to_string(m.cells(c, i)) +
                             ", but there are " + std::to_string(m.num_nodes()) + " nodes");
+    if (!m.second_order()) continue;
+    if (!is_volume(t))
+      throw GeometryError("cell " + std::to_string(c) + " is a " + type_name(t) + ": a second-order mesh has volume cells only");
+    for (int e = 0; e < edge_count(t); ++e)
+      if (m.mid(c, e) < 0 || m.mid(c, e) >= m.num_nodes())
+        throw GeometryError("cell " + std::to_string(c) + " refers to mid-edge node " + std::to_string(m.mid(c, e)) +
+                            ", but there are " + std::to_string(m.num_nodes()) + " nodes");
   }
+}
+
+int cell_nodes(const Mesh& m, int c, int* nodes) {
+  const CellType t = m.type(c);
+  const int n = node_count(t), ne = m.second_order() ? edge_count(t) : 0;
+  for (int i = 0; i < n; ++i) nodes[i] = m.cells(c, i);
+  for (int e = 0; e < ne; ++e) nodes[n + e] = m.mid(c, e);
+  return n + ne;
+}
+
+void require_first_order(const Mesh& m, const std::string& what) {
+  if (m.second_order())
+    throw InputError(what + " takes first-order cells: the mesh is second order (hex20 / wedge15 / tet10); "
+                     "mesh again with order 1");
 }
 
 void MeshBuilder::add(CellType t, const int* nodes, int region_id) {

@@ -27,25 +27,55 @@ std::string type_name(CellType type);
 /// Checked conversion from a VTK cell-type number; throws std::invalid_argument for others.
 CellType cell_type_from_vtk(int vtk_type);
 
+/// Edges of a volume cell type (12, 9, 6; 0 for 2D types): the mid-edge nodes a second-order cell
+/// of that type adds (mesh/cell_faces.h lists them in VTK's quadratic order).
+int edge_count(CellType type);
+/// VTK's number of the second-order type of a volume cell type: 25 (20-node hex), 26 (15-node
+/// wedge), 24 (10-node tet); 0 for 2D types.
+int second_order_vtk_type(CellType type);
+/// The first-order type of VTK's 24, 25 or 26 (Tet, Hex, Wedge); throws std::invalid_argument for
+/// any other number.
+CellType first_order_of_vtk(int vtk_type);
+
 /// #C by 8 cell node indices, row-major so that a row is one contiguous cell.
 using CellMatrix = Eigen::Matrix<int, Eigen::Dynamic, 8, Eigen::RowMajor>;
+/// #C by 12 mid-edge node indices, row-major.
+using MidMatrix = Eigen::Matrix<int, Eigen::Dynamic, 12, Eigen::RowMajor>;
 
 /// Mixed-cell mesh, VTK node order.
+/// A second-order mesh (all cells volume cells, `mid` non-empty) is the first-order mesh of its
+/// corners plus one node per cell edge: cell c's nodes in VTK's quadratic order (types 25, 26, 24)
+/// are cells(c, 0..n-1) then mid(c, 0..e-1), the edges in cell_edges order. `types` keeps the
+/// first-order type, so code that reads corners only sees the straight cells; code that builds
+/// a new Mesh from another makes a first-order one, which is why the stages that move or remake
+/// cells refuse a second-order input (require_first_order).
 struct Mesh {
   Eigen::MatrixXd V;      ///< #V by 3 node coordinates
   CellMatrix cells;      ///< #C by 8 node indices (0-based); unused trailing slots are -1
   Eigen::VectorXi types;  ///< #C VTK cell-type numbers (see CellType)
   Eigen::VectorXi region; ///< #C region (part, block) id per cell
+  MidMatrix mid;          ///< empty (first order), or #C by 12 mid-edge nodes; unused slots are -1
 
   int num_nodes() const { return static_cast<int>(V.rows()); }
   int num_cells() const { return static_cast<int>(cells.rows()); }
   CellType type(int c) const { return static_cast<CellType>(types(c)); }
   /// Number of cells of one type.
   int count(CellType t) const;
+  bool second_order() const { return mid.rows() > 0; }
+  /// The VTK number cell c is written with: types(c), or its second-order type.
+  int vtk_type(int c) const { return second_order() ? second_order_vtk_type(type(c)) : types(c); }
 };
 
-/// Checks shapes, cell types and node indices; throws GeometryError naming the first bad cell.
+/// Checks shapes, cell types and node indices (mid-edge nodes too); throws GeometryError naming
+/// the first bad cell.
 void validate(const Mesh& mesh);
+
+/// The nodes of cell c in the order of its VTK type (vtk_type): corners, then mid-edge nodes of a
+/// second-order mesh. Writes at most 20 entries; returns their number.
+int cell_nodes(const Mesh& mesh, int c, int* nodes);
+
+/// Throws InputError "<what> takes first-order cells: ..." when `mesh` is second order.
+void require_first_order(const Mesh& mesh, const std::string& what);
 
 /// Collects cells one at a time, then makes a Mesh.
 struct MeshBuilder {

@@ -238,6 +238,7 @@ double worst_of(const QualityReport& q) {
 }  // namespace
 
 ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
+  mesh::require_first_order(input, "improving a mesh");
   for (int c = 0; c < input.num_cells(); ++c)
     if (!mesh::is_volume(input.type(c)))
       throw GeometryError("cell " + std::to_string(c + 1) + " is a " + mesh::type_name(input.type(c)) +

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "hexdom/cad/project.h"
+#include "hexdom/cad/second_order.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/surface_check.h"
@@ -67,9 +68,38 @@ void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const 
       },
       r);
 }
+
+MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress);
+
 }  // namespace
 
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
+  check_order(opt.mesh.order);
+  if (opt.mesh.order == 1) return mesh_cad_first_order(shape, opt, progress);
+  MeshCadOptions first = opt;
+  first.mesh.order = 1;
+  MeshCadRun local;
+  MeshCadRun& r = progress ? *progress : local;
+  mesh_cad_first_order(shape, first, &r);
+  r.run.stage = "second order";
+  if (r.snapped) {
+    cad::SecondOrderResult s = cad::second_order_on_brep(shape, r.run.mesh, r.snap.kind, r.snap.entity, r.surface, opt.mesh.curve);
+    r.run.mesh = std::move(s.mesh);
+    r.run.quality = std::move(s.quality);
+    r.run.second_order = s.report;
+  } else {
+    r.run.mesh = optimize::second_order_on_surface(r.run.mesh, r.surface, opt.mesh.curve, &r.run.second_order);
+    r.run.quality = quality::quality_report(r.run.mesh);
+  }
+  if (opt.log) opt.log(0, second_order_text(r.run.second_order));
+  check_interrupt("mesh");
+  r.run.stage = "done";
+  return r;
+}
+
+namespace {
+
+MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
   MeshCadRun local;
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
@@ -90,7 +120,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
       say("local sizes: the overlay path (its octree refines there)");
       o.mesh.method = Method::Overlay;
     }
-    return mesh_cad_part(shape, o, progress);
+    return mesh_cad_first_order(shape, o, progress);
   }
   double reference = 0;  // the B-rep's volume, once tessellated
   // mesh_and_snap of `run`, true when it gave a mesh; what defeated it (a labelling the repair
@@ -195,5 +225,7 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   check_interrupt("mesh");  // interrupted after the stages' last look: no result
   return r;
 }
+
+}  // namespace
 
 }  // namespace hexdom::pipeline

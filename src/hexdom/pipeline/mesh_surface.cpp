@@ -305,7 +305,26 @@ std::string polycube_failure_note(const Error& e, const std::string& stage) {
   return "the polycube path failed at stage " + stage + ": " + what.substr(0, what.find('\n'));
 }
 
+void check_order(int order) {
+  if (order != 1 && order != 2) throw InputError(fmt("element order %g: the order is 1 or 2", order));
+}
+
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
+  check_order(opt.order);
+  if (opt.order == 2) {
+    MeshSurfaceOptions first = opt;
+    first.order = 1;
+    MeshSurfaceRun local;
+    MeshSurfaceRun& r = progress ? *progress : local;
+    mesh_surface(input, first, &r);
+    r.stage = "second order";
+    r.mesh = optimize::second_order_on_surface(r.mesh, input, opt.curve, &r.second_order);
+    r.quality = quality::quality_report(r.mesh);
+    if (opt.log) opt.log(0, second_order_text(r.second_order));
+    check_interrupt("mesh");
+    r.stage = "done";
+    return r;
+  }
   MeshSurfaceRun local;
   MeshSurfaceRun& r = progress ? *progress : local;
   r.stage = "check";
@@ -457,7 +476,7 @@ std::string worst_by_type(const quality::QualityReport& q) {
   for (const auto& [name, t] : types)
     if (t->count > 0) s += (s.empty() ? std::string("worst ") + name + " SJ" : std::string(", ") + name) + fmt(" %.3f", t->sj_min);
   if (s.empty()) s = "no cells";
-  return s + fmt(", %.0f inverted", q.hex.inverted + q.prism.inverted + q.tet.inverted);
+  return s + fmt(", %.0f inverted", quality::inverted_cells(q));
 }
 
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
@@ -590,6 +609,15 @@ std::string to_text(const MeshSurfaceRun& r) {
   s += fmt("improve       %8.2f s  %8.0f cells\n", r.seconds[3], r.mesh.num_cells());
   s += "kept          " + choice_text(r) + "\n";
   return s;
+}
+
+std::string second_order_text(const optimize::SecondOrderReport& s) {
+  const optimize::CurveReport& c = s.curve;
+  return fmt("second order: %.0f boundary mid-edge nodes", s.boundary_mid_nodes) +
+         (s.edge_targets ? fmt(" (%.0f on CAD edges, %.0f on faces)", s.edge_targets, s.face_targets) : std::string()) +
+         fmt(", moved up to %.3g off their edges; %.0f placed", s.max_offset, c.placed) +
+         fmt(", %.0f halfway or less, %.0f kept straight", c.shortened, c.straight) +
+         fmt("; worst SJ %.4f, %.0f inverted", c.worst_sj, c.inverted) + fmt(" (%.2f s)", s.seconds);
 }
 
 std::string choice_text(const MeshSurfaceRun& r) {

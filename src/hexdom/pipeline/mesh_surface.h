@@ -9,6 +9,7 @@
 #include "hexdom/common/deadline.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/curve_mid_nodes.h"
 #include "hexdom/optimize/improve.h"
 #include "hexdom/overlay/overlay.h"
 #include "hexdom/quality/report.h"
@@ -130,6 +131,12 @@ struct MeshSurfaceOptions {
   /// each side), or OverlayOptions::across as given for across_thin 0.
   double across_thin = 2;
   double max_cell_ratio = 5;
+  /// Element order of the result: 1 (hex8, wedge6, tet4) or 2 (hex20, wedge15, tet10: the first-order
+  /// mesh made, then a node on every cell edge, those of the boundary on the input surface, or on
+  /// the B-rep in mesh_cad_part; see optimize::second_order_on_surface, cad::second_order_on_brep).
+  /// The paths and their choices work on the first-order mesh. Others: InputError.
+  int order = 1;
+  optimize::CurveOptions curve;  ///< order 2: how far a cell may lose quality to its curved edges
   /// Check the input first (mesh::check_solid_surface: closed, consistently oriented, no
   /// crossing triangles, shells facing out of the solid; a shell facing the wrong way is turned
   /// around with a warning, level 1); `input_name` names the input in its messages.
@@ -185,7 +192,12 @@ struct MeshSurfaceRun {
   /// every solid's mesh is an overlay mesh, else Polycube; level, edge_weight, frame and the
   /// polycube options are the first solid's; `polycube` is empty. Empty for one solid.
   std::vector<MeshSurfaceRun> solids;
+  /// Order 2: how the mid-edge nodes were placed (`mesh` and `quality` are the second-order mesh's).
+  optimize::SecondOrderReport second_order;
 };
+
+/// InputError for an element order other than 1 or 2.
+void check_order(int order);
 
 /// InputError for a negative min_size or max_size, min_size > max_size (both > 0), or a growth
 /// rate (overlay.growth_rate) not in (1, 3].
@@ -262,6 +274,10 @@ std::string run_summary(const MeshSurfaceRun& r, double reference);
 /// "segment: 12 charts in 0.21 s"-style summary of a run, one line per finished stage, then the
 /// kept candidate's options (choice_text).
 std::string to_text(const MeshSurfaceRun& run);
+
+/// "second order: 1200 boundary mid-edge nodes (80 on CAD edges, 1120 on faces), moved up to 0.05
+/// off their edges; 1190 placed, 6 halfway or less, 4 kept straight; worst SJ 0.4, 0 inverted".
+std::string second_order_text(const optimize::SecondOrderReport& report);
 
 /// The options of the kept candidate on one line: "level 1, lambda 0.1, widths of holes kept, tet
 /// blocks at apexes" (the last part only when the polycube has apex caps).

@@ -1,5 +1,8 @@
 #include "hexdom/quality/report.h"
 
+#include "hexdom/mesh/second_order.h"
+#include "hexdom/quality/second_order.h"
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -7,6 +10,30 @@
 namespace hexdom::quality {
 
 using mesh::CellType;
+
+namespace {
+
+/// The curved cells' figures of a second-order mesh; total_volume becomes theirs.
+void add_second_order(const mesh::Mesh& m, QualityReport& r) {
+  r.second_order = true;
+  r.total_volume = 0;
+  for (SecondOrderStats* s : {&r.hex20, &r.wedge15, &r.tet10}) s->sj_min = std::numeric_limits<double>::quiet_NaN();
+  double p[mesh::kMaxSecondOrderNodes][3];
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const CellType t = m.type(c);
+    SecondOrderStats* s = t == CellType::Hex ? &r.hex20 : t == CellType::Wedge ? &r.wedge15 : t == CellType::Tet ? &r.tet10 : nullptr;
+    if (!s) continue;
+    mesh::second_order_points(m, c, p);
+    const double sj = second_order_scaled_jacobian(t, p), v = second_order_volume(t, p);
+    s->count++;
+    s->inverted += !(sj > 0);
+    s->sj_min = std::isnan(s->sj_min) ? sj : std::min(s->sj_min, sj);
+    s->volume += v;
+    r.total_volume += v;
+  }
+}
+
+}  // namespace
 
 QualityReport quality_report(const mesh::Mesh& m) { return quality_report(m, compute_metrics(m)); }
 
@@ -48,6 +75,7 @@ QualityReport quality_report(const mesh::Mesh& m, const CellMetrics& q) {
     all[k]->sj_mean = all[k]->count ? sum_sj[k] / all[k]->count : nan;
     r.total_volume += all[k]->volume;
   }
+  if (m.second_order()) add_second_order(m, r);
   return r;
 }
 
@@ -81,7 +109,16 @@ std::string to_json(const QualityReport& r) {
     for (int b = 0; b < 20; ++b) s += (b ? ", " : "") + std::to_string(t.histogram[b]);
     s += "]}";
   }
-  s += ", \"total_volume\": " + num(r.total_volume) + "}";
+  s += ", \"total_volume\": " + num(r.total_volume) + ", \"order\": " + (r.second_order ? "2" : "1");
+  if (r.second_order) {
+    const char* names2[3] = {"hex20", "wedge15", "tet10"};
+    const SecondOrderStats* all2[3] = {&r.hex20, &r.wedge15, &r.tet10};
+    for (int k = 0; k < 3; ++k)
+      s += std::string(", \"") + names2[k] + "\": {\"count\": " + std::to_string(all2[k]->count) + ", \"sj_min\": " +
+           num(all2[k]->sj_min) + ", \"inverted\": " + std::to_string(all2[k]->inverted) + ", \"volume\": " +
+           num(all2[k]->volume) + "}";
+  }
+  s += "}";
   return s;
 }
 
@@ -99,6 +136,16 @@ std::string to_text(const QualityReport& r) {
                     t.sj_min, t.sj_mean, t.inverted, t.edge_ratio_min, t.edge_ratio_max);
     }
     s += buf;
+  }
+  if (r.second_order) {
+    const char* names2[3] = {"hex20", "wedge15", "tet10"};
+    const SecondOrderStats* all2[3] = {&r.hex20, &r.wedge15, &r.tet10};
+    for (int k = 0; k < 3; ++k) {
+      if (!all2[k]->count) continue;
+      std::snprintf(buf, sizeof buf, "%-7s %6d  %7.4f            %8d  (second order: nodes and Gauss points)\n", names2[k],
+                    all2[k]->count, all2[k]->sj_min, all2[k]->inverted);
+      s += buf;
+    }
   }
   std::snprintf(buf, sizeof buf, "volume %.10g\n", r.total_volume);
   return s + buf;

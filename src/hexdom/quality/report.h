@@ -20,14 +20,30 @@ struct TypeStats {
   std::array<int, 20> histogram{};
 };
 
+/// Figures for the second-order cells of one type (quality/second_order.h). With no cells, sj_min
+/// is NaN.
+struct SecondOrderStats {
+  int count = 0;
+  double sj_min = 0;  ///< the least second-order scaled Jacobian (nodes and Gauss points)
+  int inverted = 0;   ///< cells whose second-order scaled Jacobian is <= 0 somewhere
+  double volume = 0;  ///< of the curved cells
+};
+
+/// For a second-order mesh, hex / prism / tet hold the figures of the cells' corners (the straight
+/// cells) and hex20 / wedge15 / tet10 those of the curved cells; total_volume is the curved cells'.
 struct QualityReport {
   TypeStats hex, prism, tet;
   double total_volume = 0;
+  bool second_order = false;
+  SecondOrderStats hex20, wedge15, tet10;
 };
 
 QualityReport quality_report(const mesh::Mesh& mesh);
-/// Inverted cells of every type.
-inline int inverted_cells(const QualityReport& q) { return q.hex.inverted + q.prism.inverted + q.tet.inverted; }
+/// Inverted cells of every type: of the curved cells in a second-order mesh.
+inline int inverted_cells(const QualityReport& q) {
+  return q.second_order ? q.hex20.inverted + q.wedge15.inverted + q.tet10.inverted
+                        : q.hex.inverted + q.prism.inverted + q.tet.inverted;
+}
 /// The largest edge ratio (longest over shortest edge of a cell) over the cells of every type; 0
 /// with no cells.
 double max_edge_ratio(const QualityReport& q);
@@ -35,7 +51,9 @@ double max_edge_ratio(const QualityReport& q);
 QualityReport quality_report(const mesh::Mesh& mesh, const CellMetrics& metrics);
 
 /// JSON object with keys "hex", "prism", "tet", each holding count, sj_min, sj_mean, inverted,
-/// edge_ratio_min, edge_ratio_max, volume and histogram; plus "total_volume". NaN is written null.
+/// edge_ratio_min, edge_ratio_max, volume and histogram; "total_volume"; "order" (1 or 2) and, for
+/// order 2, "hex20", "wedge15", "tet10", each holding count, sj_min, inverted and volume. NaN is
+/// written null.
 std::string to_json(const QualityReport& report);
 /// A small table for people.
 std::string to_text(const QualityReport& report);

@@ -7,7 +7,7 @@ using namespace hexdom;
 
 TEST(ToJson, EmptyTypesAreNullAndKeysArePresent) {
   quality::QualityReport r = quality::quality_report(mesh::Mesh{Eigen::MatrixXd(0, 3), mesh::CellMatrix(0, 8),
-                                                                Eigen::VectorXi(0), Eigen::VectorXi(0)});
+                                                                Eigen::VectorXi(0), Eigen::VectorXi(0), {}});
   const std::string j = quality::to_json(r);
   for (const char* key : {"\"hex\": {\"count\": 0, \"sj_min\": null, \"sj_mean\": null, \"inverted\": 0, "
                           "\"edge_ratio_min\": null, \"edge_ratio_max\": null",

@@ -2,6 +2,7 @@
 // cannot ...", so that callers never test the build flag (as Gmsh's OCC_Internals stub does).
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
+#include "hexdom/cad/second_order.h"
 #include "hexdom/cad/shape.h"
 #include "hexdom/cad/snap.h"
 #include "hexdom/cad/tessellate.h"
@@ -50,6 +51,10 @@ Projection project_to_edge(const Shape&, int, const Eigen::MatrixXd&) { no_occt(
 Eigen::MatrixXd edge_points(const Shape&, int, double) { no_occt("sample CAD edges"); }
 Projection project_to_shape(const Shape&, const Eigen::MatrixXd&) { no_occt("project onto CAD shapes"); }
 
+SecondOrderResult second_order_on_brep(const Shape&, const mesh::Mesh&, const std::vector<SnapKind>&, const std::vector<int>&,
+                                       const mesh::SurfaceMesh&, const optimize::CurveOptions&) {
+  no_occt("put mid-edge nodes on a B-rep");
+}
 SnapResult snap_to_brep(const Shape&, const mesh::Mesh&, const mesh::SurfaceMesh&, const SnapOptions&) {
   no_occt("snap a mesh to the B-rep");
 }

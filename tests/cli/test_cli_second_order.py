@@ -1,0 +1,215 @@
+"""Second-order elements (`hexdom mesh --order 2`): hex20 / wedge15 / tet10 in VTK's quadratic node
+order, written to .vtk, .vtu and .inp (C3D20 / C3D15 / C3D10), the boundary's mid-edge nodes on
+the B-rep.
+
+Oracles: meshio reads every file; VTK's own quadratic shape functions
+(vtkQuadraticHexahedron.InterpolateDerivs) give the curved cells' Jacobians and volumes; FreeCAD's
+distToShape measures the mid-edge nodes' distance to the B-rep; CalculiX solves the .inp."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+BRACKET = Path(__file__).resolve().parents[2] / "examples" / "data" / "bracket.step"
+HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+
+
+@pytest.fixture(scope="module")
+def freecad_part():
+    """(FreeCAD, Part), FreeCAD's modules as /usr/bin/python3 finds them, or a skip."""
+    for p in ("/usr/lib/freecad-python3/lib", "/usr/share/freecad/Mod", "/usr/share/freecad/Ext"):
+        if p not in sys.path:
+            sys.path.append(p)
+    try:
+        import FreeCAD
+        import Part
+    except ImportError as e:
+        pytest.skip(f"FreeCAD not importable: {e}")
+    return FreeCAD, Part
+
+
+def _run(hexdom_bin, *args):
+    return subprocess.run([str(hexdom_bin), *map(str, args)], capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def bracket(hexdom_bin, tmp_path_factory):
+    """The bundled bracket meshed at order 1 (.vtu, .inp) and order 2 (.vtu, .vtk, .inp, report)."""
+    d = tmp_path_factory.mktemp("second_order")
+    out = {}
+    for order, names in ((1, ("vtu", "inp")), (2, ("vtu", "vtk", "inp"))):
+        for ext in names:
+            path = d / f"bracket{order}.{ext}"
+            args = ["mesh", BRACKET, "-o", path, "--order", order]
+            if order == 2 and ext == "vtu":
+                args += ["--report", d / "report2.json"]
+            r = _run(hexdom_bin, *args)
+            assert r.returncode == 0, r.stderr
+            out[(order, ext)] = path
+            out[("log", order, ext)] = r.stderr + r.stdout
+    out["report"] = json.loads((d / "report2.json").read_text())
+    out["dir"] = d
+    return out
+
+
+def test_every_format_holds_the_second_order_cells_on_the_first_order_corners(bracket):
+    import meshio
+    first = meshio.read(bracket[(1, "vtu")])
+    n1 = len(first.points)
+    hexes = first.cells_dict["hexahedron"]
+    for ext in ("vtu", "vtk", "inp"):
+        m = meshio.read(bracket[(2, ext)])
+        assert list(m.cells_dict) == ["hexahedron20"], (ext, list(m.cells_dict))
+        h20 = m.cells_dict["hexahedron20"]
+        assert h20.shape == (len(hexes), 20)
+        # The corners are the first-order mesh's nodes, in its numbering; the mid-edge nodes follow.
+        assert np.array_equal(h20[:, :8], hexes), ext
+        assert np.abs(m.points[:n1] - first.points).max() <= 1e-12 * np.abs(first.points).max(), ext
+        assert h20[:, 8:].min() >= n1
+        # One node per mesh edge, shared by the cells around it.
+        edges = {tuple(sorted((a, b))) for c in hexes for a, b in ((c[i], c[j]) for i, j in HEX_EDGES)}
+        assert len(m.points) == n1 + len(edges), ext
+        for k, (i, j) in enumerate(HEX_EDGES):
+            key = np.sort(hexes[:, [i, j]], axis=1)
+            ids = h20[:, 8 + k]
+            # the same edge always gets the same node
+            seen = {}
+            for e, v in zip(map(tuple, key), ids):
+                assert seen.setdefault(e, v) == v
+    r = bracket["report"]
+    assert r["order"] == 2 and r["hex20"]["count"] == len(hexes) and r["hex20"]["inverted"] == 0
+
+
+def _vtk_hex20_jacobians(points, cells):
+    """det J at the 27 Gauss points of each hex20 (VTK's quadratic shape functions on [0, 1]^3)
+    and the Gauss weights (times 1/8 of [-1, 1]^3's)."""
+    import vtk
+    g = np.sqrt(0.6)
+    x = [(1 - g) / 2, 0.5, (1 + g) / 2]
+    w = [5 / 18, 8 / 18, 5 / 18]
+    cell = vtk.vtkQuadraticHexahedron()
+    dets, weights = [], []
+    derivs = [0.0] * 60
+    for i in range(3):
+        for j in range(3):
+            for k in range(3):
+                cell.InterpolateDerivs([x[i], x[j], x[k]], derivs)
+                D = np.array(derivs).reshape(3, 20)  # d/dr, d/ds, d/dt of the 20 functions
+                J = np.einsum("cnk,dn->cdk", points[cells], D)  # (#C, 3 derivatives, 3 coordinates)
+                dets.append(np.linalg.det(J))
+                weights.append(w[i] * w[j] * w[k])
+    return np.array(dets).T, np.array(weights)
+
+
+def test_vtk_s_quadratic_hexahedron_gives_the_reported_volume_and_no_fold(bracket):
+    import meshio
+    m = meshio.read(bracket[(2, "vtu")])
+    dets, weights = _vtk_hex20_jacobians(m.points, m.cells_dict["hexahedron20"])
+    assert dets.min() > 0
+    volume = (dets * weights).sum()
+    r = bracket["report"]
+    assert volume == pytest.approx(r["total_volume"], rel=1e-9)
+    # The curved cells close most of the chords' volume deficit on the hole and the fillet.
+    brep = float(bracket[("log", 2, "vtu")].split("B-rep volume ")[1].split()[0])
+    first = meshio.read(bracket[(1, "vtu")])
+    d1, w1 = _vtk_hex20_jacobians(*_straight_hex20(first.points, first.cells_dict["hexahedron"]))
+    v1 = (d1 * w1).sum()
+    print(f"bracket: B-rep {brep:.6f}, first order {v1:.6f} ({(v1 - brep) / brep:+.4%}), "
+          f"second order {volume:.6f} ({(volume - brep) / brep:+.4%})")
+    assert abs(volume - brep) < 0.1 * abs(v1 - brep)
+
+
+def _straight_hex20(points, hexes):
+    """A first-order mesh as hex20 cells with their mid-edge nodes at the midpoints."""
+    mids = np.stack([(points[hexes[:, i]] + points[hexes[:, j]]) / 2 for i, j in HEX_EDGES], axis=1)
+    P = np.concatenate([points, mids.reshape(-1, 3)])
+    cells = np.concatenate([hexes, len(points) + np.arange(12 * len(hexes)).reshape(-1, 12)], axis=1)
+    return P, cells
+
+
+def test_the_boundary_s_mid_edge_nodes_lie_on_the_brep(bracket, freecad_part):
+    import meshio
+    FreeCAD, Part = freecad_part
+    m = meshio.read(bracket[(2, "vtu")])
+    h20 = m.cells_dict["hexahedron20"]
+    faces = {}
+    for c, cell in enumerate(h20):
+        for f in HEX_FACES:
+            key = tuple(sorted(cell[list(f)]))
+            faces[key] = faces.get(key, 0) + 1
+    boundary = {k for k, n in faces.items() if n == 1}
+    mids = set()
+    for cell in h20:
+        for k, (i, j) in enumerate(HEX_EDGES):
+            for f in HEX_FACES:
+                if i in f and j in f and tuple(sorted(cell[list(f)])) in boundary:
+                    mids.add(int(cell[8 + k]))
+    shape = Part.read(str(BRACKET)).Solids[0]
+    diag = shape.BoundBox.DiagonalLength
+    faces_shape = Part.Compound(shape.Faces)
+    d = np.array([faces_shape.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, m.points[v]))))[0] for v in mids])
+    log = bracket[("log", 2, "vtu")]
+    print(f"bracket: {len(mids)} boundary mid-edge nodes, B-rep distance max {d.max() / diag:.2e} x diagonal")
+    assert f"second order: {len(mids)} boundary mid-edge nodes" in log, log
+    assert d.max() <= 1e-7 * diag
+
+
+def _solve(inp, work):
+    """CalculiX on the mesh of ``inp``: the base's bottom (z = 0) fixed, 100 N along x spread over
+    the upright's top (z = 50); the largest x displacement."""
+    import meshio
+    P = meshio.read(inp).points
+    fixed = np.flatnonzero(np.abs(P[:, 2]) < 1e-6) + 1
+    top = np.flatnonzero(np.abs(P[:, 2] - 50) < 1e-6) + 1
+    deck = Path(inp).read_text().replace("*NODE\n", "*NODE, NSET=NALL\n", 1)
+    deck += ("*NSET, NSET=FIXED\n" + "".join(f"{i},\n" for i in fixed) +
+             "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000, 0.3\n*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n"
+             "*STEP\n*STATIC\n*BOUNDARY\nFIXED, 1, 3, 0.\n*CLOAD\n" +
+             "".join(f"{i}, 1, {100.0 / len(top)!r}\n" for i in top) + "*NODE PRINT, NSET=NALL\nU\n*END STEP\n")
+    work.mkdir()
+    (work / "job.inp").write_text(deck)
+    r = subprocess.run(["ccx", "job"], cwd=work, capture_output=True, text=True)
+    assert r.returncode == 0 and "Job finished" in r.stdout, r.stdout[-2000:]
+    U = []
+    for line in (work / "job.dat").read_text().splitlines():
+        f = line.split()
+        if len(f) == 4 and f[0].isdigit():
+            U.append([float(v) for v in f[1:]])
+    assert len(U) == len(P)
+    return np.abs(np.array(U)[:, 0]).max()
+
+
+@pytest.mark.skipif(not any((Path(p) / "ccx").exists() for p in os.environ.get("PATH", "").split(os.pathsep)),
+                    reason="CalculiX (ccx) is not installed")
+def test_calculix_solves_the_c3d20_mesh(bracket):
+    u1 = _solve(bracket[(1, "inp")], bracket["dir"] / "ccx1")
+    u2 = _solve(bracket[(2, "inp")], bracket["dir"] / "ccx2")
+    print(f"bracket upright, 100 N at its top: C3D8 {u1:.6g} mm, C3D20 {u2:.6g} mm")
+    # Fully integrated C3D8 is too stiff in bending; C3D20 bends more, not wildly more.
+    assert u1 > 0 and 1.0 < u2 / u1 < 1.5
+
+
+def test_quality_and_convert_read_the_second_order_file(bracket, hexdom_bin):
+    r = _run(hexdom_bin, "quality", "-i", bracket[(2, "vtk")])
+    assert r.returncode == 0, r.stderr
+    line = next(l for l in r.stdout.splitlines() if l.startswith("hex20"))
+    assert float(line.split()[2]) == pytest.approx(bracket["report"]["hex20"]["sj_min"], abs=1e-4)
+    out = bracket["dir"] / "converted.inp"
+    r = _run(hexdom_bin, "convert", "-i", bracket[(2, "vtk")], "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert out.read_text() == bracket[(2, "inp")].read_text()
+
+
+def test_order_2_into_a_k_file_or_order_3_is_refused_without_output(hexdom_bin, tmp_path):
+    out = tmp_path / "bracket.k"
+    r = _run(hexdom_bin, "mesh", BRACKET, "-o", out, "--order", "2")
+    assert r.returncode == 1 and "first-order solids only" in r.stderr and str(out) in r.stderr, r.stderr
+    assert not out.exists()
+    r = _run(hexdom_bin, "mesh", BRACKET, "-o", tmp_path / "b.vtu", "--order", "3")
+    assert r.returncode != 0 and not (tmp_path / "b.vtu").exists()
