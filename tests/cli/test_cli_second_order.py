@@ -84,6 +84,16 @@ def test_every_format_holds_the_second_order_cells_on_the_first_order_corners(br
                 assert seen.setdefault(e, v) == v
     r = bracket["report"]
     assert r["order"] == 2 and r["hex20"]["count"] == len(hexes) and r["hex20"]["inverted"] == 0
+    # VTK's own readers: quadratic hexahedra (25) of 20 points, the same connectivity.
+    import vtk
+    for reader, ext in ((vtk.vtkXMLUnstructuredGridReader(), "vtu"), (vtk.vtkUnstructuredGridReader(), "vtk")):
+        reader.SetFileName(str(bracket[(2, ext)]))
+        reader.Update()
+        g = reader.GetOutput()
+        assert g.GetNumberOfCells() == len(hexes) and g.GetNumberOfPoints() == len(m.points), ext
+        assert {g.GetCellType(c) for c in range(g.GetNumberOfCells())} == {vtk.VTK_QUADRATIC_HEXAHEDRON}, ext
+        ids = g.GetCell(7).GetPointIds()
+        assert [ids.GetId(i) for i in range(ids.GetNumberOfIds())] == h20[7].tolist(), ext
 
 
 def _vtk_hex20_jacobians(points, cells):
@@ -213,3 +223,54 @@ def test_order_2_into_a_k_file_or_order_3_is_refused_without_output(hexdom_bin, 
     assert not out.exists()
     r = _run(hexdom_bin, "mesh", BRACKET, "-o", tmp_path / "b.vtu", "--order", "3")
     assert r.returncode != 0 and not (tmp_path / "b.vtu").exists()
+
+
+def _box_stl(path, lx, ly, lz):
+    """A closed triangle surface of the box [0, lx] x [0, ly] x [0, lz] (12 triangles, outward)."""
+    c = [(lx if i & 1 else 0.0, ly if i & 2 else 0.0, lz if i & 4 else 0.0) for i in range(8)]
+    tris = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4),
+            (2, 6, 7), (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
+    lines = ["solid box"]
+    for t in tris:
+        lines += ["facet normal 0 0 0", "outer loop"] + ["vertex %r %r %r" % c[k] for k in t] + ["endloop", "endfacet"]
+    path.write_text("\n".join(lines + ["endsolid box"]) + "\n")
+    return path
+
+
+@pytest.mark.skipif(not any((Path(p) / "ccx").exists() for p in os.environ.get("PATH", "").split(os.pathsep)),
+                    reason="CalculiX (ccx) is not installed")
+def test_a_hex20_cantilever_bends_as_timoshenko_s_beam(hexdom_bin, tmp_path):
+    # 200 x 10 x 10, one end clamped, 100 N across the other: deflection P L^3 / 3EI + P L / (k G A),
+    # k = 5/6. Cells of 5 (2 across): C3D20 within 1% (the clamped end's constraint is most of the
+    # rest), C3D8 on the same cells far stiffer (shear locking).
+    L, h, E, nu, P = 200.0, 10.0, 210000.0, 0.3, 100.0
+    exact = P * L ** 3 / (3 * E * h ** 4 / 12) + P * L / (5 / 6 * E / (2 * (1 + nu)) * h * h)
+    src = _box_stl(tmp_path / "beam.stl", L, h, h)
+    tip = {}
+    for order in (1, 2):
+        out = tmp_path / f"beam{order}.inp"
+        r = _run(hexdom_bin, "mesh", src, "-o", out, "--size", "5", "--order", order)
+        assert r.returncode == 0, r.stderr
+        import meshio
+        X = meshio.read(out).points
+        clamped = np.flatnonzero(np.abs(X[:, 0]) < 1e-9) + 1
+        end = np.flatnonzero(np.abs(X[:, 0] - L) < 1e-9) + 1
+        deck = out.read_text().replace("*NODE\n", "*NODE, NSET=NALL\n", 1)
+        deck += ("*NSET, NSET=CLAMPED\n" + "".join(f"{i},\n" for i in clamped) +
+                 "*NSET, NSET=TIP\n" + "".join(f"{i},\n" for i in end) +
+                 f"*MATERIAL, NAME=STEEL\n*ELASTIC\n{E}, {nu}\n*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n"
+                 "*STEP\n*STATIC\n*BOUNDARY\nCLAMPED, 1, 3, 0.\n*CLOAD\n" +
+                 "".join(f"{i}, 3, {P / len(end)!r}\n" for i in end) + "*NODE PRINT, NSET=TIP\nU\n*END STEP\n")
+        work = tmp_path / f"ccx{order}"
+        work.mkdir()
+        (work / "job.inp").write_text(deck)
+        r = subprocess.run(["ccx", "job"], cwd=work, capture_output=True, text=True)
+        assert r.returncode == 0 and "Job finished" in r.stdout, r.stdout[-2000:]
+        uz = [float(line.split()[3]) for line in (work / "job.dat").read_text().splitlines()
+              if len(line.split()) == 4 and line.split()[0].isdigit()]
+        assert len(uz) == len(end)
+        tip[order] = float(np.mean(uz))
+    print(f"cantilever tip: exact {exact:.5f}, C3D8 {tip[1]:.5f} ({tip[1] / exact - 1:+.2%}), "
+          f"C3D20 {tip[2]:.5f} ({tip[2] / exact - 1:+.2%})")
+    assert abs(tip[2] / exact - 1) <= 0.01
+    assert tip[1] / exact - 1 < -0.05
