@@ -7,7 +7,7 @@ HEXDOM_DATA ?= $(abspath $(CURDIR)/../shared/data)
 FREECAD_MOD ?= $(HOME)/.local/share/FreeCAD/Mod/HexDom
 export HEXDOM_DATA
 
-.PHONY: all deps build test test-cpp test-python test-freecad demo install bench clean
+.PHONY: all deps build test test-cpp test-python test-freecad demo install bench clean sanitize fuzz
 
 all: build
 
@@ -40,6 +40,24 @@ install: build
 
 bench: build
 	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) bench/bench_io_quality.py
+
+# The C++ suites with AddressSanitizer and UndefinedBehaviorSanitizer (any report fails a test).
+sanitize: deps
+	@cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXDOM_SANITIZE=ON -DHEXDOM_BUILD_PYTHON=OFF \
+	  > build-sanitize.cmake.log 2>&1 || (cat build-sanitize.cmake.log; exit 1)
+	@cmake --build build-sanitize -j $(JOBS)
+	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
+# The readers' libFuzzer targets (clang, sanitizers built in), a short run each from the committed
+# seeds; bench/fuzz_campaign.sh build-fuzz 1000000 is the long campaign.
+FUZZ_RUNS ?= 20000
+fuzz: deps
+	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXDOM_FUZZ=ON \
+	  -DHEXDOM_BUILD_TESTS=OFF -DHEXDOM_BUILD_PYTHON=OFF -DHEXDOM_WITH_CAD=OFF > build-fuzz.cmake.log 2>&1 \
+	  || (cat build-fuzz.cmake.log; exit 1)
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_k fuzz_vtk fuzz_stl fuzz_obj fuzz_corner_points \
+	  fuzz_sharp_nodes fuzz_manual_labels
+	bash bench/fuzz_campaign.sh build-fuzz $(FUZZ_RUNS)
 
 clean:
 	rm -rf $(BUILD) $(BUILD).cmake.log

@@ -77,25 +77,33 @@ def test_unsupported_cell_type_is_refused():
 
 
 def test_foreign_ids_and_quadratic_tets_are_read():
-    """A FemMesh from elsewhere (Gmsh, Netgen): sparse ids, quadratic elements."""
+    """A FemMesh from elsewhere (Gmsh, Netgen): sparse ids, quadratic elements (SMDS order: the
+    corners, then the mid-edge nodes of s0s1, s1s2, s2s0, s0s3, s1s3, s2s3)."""
     fem = Fem.FemMesh()
     pts = {10: (0, 0, 0), 20: (1, 0, 0), 30: (0, 1, 0), 40: (0, 0, 1)}
     for nid, p in pts.items():
         fem.addNode(*p, nid)
-    mids = {}
-    for k, (a, b) in enumerate([(10, 20), (20, 30), (30, 10), (10, 40), (20, 40), (30, 40)]):
-        nid = 100 + k
-        mid = [(pa + pb) / 2 for pa, pb in zip(pts[a], pts[b])]
-        fem.addNode(*mid, nid)
-        mids[(a, b)] = nid
     smds_corners = [10, 30, 20, 40]  # VTK tet 10 20 30 40 in SMDS order
+    s = smds_corners
+    mids = {}
+    for k, (a, b) in enumerate([(s[0], s[1]), (s[1], s[2]), (s[2], s[0]), (s[0], s[3]), (s[1], s[3]), (s[2], s[3])]):
+        nid = 100 + k
+        fem.addNode(*[(pa + pb) / 2 for pa, pb in zip(pts[a], pts[b])], nid)
+        mids[(a, b)] = nid
     fem.addVolume(smds_corners + list(mids.values()), 7)
     mesh, node_ids, cell_ids = femmesh.from_femmesh(fem, with_ids=True)
     assert cell_ids.tolist() == [7]
-    assert mesh.types.tolist() == [core.TET]
-    corners = [int(node_ids[i]) for i in mesh.cells[0, :4]]
-    assert corners == [10, 20, 30, 40]
-    assert core.cell_metrics(mesh)[2][0] == pytest.approx(1.0 / 6.0)
+    assert mesh.types.tolist() == [core.TET10]
+    ids = [int(node_ids[i]) for i in mesh.cells[0, :10]]
+    assert ids[:4] == [10, 20, 30, 40]
+    # Each mid-edge node is on its VTK edge: (0,1) (1,2) (2,0) (0,3) (1,3) (2,3).
+    for k, (i, j) in enumerate([(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]):
+        a, b = ids[i], ids[j]
+        assert ids[4 + k] == mids.get((a, b), mids.get((b, a)))
+    assert core.quality_report(mesh)["total_volume"] == pytest.approx(1.0 / 6.0)
+    corners = femmesh.from_femmesh(fem, corners_only=True)
+    assert corners.types.tolist() == [core.TET]
+    assert core.cell_metrics(corners)[2][0] == pytest.approx(1.0 / 6.0)
 
 
 def test_pyramids_from_elsewhere_are_refused():
