@@ -46,7 +46,8 @@ sanitize: deps
 	@cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXDOM_SANITIZE=ON -DHEXDOM_BUILD_PYTHON=OFF \
 	  > build-sanitize.cmake.log 2>&1 || (cat build-sanitize.cmake.log; exit 1)
 	@cmake --build build-sanitize -j $(JOBS)
-	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitize/lsan.supp ctest --output-on-failure -j $(JOBS)
 
 # The readers' libFuzzer targets (clang, sanitizers built in), a short run each from the committed
 # seeds; bench/fuzz_campaign.sh build-fuzz 1000000 is the long campaign.

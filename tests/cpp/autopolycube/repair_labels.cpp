@@ -51,6 +51,22 @@ TEST(ChartProblems, EachKindIsFoundAndNamed) {
   EXPECT_FALSE(problems_of(lens).empty());
 }
 
+// Found by AddressSanitizer (session 18): the turning of a chart's loops was computed along the
+// axis "3 - a - b" of each curve's two labels, which for opposite labels (one axis) is 3 or -1,
+// and read and wrote past the arrays. Such a chart is reported as OppositeNeighbours only.
+TEST(ChartProblems, AChartBesideItsOppositeIsNotJudgedByItsTurning) {
+  auto s = test::cell_surface({{0, 0, 0}}, 4);
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(1.0, 0.5, 0.9), Eigen::Vector3d(0.5, 0.5, 1.0)}) {
+    auto opposite = s;
+    for (int f : near(s, p, 0.12)) opposite.patch(f) = opposite.patch(f) % 2 ? opposite.patch(f) + 1 : opposite.patch(f) - 1;
+    const auto ps = problems_of(opposite);
+    EXPECT_TRUE(has(ps, autopolycube::ProblemKind::OppositeNeighbours));
+    for (const auto& pr : ps)
+      if (pr.kind == autopolycube::ProblemKind::BadTurning)
+        for (int c : pr.charts) EXPECT_GE(c, 0) << pr.message;
+  }
+}
+
 TEST(RepairLabels, IslandJoinsItsSurroundings) {
   auto s = test::cell_surface({{0, 0, 0}}, 4);
   auto bad = s;

@@ -19,11 +19,12 @@ std::string decode_base64(const std::string& s) {
     return c == '+' ? 62 : c == '/' ? 63 : -1;
   };
   std::string out;
-  int buf = 0, bits = 0;
+  uint32_t buf = 0;  // only its low bits matter: unsigned, so the shift may drop the high ones
+  int bits = 0;
   for (char c : s) {
     int v = val(c);
     if (v < 0) continue;
-    buf = (buf << 6) | v;
+    buf = (buf << 6) | static_cast<uint32_t>(v);
     bits += 6;
     if (bits >= 8) {
       bits -= 8;

@@ -158,8 +158,18 @@ std::vector<ChartProblem> chart_problems(const mesh::SurfaceMesh& s, const Chart
     u(ax) = (d >= 0) != rev ? 1 : -1;
     return u;
   };
+  // A curve between opposite labels (reported above) runs along no axis: the loops it is on have no
+  // turning to judge.
+  auto along_an_axis = [&](int signed_curve) {
+    const auto& cv = g.curves[signed_curve < 0 ? ~signed_curve : signed_curve];
+    return (g.label[cv.left] - 1) / 2 != (g.label[cv.right] - 1) / 2;
+  };
   for (int c = 0; c < g.num_charts(); ++c) {
     if (!std::all_of(g.loops[c].begin(), g.loops[c].end(), [](const auto& l) { return l.corners.size() >= 4; })) continue;
+    if (!std::all_of(g.loops[c].begin(), g.loops[c].end(), [&](const auto& l) {
+          return std::all_of(l.curves.begin(), l.curves.end(), along_an_axis);
+        }))
+      continue;
     const int a = (g.label[c] - 1) / 2, sg = g.label[c] % 2 == 1 ? 1 : -1, b = (a + 1) % 3, cc = (a + 2) % 3;
     int outer = 0;
     bool bad = false;
