@@ -5,6 +5,7 @@
 # executions, their rate and the findings (crash-* / leak-* / timeout-* files, kept in OUT);
 # exits 1 when any reader has a finding.
 #   bench/fuzz_campaign.sh BUILD_DIR [RUNS] [OUT]     (make fuzz: build-fuzz, 20000 runs)
+# READERS="k vtk" runs only those (several campaigns with disjoint READERS can share the cores).
 set -u
 BUILD=${1:?build directory with fuzz/fuzz_<reader>}
 RUNS=${2:-1000000}
@@ -15,6 +16,7 @@ found=0
 printf '%-15s %10s %8s %9s %s\n' reader executions "exec/s" seconds findings
 for target in "$BUILD"/fuzz/fuzz_*; do
   reader=${target##*/fuzz_}
+  if [ -n "${READERS:-}" ] && [[ " $READERS " != *" $reader "* ]]; then continue; fi
   mkdir -p "$OUT/$reader/corpus" "$OUT/$reader/findings"
   start=$(date +%s.%N)
   HEXDOM_FUZZ_DIR=$OUT/$reader ASAN_OPTIONS=detect_leaks=1 "$target" -runs="$RUNS" -max_len=4096 -timeout=10 \
