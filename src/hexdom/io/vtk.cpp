@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "hexdom/common/error.h"
+#include "hexdom/io/cell_assembly.h"
 #include "hexdom/io/text.h"
 #include "hexdom/mesh/second_order.h"
 
@@ -40,6 +41,7 @@ class Scanner {
 
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, line_, what); }
   [[noreturn]] void fail_at(long line, const std::string& what) const { throw InputError(path_, line, what); }
+  const std::string& path() const { return path_; }
 
   // Next blank-separated token; "" at end of file.
   std::string token() {
@@ -244,28 +246,12 @@ class VtkReader {
       sc.fail_at(types_line ? types_line : sc.line_no(), "CELL_TYPES count " + std::to_string(types.size()) +
                                                              " differs from CELLS count " + std::to_string(ncells));
     if (!region.empty() && static_cast<long>(region.size()) != ncells) region.clear();
-    mesh::MeshBuilder b;
-    for (long c = 0; c < ncells; ++c) add_cell(b, c);
+    CellAssembly cells(sc.path(), "cell");
+    for (long c = 0; c < ncells; ++c) add_cell(cells, c);
     Eigen::MatrixXd V(npts, 3);
     for (long i = 0; i < npts; ++i)
       for (int k = 0; k < 3; ++k) V(i, k) = pts[3 * i + k];
-    mesh::Mesh m = b.finish(std::move(V));
-    if (first_second_order >= 0) {
-      for (long c = 0; c < ncells; ++c)
-        if (mids[c][0] < 0)
-          sc.fail_at(type_lines.at(c) ? type_lines.at(c) : cell_line(c, -1),
-                     "cell " + std::to_string(c) + " is first order, but cell " + std::to_string(first_second_order) +
-                         " is second order: a mesh of mixed order is not supported");
-      m.mid.resize(ncells, 12);
-      for (long c = 0; c < ncells; ++c)
-        for (int e = 0; e < 12; ++e) m.mid(c, e) = mids[c][e];
-      try {
-        mesh::mid_edge_ends(m);
-      } catch (const GeometryError& e) {
-        sc.fail(e.what());
-      }
-    }
-    return m;
+    return cells.finish(std::move(V));
   }
 
  private:
@@ -444,20 +430,18 @@ class VtkReader {
     return cell_lines.at(static_cast<size_t>(offsets[c] + j));
   }
 
-  // Cell c into the builder, after checking its nodes, type and region id.
-  void add_cell(mesh::MeshBuilder& b, long c) {
+  // Cell c into the assembly, after checking its nodes and region id.
+  void add_cell(CellAssembly& cells, long c) {
     const long k = static_cast<long>(offsets[c + 1] - offsets[c]);
-    int n[20];
     if (k < 3 || k > 20) sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " has " + std::to_string(k) + " nodes");
     for (long j = 0; j < k; ++j) {
       int64_t v = conn[offsets[c] + j];
       if (v < 0 || v >= npts)
         sc.fail_at(cell_line(c, j), "cell " + std::to_string(c) + " refers to point " + std::to_string(v) +
                                         ", but there are " + std::to_string(npts) + " points");
-      n[j] = static_cast<int>(v);
     }
     const int64_t t64 = types[c];
-    int t = t64 < -1 || t64 > 255 ? 0 : static_cast<int>(t64);
+    int t = static_cast<int>(std::clamp<int64_t>(t64, INT32_MIN, INT32_MAX));
     if (t == -1) t = k == 3 ? 5 : k == 4 ? 9 : 0;  // POLYDATA polygons
     int rid = 0;
     if (!region.empty()) {
@@ -470,39 +454,7 @@ class VtkReader {
       rid = static_cast<int>(r);
     }
     const long tline = type_lines.at(c) ? type_lines.at(c) : cell_line(c, -1);
-    CellType ct;
-    const bool second = t == 24 || t == 25 || t == 26;
-    try {
-      ct = second ? mesh::first_order_of_vtk(t) : mesh::cell_type_from_vtk(t);
-    } catch (const std::invalid_argument&) {
-      sc.fail_at(tline, "cell " + std::to_string(c) + ": unsupported VTK cell type " + std::to_string(t64) +
-                            " (supported: 5 triangle, 9 quad, 10 tet, 12 hex, 13 wedge, 24 tet10, 25 hex20, 26 wedge15)");
-    }
-    const int expected = mesh::node_count(ct) + (second ? mesh::edge_count(ct) : 0);
-    if (expected != k)
-      sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + " of type " + std::to_string(t) + " has " +
-                                       std::to_string(k) + " nodes, expected " + std::to_string(expected));
-    mids.emplace_back();
-    mids.back().fill(-1);
-    if (second) {
-      if (first_second_order < 0) first_second_order = c;
-      std::copy(n + mesh::node_count(ct), n + k, mids.back().begin());
-      b.add(ct, n, rid);
-    } else if (first_second_order >= 0) {
-      sc.fail_at(tline, "cell " + std::to_string(c) + " is first order, but cell " + std::to_string(first_second_order) +
-                            " is second order: a mesh of mixed order is not supported");
-    } else if (ct == CellType::Hex) {
-      std::array<int, 8> h;
-      std::copy(n, n + 8, h.begin());
-      try {
-        auto d = mesh::classify_hex_nodes(h);
-        b.add(d.type, d.nodes.data(), rid);
-      } catch (const std::invalid_argument& e) {
-        sc.fail_at(cell_line(c, -1), "cell " + std::to_string(c) + ": " + e.what());
-      }
-    } else {
-      b.add(ct, n, rid);
-    }
+    cells.add(t, &conn[offsets[c]], static_cast<int>(k), rid, c, cell_line(c, -1), tline);
   }
 
   Scanner& sc;
@@ -516,8 +468,6 @@ class VtkReader {
   // 5.1 layout: the connectivity array), offsets (5.1), cell types, region ids.
   LineIndex cell_lines, offset_lines, type_lines, region_lines;
   bool classic_cells = true;
-  std::vector<std::array<int, 12>> mids;  // per cell: its mid-edge nodes (second order), else -1
-  long first_second_order = -1;          // the first second-order cell, or -1
   long types_line = 0;
   int region_score = 1000;
   long ncell_data = -1;
