@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config
-  libeigen3-dev pybind11-dev libcli11-dev libgtest-dev
+  libeigen3-dev pybind11-dev libcli11-dev libgtest-dev zlib1g-dev
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev
   libocct-foundation-dev libocct-ocaf-dev libocct-visualization-dev libtbb-dev
   python3-dev python3-numpy python3-pytest python3-vtk9 python3-meshio

@@ -10,7 +10,7 @@ void add_convert(CLI::App& app) {
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto binary = std::make_shared<bool>(false);
-  cmd->add_option("-i,--input", *in, "input mesh (.k, .vtk, .stl, .obj)")->required();
+  cmd->add_option("-i,--input", *in, "input mesh (.k, .vtk, .vtu, .inp, .stl, .obj)")->required();
   cmd->add_option("-o,--output", *out, "output mesh (.k, .vtk, .vtu, .inp, .stl, .obj)")->required();
   cmd->add_flag("--binary", *binary, "write legacy VTK in binary");
   cmd->callback([=] {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "hexdom/common/error.h"
+#include "hexdom/io/inp.h"
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/surface_formats.h"
@@ -25,7 +26,8 @@ namespace {
 const std::string kReader = HEXDOM_STR(HEXDOM_FUZZ_READER);
 
 std::string extension() {
-  if (kReader == "k" || kReader == "vtk" || kReader == "stl" || kReader == "obj") return "." + kReader;
+  if (kReader == "k" || kReader == "vtk" || kReader == "vtu" || kReader == "inp" || kReader == "stl" || kReader == "obj")
+    return "." + kReader;
   return ".txt";
 }
 
@@ -48,6 +50,8 @@ void read() {
   using namespace hexdom;
   if (kReader == "k") mesh::validate(io::read_k(scratch()).mesh);
   else if (kReader == "vtk") mesh::validate(io::read_vtk(scratch()));
+  else if (kReader == "vtu") mesh::validate(io::read_vtu(scratch()));
+  else if (kReader == "inp") mesh::validate(io::read_inp(scratch()));
   else if (kReader == "stl") check_surface(io::read_stl(scratch()));
   else if (kReader == "obj") check_surface(io::read_obj(scratch()));
   else if (kReader == "corner_points") io::read_corner_points(scratch());

@@ -40,6 +40,21 @@ VTK
 cp "$T/two.vtk" "$C/vtk/two_ascii.vtk"
 "$HEXDOM" convert -i "$T/two.vtk" -o "$C/vtk/two_binary.vtk" --binary 2>/dev/null
 "$HEXDOM" convert -i "$T/two.vtk" -o "$C/k/two.k" 2>/dev/null
+mkdir -p "$C/vtu" "$C/inp"
+"$HEXDOM" convert -i "$T/two.vtk" -o "$C/vtu/two_base64.vtu" 2>/dev/null
+"$HEXDOM" convert -i "$T/two.vtk" -o "$C/inp/two.inp" 2>/dev/null
+# VTK's own layouts: ascii, and appended raw data compressed with zlib.
+python3 - "$T/two.vtk" "$C/vtu" <<'PY'
+import sys, vtk
+r = vtk.vtkUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update()
+for name, mode in (("two_ascii.vtu", "ascii"), ("two_appended_zlib.vtu", "appended")):
+    w = vtk.vtkXMLUnstructuredGridWriter(); w.SetInputData(r.GetOutput()); w.SetFileName(sys.argv[2] + "/" + name)
+    if mode == "ascii":
+        w.SetDataModeToAscii()
+    else:
+        w.SetDataModeToAppended(); w.EncodeAppendedDataOff(); w.SetCompressorTypeToZLib()
+    w.Write()
+PY
 # A tetrahedron's surface.
 cat > "$C/obj/tet.obj" <<'OBJ'
 # tetrahedron
@@ -86,6 +101,7 @@ CELLS 1 11
 CELL_TYPES 1
 24
 VTK
+"$HEXDOM" convert -i "$C/vtk/tet10.vtk" -o "$C/inp/tet10.inp" 2>/dev/null
 printf '0 0.0 0.0 0.0\n3 1.0 1.0 1.0\n' > "$C/corner_points/corners.txt"
 printf '# sharp nodes\n0\n1 7\n12\n' > "$C/sharp_nodes/sharp.txt"
 printf '# triangle label\n0 0\n1 5\n\n2 3\n' > "$C/manual_labels/labels.txt"

@@ -4,11 +4,21 @@
 #include <stdexcept>
 
 #include "hexdom/common/error.h"
+#include "hexdom/io/text.h"
 #include "hexdom/mesh/second_order.h"
 
 namespace hexdom::io {
 
 using mesh::CellType;
+
+int region_array_rank(const std::string& name) {
+  static const char* const names[] = {"region", "blockid", "regionid", "gmsh:physical", "medit:ref",
+                                      "cellentityids", "part"};
+  const std::string n = lower(name);
+  for (int i = 0; i < 7; ++i)
+    if (n == names[i]) return i;
+  return 100;
+}
 
 void CellAssembly::fail(long line, long id, const std::string& what) const {
   throw InputError(path_, line, noun_ + " " + std::to_string(id) + ": " + what);

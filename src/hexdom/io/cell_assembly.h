@@ -12,6 +12,11 @@
 
 namespace hexdom::io {
 
+/// How well the name of a one-component cell array says it holds region ids, as the writers around
+/// us name them: 0 "region", then "BlockId", "RegionId", "gmsh:physical", "medit:ref",
+/// "CellEntityIds", "Part" (case-blind); 100 for any other name. Readers keep the best-ranked array.
+int region_array_rank(const std::string& name);
+
 class CellAssembly {
  public:
   /// `path` names the file in messages; `noun` the reader's word for a cell ("cell", "element").

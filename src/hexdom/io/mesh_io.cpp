@@ -42,7 +42,9 @@ mesh::Mesh read_mesh(const std::string& path) {
     case Format::Vtk: return read_vtk(path);
     case Format::Stl: return mesh::from_surface(read_stl(path));
     case Format::Obj: return mesh::from_surface(read_obj(path));
-    default: throw InputError(path, 0, "reading ." + extension(path) + " files is not supported (read .k, .vtk, .stl or .obj)");
+    case Format::Vtu: return read_vtu(path);
+    case Format::Inp: return read_inp(path);
+    default: throw InputError(path, 0, "reading ." + extension(path) + " files is not supported (read .k, .vtk, .vtu, .inp, .stl or .obj)");
   }
 }
 

@@ -8,7 +8,7 @@
 
 namespace hexdom::io {
 
-/// Formats: k, vtk, stl, obj (read); k, vtk, vtu, inp, stl, obj (write).
+/// Formats: k, vtk, vtu, inp, stl, obj (read); the same (write).
 enum class Format { K, Vtk, Vtu, Inp, Stl, Obj };
 
 /// Format from the extension; throws InputError naming the path for an unknown one.

@@ -172,16 +172,6 @@ class Scanner {
   long line_ = 1;
 };
 
-const char* const kRegionNames[] = {"region", "blockid", "regionid", "gmsh:physical", "medit:ref",
-                                    "cellentityids", "part"};
-
-int region_rank(const std::string& name) {
-  std::string n = lower(name);
-  for (int i = 0; i < 7; ++i)
-    if (n == kRegionNames[i]) return i;
-  return 100;
-}
-
 /// Reads the header lines; returns whether the data is binary. Fails unless the file is a legacy
 /// VTK UNSTRUCTURED_GRID or POLYDATA.
 bool read_header(Scanner& sc) {
@@ -376,10 +366,10 @@ class VtkReader {
     LineIndex lines;
     auto v = sc.numbers(static_cast<size_t>(count * ncomp), type, binary, key.c_str(), &lines);
     if (binary) sc.end_binary();
-    if (attr == CellData && ncomp == 1 && region_rank(name) < region_score) {
+    if (attr == CellData && ncomp == 1 && region_array_rank(name) < region_score) {
       region = std::move(v);
       region_lines = std::move(lines);
-      region_score = region_rank(name);
+      region_score = region_array_rank(name);
     }
   }
 
@@ -408,10 +398,10 @@ class VtkReader {
       LineIndex lines;
       auto v = sc.numbers(static_cast<size_t>(ncomp * ntup), type, binary, name.c_str(), &lines);
       if (binary) sc.end_binary();
-      if (attr == CellData && ncomp == 1 && ntup == ncell_data && region_rank(name) < region_score) {
+      if (attr == CellData && ncomp == 1 && ntup == ncell_data && region_array_rank(name) < region_score) {
         region = std::move(v);
         region_lines = std::move(lines);
-        region_score = region_rank(name);
+        region_score = region_array_rank(name);
       }
       // VTK 9 may follow an array by a METADATA block ending at an empty line.
       Scanner probe = sc;

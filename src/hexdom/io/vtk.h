@@ -16,6 +16,14 @@ namespace hexdom::io {
 /// Throws InputError "path:line: ..." for anything malformed or unsupported.
 mesh::Mesh read_vtk(const std::string& path);
 
+/// Reads a VTK XML UnstructuredGrid (.vtu) as VTK and meshio write it: DataArrays in ascii, binary
+/// (base64, inline) or appended (raw or base64) format, header_type UInt32 or UInt64, either byte
+/// order, uncompressed or compressed with vtkZLibDataCompressor; every Piece (their points and cells
+/// one after the other). Cell types, collapsed hexahedra, second order and region ids as read_vtk
+/// (a cell array with one of its region names). Throws InputError "path:line: ..." naming the
+/// element or array for anything malformed or unsupported (other compressors, polyhedra).
+mesh::Mesh read_vtu(const std::string& path);
+
 /// Writes a legacy VTK 4.2 UNSTRUCTURED_GRID with native cell types (a second-order mesh's: 25, 26,
 /// 24) and an int cell array "region".
 void write_vtk(const std::string& path, const mesh::Mesh& mesh, bool binary = false);
