@@ -145,8 +145,8 @@ def check_surface(surface, name="the surface", self_intersection=True):
 def mesh_options():
     """The defaults of `hexdom mesh`'s options, from the core's header (pipeline::MeshCadOptions,
     the CLI's defaults too), by the keyword names of mesh_part and mesh_surface: size, level,
-    method, improve, align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps,
-    threads, target_sj, target_volume, target_edge_ratio."""
+    method, improve, align, snap, polycube_seconds, time_limit, edge_weight, max_relabels,
+    relax_sweeps, threads, target_sj, target_volume, target_edge_ratio."""
     return dict(_hexdom.mesh_options())
 
 
@@ -598,6 +598,16 @@ def _order_args(order):
     return {} if int(order) == 1 else {"order": int(order)}
 
 
+def _time_args(time_limit):
+    """The time_limit= keyword for _hexdom (none for None: the core's default); InputError when
+    negative."""
+    if time_limit is None:
+        return {}
+    if not float(time_limit) >= 0:
+        raise InputError("time_limit must be 0 (no limit) or positive, not {}".format(time_limit))
+    return {"time_limit": float(time_limit)}
+
+
 SIZE_BOUNDS = ("max_size", "min_size", "cells_across", "growth_rate")
 
 
@@ -640,7 +650,7 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                  relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
                  allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
                  method=MESH_OPTIONS["method"], polycube_seconds=None, max_size=None, min_size=None,
-                 cells_across=None, face_sizes=None, growth_rate=None, order=1):
+                 cells_across=None, face_sizes=None, growth_rate=None, order=1, time_limit=None):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -656,7 +666,10 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     {patch id: size}, cell sizes on those patches (`hexdom mesh --face-size`; the overlay path
     then meshes the surface); growth_rate: how fast cells grow from those sizes back (None: the
     core's 3^(1/4); `hexdom mesh --growth-rate`); order: 1 or 2 (hex20 / wedge15 / tet10, the
-    boundary's mid-edge nodes on the surface; `hexdom mesh --order`). Raises
+    boundary's mid-edge nodes on the surface; `hexdom mesh --order`); time_limit: seconds the
+    whole call may take (None: the core's MESH_OPTIONS["time_limit"]; 0: no limit; `hexdom mesh
+    --time-limit`): past it
+    _hexdom.TimeoutError (an Error) naming the step it was in. Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
     them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
     stages made, or None) and ``stage`` (the stage that failed)."""
@@ -668,7 +681,7 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                                  **_method_args(method, polycube_seconds),
                                  **_size_args(max_size=max_size, min_size=min_size,
                                               cells_across=cells_across, growth_rate=growth_rate),
-                                 **_face_size_args(face_sizes), **_order_args(order))
+                                 **_face_size_args(face_sizes), **_order_args(order), **_time_args(time_limit))
     except Error as e:
         _attach_partial(e, _mesh_run)
         raise
@@ -686,7 +699,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
     min_size, cells_across, growth_rate, order (2: hex20 / wedge15 / tet10 with the boundary's
-    mid-edge nodes on the B-rep) go to it, and face_sizes, {FreeCAD face number of the
+    mid-edge nodes on the B-rep), time_limit (seconds for the whole call) go to it, and face_sizes, {FreeCAD face number of the
     solid meshed: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
     likewise along edges (Edge<number>, `--edge-size`); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
@@ -700,7 +713,8 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
-                             "method", "polycube_seconds", "face_sizes", "edge_sizes", "order"} - set(SIZE_BOUNDS)
+                             "method", "polycube_seconds", "face_sizes", "edge_sizes", "order",
+                             "time_limit"} - set(SIZE_BOUNDS)
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
@@ -710,6 +724,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     kwargs.update(_face_size_args(kwargs.pop("face_sizes", None)))
     kwargs.update(_face_size_args(kwargs.pop("edge_sizes", None), "edge_sizes", "edge"))
     kwargs.update(_order_args(kwargs.pop("order", 1)))
+    kwargs.update(_time_args(kwargs.pop("time_limit", None)))
     try:
         r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
                              level=int(level),

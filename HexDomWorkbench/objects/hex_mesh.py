@@ -169,6 +169,12 @@ class HexMesh(BaseHexDomObject):
                             "overlay grid's mesh is taken if the polycube has none that meets the "
                             "targets")
             obj.PolycubeSeconds = float(core.MESH_OPTIONS["polycube_seconds"])
+        if not hasattr(obj, "TimeLimit"):
+            obj.addProperty("App::PropertyFloat", "TimeLimit", "HexDom",
+                            "Pipeline: seconds the whole meshing may take (`hexdom mesh "
+                            "--time-limit`; 0: no limit); past it the run stops with an error "
+                            "naming the step it was in, and the mesh stays as it was")
+            obj.TimeLimit = float(core.MESH_OPTIONS.get("time_limit", 1800.0))
         if not hasattr(obj, "MeshRegionList"):
             obj.addProperty("App::PropertyLinkList", "MeshRegionList", "HexDom",
                             "Pipeline: FreeCAD FEM mesh regions (ObjectsFem.makeMeshRegion(doc, "

@@ -133,6 +133,8 @@ def pipeline_options(mesh, shape=None):
         options["order"] = 2
     if method == "auto" and hasattr(mesh, "PolycubeSeconds"):  # (polycube: no limit, as the CLI)
         options["polycube_seconds"] = float(mesh.PolycubeSeconds)
+    if hasattr(mesh, "TimeLimit"):
+        options["time_limit"] = float(mesh.TimeLimit)
     if shape is not None:
         options.update(region_sizes(mesh, shape))
     return options

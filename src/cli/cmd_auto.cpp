@@ -259,6 +259,10 @@ void add_mesh(CLI::App& app) {
                   "the first tessellation). polycube: no limit unless given, then counted from the start; when it passes "
                   "before there is a mesh, an error (exit 5) and no output file")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--time-limit", a->opt.time_limit,
+                  "seconds the whole run may take (0: no limit); past it the run stops within a fraction of a second "
+                  "with an error naming the step it was in (exit 5) and writes nothing")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   add_size_options(*cmd, a->opt, a->edge_sizes);
   cmd->add_option("--lambda,--edge-weight", a->opt.segment.edge_weight, "segmentation: weight of the edge term")->capture_default_str();
   cmd->add_option("--max-relabels", a->opt.polycube.max_relabels, "charts the label repair may relabel")->capture_default_str();
@@ -333,6 +337,8 @@ void add_mesh(CLI::App& app) {
       pipeline::MeshCadRun cr;
       try {
         pipeline::mesh_cad_part(shape, co, &cr);
+      } catch (const TimeLimitError&) {
+        throw;  // the run was stopped, not a stage: nothing to inspect
       } catch (const Error&) {
         run = std::move(cr.run);
         surface = std::move(cr.surface);
@@ -355,6 +361,8 @@ void add_mesh(CLI::App& app) {
       surface = io::read_surface(a->in);
       try {
         pipeline::mesh_surface(surface, a->opt, &run);
+      } catch (const TimeLimitError&) {
+        throw;
       } catch (const Error&) {
         failed();
         throw;

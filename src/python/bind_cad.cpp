@@ -154,6 +154,7 @@ void bind_mesh_cad(py::module_& m) {
           d["cells_across"] = o.across_thin;
           d["growth_rate"] = o.overlay.growth_rate;
           d["order"] = o.order;
+          d["time_limit"] = o.time_limit;
           d["target_sj"] = o.target_sj;
           d["target_volume"] = o.target_volume;
           d["target_edge_ratio"] = o.target_edge_ratio;
@@ -162,13 +163,14 @@ void bind_mesh_cad(py::module_& m) {
         "The defaults of `hexdom mesh`'s options (pipeline::MeshCadOptions, the CLI's defaults), by the keyword\n"
         "names of mesh_cad and mesh_surface: size (0: the bounding-box diagonal / 30), max_size, min_size (0: no\n"
         "bound), cells_across, growth_rate, order, level, method, improve,\n"
-        "align, snap, polycube_seconds, edge_weight, max_relabels, relax_sweeps, threads (0: one per core), and\n"
+        "align, snap, polycube_seconds, time_limit, edge_weight, max_relabels, relax_sweeps, threads (0: one per core), and\n"
         "the targets the candidates are measured against: target_sj, target_volume, target_edge_ratio.");
   m.def("mesh_cad",
         [module](const std::string& source, double size, int solid, bool snap, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes, double growth_rate, const std::map<int, double>& edge_sizes, int order) {
+           const std::map<int, double>& face_sizes, double growth_rate, const std::map<int, double>& edge_sizes, int order,
+           double time_limit) {
           pipeline::MeshCadOptions opt;
           for (const auto& [edge, size] : edge_sizes) {
             if (edge < 1 || !(size > 0))
@@ -179,7 +181,8 @@ void bind_mesh_cad(py::module_& m) {
           opt.tessellation.size = size;
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
-                                          polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order);
+                                          polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order,
+                                          time_limit);
           opt.snap = snap;
           pipeline::MeshCadRun r;
           try {
@@ -201,9 +204,10 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
         py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.mesh.overlay.growth_rate,
         py::arg("edge_sizes") = std::map<int, double>{}, py::arg("order") = defaults.mesh.order,
+        py::arg("time_limit") = defaults.mesh.time_limit,
         (mesh_cad_doc() + kSizeBoundsDoc +
          "\nedge_sizes: {edge number: size}, cell sizes along CAD edges (FreeCAD's Edge<number>), as `hexdom mesh "
-         "--edge-size`." + kOrderDoc)
+         "--edge-size`." + kOrderDoc + kTimeLimitDoc)
             .c_str());
 }
 

@@ -17,6 +17,7 @@ pybind11::dict run_dict(const pipeline::MeshSurfaceRun& r);
 /// polycube_seconds: None keeps the default budget (auto: MeshSurfaceOptions::polycube_seconds;
 /// polycube: none); a number sets it, and with method "polycube" the deadline from now.
 /// face_sizes: cell size per face number (overlay::LocalSize), checked against the part later.
+/// time_limit: seconds the whole call may take (MeshSurfaceOptions::time_limit; 0: no limit).
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame,
@@ -24,7 +25,8 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                   std::optional<double> polycube_seconds = std::nullopt,
                                                   double max_size = 0, double min_size = 0, double cells_across = 2,
                                                   const std::map<int, double>& face_sizes = {},
-                                                  double growth_rate = overlay::kGrowthRate, int order = 1);
+                                                  double growth_rate = overlay::kGrowthRate, int order = 1,
+                                                  double time_limit = 0);
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);
@@ -35,6 +37,8 @@ extern const char* const kSizeBoundsDoc;
 pybind11::dict second_order_dict(const optimize::SecondOrderReport& report);
 /// The order= keyword's documentation, shared by mesh_surface and mesh_cad.
 extern const char* const kOrderDoc;
+/// The time_limit= keyword's documentation, shared by mesh_surface and mesh_cad.
+extern const char* const kTimeLimitDoc;
 void bind_segmentation(pybind11::module_& m);
 void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);

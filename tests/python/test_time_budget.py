@@ -64,3 +64,26 @@ def test_a_negative_budget_is_refused(hx):
 def test_the_keyword_is_documented(hx):
     for f in (hx.mesh_surface, hx.mesh_cad):
         assert "polycube_seconds" in f.__doc__
+
+
+# time_limit=: the whole call's limit (`hexdom mesh --time-limit`), through _hexdom and core.
+
+
+def test_the_time_limit_stops_mesh_cad_and_mesh_surface_naming_the_step(hx, core, budget_run):
+    import time
+    assert hx.mesh_options()["time_limit"] == 1800  # the default, as `hexdom mesh --help` shows
+    start = time.monotonic()
+    with pytest.raises(hx.TimeoutError, match=r"\(time limit of the run\): stopped after the time budget of 0.5 s"):
+        hx.mesh_cad(str(STEP), method="overlay", size=0.8, time_limit=0.5)
+    assert time.monotonic() - start < 3.0
+    V, F, face = budget_run["surface"]
+    with pytest.raises(hx.TimeoutError, match="time limit of the run"):
+        hx.mesh_surface(V, F, face, method="overlay", size=0.4, time_limit=0.3)
+    with pytest.raises(hx.InputError, match="time_limit"):
+        hx.mesh_cad(str(STEP), time_limit=-1.0)
+    # core passes it on; the error is an Error carrying the stage, as any stage failure.
+    with pytest.raises(core.Error, match="time limit of the run") as e:
+        core.mesh_part(STEP, method="overlay", size=0.8, time_limit=0.5)
+    assert hasattr(e.value, "stage")
+    for f in (hx.mesh_surface, hx.mesh_cad):
+        assert "time_limit" in f.__doc__

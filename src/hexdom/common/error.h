@@ -57,6 +57,13 @@ class TimeoutError : public Error {
   bool cancelled_;
 };
 
+/// The whole call ran past its time limit (run_with_time_limit, the program's --time-limit): a
+/// TimeoutError whose `where` is the step that was running, followed by "(time limit of the run)".
+class TimeLimitError : public TimeoutError {
+ public:
+  TimeLimitError(const std::string& step, double budget) : TimeoutError(step + " (time limit of the run)", budget) {}
+};
+
 /// Optional progress and warning sink carried in options structs. Level: 0 info, 1 warning.
 using LogCallback = std::function<void(int level, const std::string& message)>;
 

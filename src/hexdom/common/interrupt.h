@@ -22,7 +22,12 @@ namespace hexdom {
 /// let it pass, so an interrupted call ends at once.
 class InterruptedError : public std::runtime_error {
  public:
-  explicit InterruptedError(const std::string& where) : std::runtime_error(where + ": interrupted") {}
+  explicit InterruptedError(const std::string& where) : std::runtime_error(where + ": interrupted"), where_(where) {}
+  /// The step that stopped.
+  const std::string& where() const { return where_; }
+
+ private:
+  std::string where_;
 };
 
 class Interrupt {

@@ -9,6 +9,7 @@
 #include "hexdom/cad/second_order.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/time_limit.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
 #include "hexdom/segmentation/cube_frame.h"
@@ -74,6 +75,14 @@ MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& o
 }  // namespace
 
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
+  if (opt.mesh.time_limit > 0) {
+    MeshCadOptions inner = opt;
+    inner.mesh.time_limit = 0;
+    MeshCadRun local;
+    MeshCadRun& r = progress ? *progress : local;
+    run_with_time_limit(opt.mesh.time_limit, [&] { mesh_cad_part(shape, inner, &r); });
+    return r;
+  }
   check_order(opt.mesh.order);
   if (opt.mesh.order == 1) return mesh_cad_first_order(shape, opt, progress);
   MeshCadOptions first = opt;

@@ -66,7 +66,8 @@ struct MeshCadRun {
 /// Once it has passed no further tessellation is tried for the polycube path (the log says so) and
 /// the best mesh so far is kept; a TimeoutError is thrown only with Method::Polycube and a deadline,
 /// when it passes on the first tessellation before any mesh exists. InterruptedError once the
-/// calling thread's interrupt is raised (common/interrupt.h), as mesh_surface.
+/// calling thread's interrupt is raised (common/interrupt.h), as mesh_surface; TimeoutError past
+/// options.mesh.time_limit (the whole call: tessellations, paths, snap, second order).
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& options = {}, MeshCadRun* progress = nullptr);
 
 }  // namespace hexdom::pipeline

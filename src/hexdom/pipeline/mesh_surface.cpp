@@ -10,6 +10,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/time_limit.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
@@ -310,6 +311,14 @@ void check_order(int order) {
 }
 
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOptions& opt, MeshSurfaceRun* progress) {
+  if (opt.time_limit > 0) {
+    MeshSurfaceOptions inner = opt;
+    inner.time_limit = 0;
+    MeshSurfaceRun local;
+    MeshSurfaceRun& r = progress ? *progress : local;
+    run_with_time_limit(opt.time_limit, [&] { mesh_surface(input, inner, &r); });
+    return r;
+  }
   check_order(opt.order);
   if (opt.order == 2) {
     MeshSurfaceOptions first = opt;

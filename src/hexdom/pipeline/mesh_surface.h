@@ -49,6 +49,11 @@ struct MeshSurfaceOptions {
   /// the module's polycube_seconds=, when given with the polycube method, set `deadline` from it.
   /// Method::Overlay: not used (the overlay path has no budget).
   double polycube_seconds = 20;
+  /// Seconds of wall time the whole call (mesh_surface, mesh_cad_part) may take; 0: no limit.
+  /// Past it the call stops within a fraction of a second and throws TimeoutError naming the step
+  /// that was running (common/time_limit.h); nothing is returned. The default, half an hour, is
+  /// far above what any part has needed: a bound against a run that never ends, not a budget.
+  double time_limit = 1800;
   /// Method::Auto (pipeline/choice.h): seconds from the start of the choice after which a path
   /// that still runs is stopped when the other one has a mesh that meets every target
   /// (meets_path_targets): the polycube's first candidate when the overlay's mesh does (it keeps
@@ -228,7 +233,7 @@ double element_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& 
 /// remain are reported in `quality`, not thrown. Throws what the stages throw; with Method::Polycube
 /// and a deadline (see polycube_seconds) TimeoutError when it passes before a mesh exists;
 /// InterruptedError, within a fraction of a second, once the calling thread's interrupt is raised
-/// (common/interrupt.h; both paths under auto stop).
+/// (common/interrupt.h; both paths under auto stop); TimeoutError past options.time_limit.
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
 

@@ -26,7 +26,7 @@ import FreeCAD
 import Part
 
 import HexDomWorkbench as hexdom
-from HexDomWorkbench import api
+from HexDomWorkbench import api, core
 from HexDomWorkbench.objects import hex_mesh
 
 import fc_testdata
@@ -256,3 +256,20 @@ def test_stage_by_stage_on_the_pipeline_s_stages_is_the_pipeline_s_mesh(doc, cor
     api.recompute_document(doc, [mesh])
     assert not mesh.Pipeline and mesh.MeshingPath == path
     _assert_same(_fc_mesh(mesh), first + (None, None), part.Shape.BoundBox.DiagonalLength)
+
+
+def test_the_time_limit_ends_the_meshing_like_a_stage_failure(doc):
+    """TimeLimit (`hexdom mesh --time-limit`, 1800 s by default): a recompute that runs past it
+    fails as a stage does, naming the step and the limit, and leaves the mesh it had."""
+    part = doc.addObject("Part::Feature", "Bracket")
+    part.Shape = Part.read(fc_testdata.example_path("bracket.step"))
+    doc.recompute()
+    objs = hexdom.mesh_part(doc, part, allow_inverted=True, polycube_seconds=0)
+    mesh = objs["mesh"]
+    assert mesh.TimeLimit == core.MESH_OPTIONS["time_limit"] == 1800
+    before = _fc_mesh(mesh)
+    mesh.Method, mesh.Size, mesh.TimeLimit = "overlay", 0.8, 0.5  # several seconds of work
+    with pytest.raises(api.RecomputeError, match=r"time limit of the run\): stopped after the time budget of 0.5 s"):
+        api.recompute_document(doc, [mesh])
+    assert "Invalid" in mesh.State or "Error" in mesh.State
+    np.testing.assert_array_equal(_fc_mesh(mesh)[0], before[0])
