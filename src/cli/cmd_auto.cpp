@@ -229,17 +229,17 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
 }
 
-void add_mesh(CLI::App& app) {
-  auto* cmd = app.add_subcommand("mesh", kMeshHelp);
-  struct Args {
-    std::string in, out, report;
-    bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
-    int solid = 0;
-    std::string method = "auto";
-    std::vector<std::pair<int, double>> edge_sizes;
-    pipeline::MeshSurfaceOptions opt;
-  };
-  auto a = std::make_shared<Args>();
+// `hexdom mesh`'s arguments and options.
+struct MeshArgs {
+  std::string in, out, report;
+  bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
+  int solid = 0;
+  std::string method = "auto";
+  std::vector<std::pair<int, double>> edge_sizes;
+  pipeline::MeshSurfaceOptions opt;
+};
+
+void add_mesh_options(CLI::App* cmd, const std::shared_ptr<MeshArgs>& a) {
   cmd->add_option("input", a->in, "closed triangle surface (.k, .stl, .obj, .vtk) or CAD part (.step, .stp, .iges, .igs, .brep, .brp)")
       ->required();
   cmd->add_option("-o,--output", a->out, "mesh to write (.vtk, .vtu, .inp, .k)")->required();
@@ -275,7 +275,7 @@ void add_mesh(CLI::App& app) {
                 "segment and build the polycube in the model's axes, not in the frame the faces fit best (a part "
                 "lying at an angle is turned into that frame and back; the default size is that frame's box diagonal / 30)");
   cmd->add_flag("--no-snap", a->no_snap, "CAD files: leave the boundary nodes on the tessellation instead of the B-rep");
-  cmd->add_option("--solid", a->solid, "CAD files: which solid (1-based); default: the first")->check(CLI::PositiveNumber);
+  cmd->add_option("--solid", a->solid, "CAD files: mesh only this solid (1-based); default: every solid, solid k in region k")->check(CLI::PositiveNumber);
   cmd->add_flag("--keep", a->keep,
                 "also write <output stem>_surface.k (the triangle surface meshed: the tessellation kept, or the "
                 "input), and from the polycube path _labels.k, _structure.k, _patches.k and _polycube.vtk (on failure "
@@ -283,6 +283,12 @@ void add_mesh(CLI::App& app) {
   cmd->add_option("--report", a->report, "also write the final quality report as JSON to this file");
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
   cmd->add_flag("-v,--verbose", a->opt.verbose, "also print the stages' own messages");
+}
+
+void add_mesh(CLI::App& app) {
+  auto* cmd = app.add_subcommand("mesh", kMeshHelp);
+  auto a = std::make_shared<MeshArgs>();
+  add_mesh_options(cmd, a);
   cmd->callback([a, cmd] {
     io::format_of(a->out);
     a->opt.log = print_log;
@@ -325,7 +331,8 @@ void add_mesh(CLI::App& app) {
       cad::ReadOptions ro;
       ro.solid = a->solid;
       ro.log = print_log;
-      shape = cad::read_shape(a->in, ro);
+      const std::vector<cad::Shape> solids = cad::read_solids(a->in, ro);
+      shape = solids.front();
       pipeline::MeshCadOptions co;
       co.tessellation.size = a->opt.size;
       co.tessellation.size_in_frame = !a->no_align;
@@ -334,27 +341,50 @@ void add_mesh(CLI::App& app) {
       co.snap = !a->no_snap;
       co.edge_sizes = a->edge_sizes;
       if (a->opt.verbose) co.snap_options.log = print_log;
-      pipeline::MeshCadRun cr;
-      try {
-        pipeline::mesh_cad_part(shape, co, &cr);
-      } catch (const TimeLimitError&) {
-        throw;  // the run was stopped, not a stage: nothing to inspect
-      } catch (const Error&) {
-        run = std::move(cr.run);
+      if (solids.size() > 1) {
+        print_log(0, a->in + " holds " + std::to_string(solids.size()) +
+                         " solids: each is meshed, its cells in region k for solid k (--solid N meshes one)");
+        pipeline::MeshSolidsRun sr;
+        try {
+          pipeline::mesh_cad_solids(solids, co, &sr);
+        } catch (const TimeLimitError&) {
+          throw;
+        } catch (const Error&) {
+          if (!sr.solids.empty()) run = std::move(sr.solids.back().run);
+          failed();
+          throw;
+        }
+        run = std::move(sr.run);
+        reference_volume = sr.brep_volume;
+        reference = "B-rep";
+        for (size_t k = 0; k < sr.solids.size(); ++k)
+          if (sr.solids[k].snapped) {
+            print_log(0, "solid " + std::to_string(k + 1) + ":");
+            print_snap(sr.solids[k].snap.report, sr.solids[k].snap_seconds);
+          }
+      } else {
+        pipeline::MeshCadRun cr;
+        try {
+          pipeline::mesh_cad_part(shape, co, &cr);
+        } catch (const TimeLimitError&) {
+          throw;  // the run was stopped, not a stage: nothing to inspect
+        } catch (const Error&) {
+          run = std::move(cr.run);
+          surface = std::move(cr.surface);
+          failed();
+          throw;
+        }
         surface = std::move(cr.surface);
-        failed();
-        throw;
+        run = std::move(cr.run);
+        snapped = cr.snapped;
+        snap = cr.snap.report;
+        snap_seconds = cr.snap_seconds;
+        reference_volume = cr.stats.brep_volume;
+        reference = "B-rep";
+        if (cr.tessellation_factor != 1)
+          print_log(0, fmt("tessellate: the mesh is the one of the tessellation at %.2f x the size (%.0f triangles)",
+                           cr.tessellation_factor, cr.stats.triangles));
       }
-      surface = std::move(cr.surface);
-      run = std::move(cr.run);
-      snapped = cr.snapped;
-      snap = cr.snap.report;
-      snap_seconds = cr.snap_seconds;
-      reference_volume = cr.stats.brep_volume;
-      reference = "B-rep";
-      if (cr.tessellation_factor != 1)
-        print_log(0, fmt("tessellate: the mesh is the one of the tessellation at %.2f x the size (%.0f triangles)",
-                         cr.tessellation_factor, cr.stats.triangles));
     } else {
       if (!a->edge_sizes.empty())
         throw InputError("--edge-size needs a CAD part (.step, .iges, .brep): " + a->in + " is a triangle surface");

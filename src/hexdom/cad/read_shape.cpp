@@ -4,6 +4,7 @@
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -231,7 +232,10 @@ bool is_brep_string(const std::string& text) {
   return text.find("CASCADE Topology") != std::string::npos && text.find('\n') != std::string::npos;
 }
 
-Shape read_shape(const std::string& path, const ReadOptions& options) {
+namespace {
+
+// The whole shape of a CAD file (IGES faces sewn into solids), before a solid is chosen.
+TopoDS_Shape load_file(const std::string& path, const ReadOptions& options) {
   const std::string ext = io::extension(path);
   const bool step = ext == "step" || ext == "stp", iges = ext == "iges" || ext == "igs",
              brep = ext == "brep" || ext == "brp";
@@ -268,10 +272,10 @@ Shape read_shape(const std::string& path, const ReadOptions& options) {
   } catch (const Standard_Failure& e) {
     throw InputError(path, 0, "cannot read: " + occt_message(e));
   }
-  return select_solid(shape, path, options);
+  return shape;
 }
 
-Shape read_brep_string(const std::string& brep, const ReadOptions& options) {
+TopoDS_Shape load_brep_string(const std::string& brep) {
   TopoDS_Shape shape;
   try {
     QuietOcct quiet;
@@ -282,11 +286,52 @@ Shape read_brep_string(const std::string& brep, const ReadOptions& options) {
   } catch (const Standard_Failure& e) {
     throw InputError(kBrepSource, 0, "not readable BREP text: " + occt_message(e));
   }
-  return select_solid(shape, kBrepSource, options);
+  return shape;
+}
+
+}  // namespace
+
+Shape read_shape(const std::string& path, const ReadOptions& options) {
+  return select_solid(load_file(path, options), path, options);
+}
+
+Shape read_brep_string(const std::string& brep, const ReadOptions& options) {
+  return select_solid(load_brep_string(brep), kBrepSource, options);
 }
 
 Shape read_shape_or_brep(const std::string& source, const ReadOptions& options) {
   return is_brep_string(source) ? read_brep_string(source, options) : read_shape(source, options);
+}
+
+std::vector<Shape> read_solids(const std::string& source, const ReadOptions& options) {
+  const bool brep = is_brep_string(source);
+  const std::string name = brep ? std::string(kBrepSource) : source;
+  const TopoDS_Shape shape = brep ? load_brep_string(source) : load_file(source, options);
+  const int n = count(shape, TopAbs_SOLID);
+  if (options.solid != 0 || n <= 1) return {select_solid(shape, name, options)};
+  std::vector<Shape> out;
+  for (int k = 1; k <= n; ++k) {
+    ReadOptions one = options;
+    one.solid = k;
+    out.push_back(select_solid(shape, name, one));
+  }
+  return out;
+}
+
+std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>& solids, double tolerance) {
+  std::vector<Bnd_Box> boxes(solids.size());
+  for (size_t k = 0; k < solids.size(); ++k) {
+    BRepBndLib::Add(solids[k].impl().shape, boxes[k]);
+    boxes[k].Enlarge(tolerance);
+  }
+  std::vector<std::array<int, 2>> out;
+  for (size_t a = 0; a < solids.size(); ++a)
+    for (size_t b = a + 1; b < solids.size(); ++b) {
+      if (boxes[a].IsOut(boxes[b])) continue;
+      BRepExtrema_DistShapeShape d(solids[a].impl().shape, solids[b].impl().shape);
+      if (d.IsDone() && d.Value() <= tolerance) out.push_back({static_cast<int>(a) + 1, static_cast<int>(b) + 1});
+    }
+  return out;
 }
 
 }  // namespace hexdom::cad

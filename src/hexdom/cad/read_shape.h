@@ -2,7 +2,9 @@
 // over as shape.exportBrepToString()).
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "hexdom/cad/shape.h"
 #include "hexdom/common/error.h"
@@ -25,6 +27,16 @@ Shape read_shape(const std::string& path, const ReadOptions& options = {});
 
 /// Same for a shape in OCCT's BREP text format; messages name the source as "<BREP string>".
 Shape read_brep_string(const std::string& brep, const ReadOptions& options = {});
+
+/// Every solid of a CAD file or BREP text (as read_shape_or_brep), in TopExp::MapShapes order,
+/// each checked as read_shape checks its one; only solid options.solid when it is given. A file
+/// with one solid gives one. Throws as read_shape.
+std::vector<Shape> read_solids(const std::string& source, const ReadOptions& options = {});
+
+/// The pairs (1-based, first < second) of `solids` that touch or overlap: closer than `tolerance`
+/// (BRepExtrema distance 0 for solids that overlap or share a face). Meshing them one by one gives
+/// meshes that do not conform where they touch.
+std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>& solids, double tolerance);
 
 /// True when `text` looks like BREP text rather than a file name (it holds "CASCADE Topology").
 bool is_brep_string(const std::string& text);

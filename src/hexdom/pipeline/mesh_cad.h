@@ -5,6 +5,7 @@
 // element size) and the better mesh kept. `hexdom mesh` and _hexdom's mesh_part run this.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "hexdom/pipeline/mesh_surface.h"
@@ -69,5 +70,23 @@ struct MeshCadRun {
 /// calling thread's interrupt is raised (common/interrupt.h), as mesh_surface; TimeoutError past
 /// options.mesh.time_limit (the whole call: tessellations, paths, snap, second order).
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& options = {}, MeshCadRun* progress = nullptr);
+
+/// Several solids (a CAD file's, cad::read_solids) meshed one by one by mesh_cad_part with the same
+/// options.
+struct MeshSolidsRun {
+  /// The solids' runs put together (merge_solid_runs): the cells of solid k in region k, one mesh
+  /// whose solids share no node; its quality the whole mesh's.
+  MeshSurfaceRun run;
+  std::vector<MeshCadRun> solids;              ///< each solid's own run (its run.solids is empty)
+  std::vector<std::array<int, 2>> touching;    ///< pairs of solids that touch (cad::touching_solids)
+  double brep_volume = 0;                      ///< the solids' volumes, summed
+};
+
+/// Meshes every solid of `solids` (mesh_cad_part each, options.mesh.time_limit over them all);
+/// logs (options.log) a warning for each pair that touches: their meshes do not conform there.
+/// Throws the first solid's error that has no mesh, the message prefixed "solid k: "; `progress`,
+/// when given, holds the solids meshed so far.
+MeshSolidsRun mesh_cad_solids(const std::vector<cad::Shape>& solids, const MeshCadOptions& options = {},
+                              MeshSolidsRun* progress = nullptr);
 
 }  // namespace hexdom::pipeline

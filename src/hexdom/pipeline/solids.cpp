@@ -9,24 +9,31 @@ namespace hexdom::pipeline {
 
 namespace {
 
-// The runs' meshes (`member`: generated or mesh) as one mesh, the cells of solid k in region k + 1.
+// The runs' meshes (`member`: generated or mesh) as one mesh, the cells of solid k in region k + 1;
+// second order when every one is.
 mesh::Mesh put_together(const std::vector<MeshSurfaceRun>& runs, mesh::Mesh MeshSurfaceRun::*member) {
   Eigen::Index nv = 0, nc = 0;
+  bool second = !runs.empty();
   for (const MeshSurfaceRun& r : runs) {
     nv += (r.*member).V.rows();
     nc += (r.*member).cells.rows();
+    second = second && (r.*member).second_order();
   }
   mesh::Mesh m;
   m.V.resize(nv, 3);
   m.cells.resize(nc, 8);
   m.types.resize(nc);
   m.region.resize(nc);
+  if (second) m.mid.resize(nc, 12);
   Eigen::Index v0 = 0, c0 = 0;
   for (size_t k = 0; k < runs.size(); ++k) {
     const mesh::Mesh& p = runs[k].*member;
     m.V.middleRows(v0, p.V.rows()) = p.V;
     for (Eigen::Index c = 0; c < p.cells.rows(); ++c)
       for (int j = 0; j < 8; ++j) m.cells(c0 + c, j) = p.cells(c, j) < 0 ? -1 : p.cells(c, j) + static_cast<int>(v0);
+    if (second)
+      for (Eigen::Index c = 0; c < p.cells.rows(); ++c)
+        for (int e = 0; e < 12; ++e) m.mid(c0 + c, e) = p.mid(c, e) < 0 ? -1 : p.mid(c, e) + static_cast<int>(v0);
     m.types.segment(c0, p.types.size()) = p.types;
     m.region.segment(c0, p.types.size()).setConstant(static_cast<int>(k) + 1);
     v0 += p.V.rows();

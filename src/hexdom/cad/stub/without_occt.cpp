@@ -42,6 +42,10 @@ bool is_brep_string(const std::string& text) { return text.find("CASCADE Topolog
 Shape read_shape_or_brep(const std::string& source, const ReadOptions& options) {
   return is_brep_string(source) ? read_brep_string(source, options) : read_shape(source, options);
 }
+std::vector<Shape> read_solids(const std::string& source, const ReadOptions& options) {
+  return {read_shape_or_brep(source, options)};
+}
+std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>&, double) { no_occt("compare CAD solids"); }
 
 mesh::SurfaceMesh tessellate(const Shape&, const TessellateOptions&, TessellateStats*) { no_occt("tessellate CAD shapes"); }
 TessellateStats tessellation_stats(const Shape&, const mesh::SurfaceMesh&) { no_occt("tessellate CAD shapes"); }
