@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import hexdom_oracles as oracles
+
 BRACKET = Path(__file__).resolve().parents[2] / "examples" / "data" / "bracket.step"
-HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
-HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
 
 
 @pytest.fixture(scope="module")
@@ -73,9 +73,9 @@ def test_every_format_holds_the_second_order_cells_on_the_first_order_corners(br
         assert np.abs(m.points[:n1] - first.points).max() <= 1e-12 * np.abs(first.points).max(), ext
         assert h20[:, 8:].min() >= n1
         # One node per mesh edge, shared by the cells around it.
-        edges = {tuple(sorted((a, b))) for c in hexes for a, b in ((c[i], c[j]) for i, j in HEX_EDGES)}
+        edges = {tuple(sorted((a, b))) for c in hexes for a, b in ((c[i], c[j]) for i, j in oracles.HEX_EDGES)}
         assert len(m.points) == n1 + len(edges), ext
-        for k, (i, j) in enumerate(HEX_EDGES):
+        for k, (i, j) in enumerate(oracles.HEX_EDGES):
             key = np.sort(hexes[:, [i, j]], axis=1)
             ids = h20[:, 8 + k]
             # the same edge always gets the same node
@@ -137,7 +137,7 @@ def test_vtk_s_quadratic_hexahedron_gives_the_reported_volume_and_no_fold(bracke
 
 def _straight_hex20(points, hexes):
     """A first-order mesh as hex20 cells with their mid-edge nodes at the midpoints."""
-    mids = np.stack([(points[hexes[:, i]] + points[hexes[:, j]]) / 2 for i, j in HEX_EDGES], axis=1)
+    mids = np.stack([(points[hexes[:, i]] + points[hexes[:, j]]) / 2 for i, j in oracles.HEX_EDGES], axis=1)
     P = np.concatenate([points, mids.reshape(-1, 3)])
     cells = np.concatenate([hexes, len(points) + np.arange(12 * len(hexes)).reshape(-1, 12)], axis=1)
     return P, cells
@@ -150,14 +150,14 @@ def test_the_boundary_s_mid_edge_nodes_lie_on_the_brep(bracket, freecad_part):
     h20 = m.cells_dict["hexahedron20"]
     faces = {}
     for c, cell in enumerate(h20):
-        for f in HEX_FACES:
+        for f in oracles.HEX_FACES:
             key = tuple(sorted(cell[list(f)]))
             faces[key] = faces.get(key, 0) + 1
     boundary = {k for k, n in faces.items() if n == 1}
     mids = set()
     for cell in h20:
-        for k, (i, j) in enumerate(HEX_EDGES):
-            for f in HEX_FACES:
+        for k, (i, j) in enumerate(oracles.HEX_EDGES):
+            for f in oracles.HEX_FACES:
                 if i in f and j in f and tuple(sorted(cell[list(f)])) in boundary:
                     mids.add(int(cell[8 + k]))
     shape = Part.read(str(BRACKET)).Solids[0]

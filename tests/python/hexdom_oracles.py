@@ -32,6 +32,12 @@ HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
 WEDGE_EDGES = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]
 TET_EDGES = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
 EDGES = {HEX: HEX_EDGES, WEDGE: WEDGE_EDGES, TET: TET_EDGES}
+# Faces, outward by the right-hand rule.
+HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+WEDGE_FACES = [(0, 1, 2), (3, 5, 4), (0, 3, 4, 1), (1, 4, 5, 2), (2, 5, 3, 0)]
+TET_FACES = [(0, 1, 3), (1, 2, 3), (2, 0, 3), (0, 2, 1)]
+# VTK's quadratic types (hex20, wedge15, tet10): corners, then one mid-edge node per edge above.
+QUADRATIC = {25: (8, HEX_EDGES, HEX_FACES), 26: (6, WEDGE_EDGES, WEDGE_FACES), 24: (4, TET_EDGES, TET_FACES)}
 
 # ---------------------------------------------------------------------------------------------
 # Verdict through ctypes (wedges)

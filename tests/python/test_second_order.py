@@ -13,18 +13,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import hexdom_oracles as oracles
 import hexdom_test_support as support
 
 BRACKET = Path(__file__).resolve().parents[2] / "examples" / "data" / "bracket.step"
 CAD_PARTS = ["s09o_bridge", "s11o_cube_cyl", "s15o_cylinder", "s12o_cube_rounded_1", "s14o_cube_corner_sub_sphere",
              "n11o_limit_cycle", "i10o_simp", "i11o_s1", "i01o_m1"]
-HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
-HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-WEDGE_EDGES = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]
-WEDGE_FACES = [(0, 1, 2), (3, 5, 4), (0, 3, 4, 1), (1, 4, 5, 2), (2, 5, 3, 0)]
-TET_EDGES = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
-TET_FACES = [(0, 1, 3), (1, 2, 3), (2, 0, 3), (0, 2, 1)]
-TABLES = {25: (8, HEX_EDGES, HEX_FACES), 26: (6, WEDGE_EDGES, WEDGE_FACES), 24: (4, TET_EDGES, TET_FACES)}
+TABLES = oracles.QUADRATIC
 
 
 def boundary_mid_nodes(mesh):
