@@ -65,13 +65,12 @@ SecondOrderResult make_second_order(const Shape& shape, const mesh::Mesh& linear
   if (linear.num_nodes() > 0) rep.diagonal = (linear.V.colwise().maxCoeff() - linear.V.colwise().minCoeff()).norm();
 
   // The CAD faces of the boundary faces around every boundary edge.
-  const mesh::TriangleProjector tp(tess.V, tess.F);
   std::unordered_map<mesh::EdgeKey, std::vector<int>> faces_of_edge;
-  for (const mesh::BoundaryFace& f : mesh::boundary_faces(linear)) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int i = 0; i < f.n; ++i) c += linear.V.row(f.v[i]).transpose();
-    int tri = -1;
-    tp.project(c / f.n, &tri);
+  const std::vector<mesh::BoundaryFace> bfaces = mesh::boundary_faces(linear);
+  const std::vector<int> tris = mesh::nearest_triangles(mesh::TriangleProjector(tess.V, tess.F), linear.V, bfaces);
+  for (size_t k = 0; k < bfaces.size(); ++k) {
+    const mesh::BoundaryFace& f = bfaces[k];
+    const int tri = tris[k];
     for (int i = 0; i < f.n; ++i) {
       std::vector<int>& faces = faces_of_edge[mesh::undirected_edge(f.v[i], f.v[(i + 1) % f.n])];
       if (tri >= 0 && std::find(faces.begin(), faces.end(), tess.patch(tri)) == faces.end()) faces.push_back(tess.patch(tri));

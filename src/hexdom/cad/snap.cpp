@@ -114,11 +114,10 @@ BoundaryNodes boundary_nodes(const mesh::Mesh& m, const mesh::SurfaceMesh& tess)
   b.cand.resize(nn);
   b.shortest.assign(nn, std::numeric_limits<double>::infinity());
   std::vector<char> on_boundary(nn, 0);
-  for (const auto& f : bfaces) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int i = 0; i < f.n; ++i) c += m.V.row(f.v[i]).transpose();
-    int tri = -1;
-    tp.project(c / f.n, &tri);
+  const std::vector<int> tris = mesh::nearest_triangles(tp, m.V, bfaces);
+  for (size_t k = 0; k < bfaces.size(); ++k) {
+    const mesh::BoundaryFace& f = bfaces[k];
+    const int tri = tris[k];
     for (int i = 0; i < f.n; ++i) {
       const int v = f.v[i], w = f.v[(i + 1) % f.n];
       on_boundary[v] = 1;

@@ -188,4 +188,17 @@ double TriangleProjector::ray_distance(const Vec& origin, const Vec& direction, 
   return hit ? best : std::numeric_limits<double>::infinity();
 }
 
+std::vector<int> nearest_triangles(const TriangleProjector& projector, const Eigen::MatrixXd& V,
+                                   const std::vector<BoundaryFace>& faces) {
+  std::vector<int> out(faces.size(), -1);
+  if (projector.empty()) return out;
+  for (size_t k = 0; k < faces.size(); ++k) {
+    const BoundaryFace& f = faces[k];
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int i = 0; i < f.n; ++i) c += V.row(f.v[i]).transpose();
+    projector.project(c / f.n, &out[k]);
+  }
+  return out;
+}
+
 }  // namespace hexdom::mesh

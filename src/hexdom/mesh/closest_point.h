@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "hexdom/mesh/cell_faces.h"
+
 namespace hexdom::mesh {
 
 /// Closest point to `p` on triangle (a, b, c).
@@ -43,5 +45,11 @@ class TriangleProjector {
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<Node> nodes_;
 };
+
+/// For each face of `faces` (corners in rows of V), the triangle of `projector`'s surface nearest to
+/// its centre (the mean of its corners), -1 for an empty surface. With a tessellation whose patch
+/// ids are CAD faces, patch(triangle) is the CAD face a boundary face of a mesh made from it lies on.
+std::vector<int> nearest_triangles(const TriangleProjector& projector, const Eigen::MatrixXd& V,
+                                   const std::vector<BoundaryFace>& faces);
 
 }  // namespace hexdom::mesh
