@@ -1,9 +1,8 @@
-"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu; export also .inp), registered in
-Init.py. FreeCAD calls open(filename), insert(filename, docname) and export(objects, filename);
-the same functions serve macros and the HexDom_ImportMesh / HexDom_ExportMesh commands.
+"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp), registered in Init.py.
+FreeCAD calls open(filename), insert(filename, docname) and export(objects, filename); the same
+functions serve macros and the HexDom_ImportMesh / HexDom_ExportMesh commands.
 
-Reading and writing go through core (read_mesh / write_mesh); .vtu, which core only writes, is
-read by convert.vtu. core.Error propagates to the caller.
+Reading and writing go through core (read_mesh / write_mesh). core.Error propagates to the caller.
 """
 
 import os
@@ -12,19 +11,12 @@ import FreeCAD
 
 from . import core
 
-READ_EXTENSIONS = (".k", ".vtk", ".vtu")
+READ_EXTENSIONS = (".k", ".vtk", ".vtu", ".inp")
 WRITE_EXTENSIONS = (".vtk", ".vtu", ".k", ".inp")
 
 
 def read_mesh(path):
-    """core.Mesh from a .k, .vtk or .vtu file (raises core.Error)."""
-    ext = os.path.splitext(path)[1].lower()
-    if ext == ".vtu":
-        try:
-            return core.read_mesh(path)
-        except core.InputError:
-            from .convert import vtu
-            return vtu.read_vtu(path)
+    """core.Mesh from a .k, .vtk, .vtu or .inp file (raises core.Error)."""
     return core.read_mesh(path)
 
 

@@ -17,7 +17,7 @@ def test_package_is_the_installed_copy_with_its_own_core():
 def test_all_app_modules_import():
     import importlib
     for name in ("make", "fileio", "report", "paths", "objects.hex_mesh", "objects.base_object",
-                 "convert.femmesh", "convert.vtu", "convert.fem_setup", "api", "document",
+                 "convert.femmesh", "convert.fem_setup", "api", "document",
                  "part_meshing", "shape_tessellation", "progress", "version", "logic.labels",
                  "logic.triangles", "logic.cells", "logic.stages", "logic.patch_editing",
                  "logic.polycube_building"):
