@@ -36,9 +36,9 @@ void add_autopolycube_options(CLI::App& cmd, AutoPolycubeArgs& a) {
 }
 
 void run_autopolycube(AutoPolycubeArgs& a) {
-  io::format_of(a.out);
-  io::format_of(a.patches);
-  if (!a.polycube.empty()) io::format_of(a.polycube);
+  io::output_format_of(a.out);
+  io::output_format_of(a.patches);
+  if (!a.polycube.empty()) io::output_format_of(a.polycube);
   a.opt.log = print_log;
   const auto t0 = std::chrono::steady_clock::now();
   mesh::SurfaceMesh labels = io::read_surface(a.in);
@@ -280,7 +280,7 @@ void add_mesh(CLI::App& app) {
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");
   cmd->add_flag("-v,--verbose", a->opt.verbose, "also print the stages' own messages");
   cmd->callback([a, cmd] {
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     a->opt.log = print_log;
     a->opt.improve = !a->no_improve;
     a->opt.align = !a->no_align;

@@ -105,7 +105,7 @@ PYBIND11_MODULE(_hexdom, m) {
     { py::gil_scoped_release nogil; r = io::read_mesh(path); }
     return mesh_tuple(r);
   }, py::arg("path"),
-  "Reads .k, .vtk, .stl or .obj. Returns (V #V x 3, cells #C x 8 with -1 padding, VTK types #C, region #C).");
+  "Reads .k, .vtk, .msh, .stl or .obj. Returns (V #V x 3, cells #C x 8 with -1 padding, VTK types #C, region #C).");
 
   m.def("read_k", [](const std::string& path) {
     io::KFile k;

@@ -13,6 +13,7 @@
 #include "hexdom/common/error.h"
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
+#include "hexdom/io/msh.h"
 #include "hexdom/io/surface_formats.h"
 #include "hexdom/io/vtk.h"
 #include "hexdom/mesh/mesh.h"
@@ -25,7 +26,7 @@ namespace {
 const std::string kReader = HEXDOM_STR(HEXDOM_FUZZ_READER);
 
 std::string extension() {
-  if (kReader == "k" || kReader == "vtk" || kReader == "stl" || kReader == "obj") return "." + kReader;
+  if (kReader == "k" || kReader == "vtk" || kReader == "msh" || kReader == "stl" || kReader == "obj") return "." + kReader;
   return ".txt";
 }
 
@@ -48,6 +49,7 @@ void read() {
   using namespace hexdom;
   if (kReader == "k") mesh::validate(io::read_k(scratch()).mesh);
   else if (kReader == "vtk") mesh::validate(io::read_vtk(scratch()));
+  else if (kReader == "msh") mesh::validate(io::read_msh(scratch()));
   else if (kReader == "stl") check_surface(io::read_stl(scratch()));
   else if (kReader == "obj") check_surface(io::read_obj(scratch()));
   else if (kReader == "corner_points") io::read_corner_points(scratch());

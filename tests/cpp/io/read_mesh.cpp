@@ -37,9 +37,9 @@ TEST(ReadMesh, WriteOnlyFormatsAreRejected) {
 }
 
 TEST(ReadMesh, UnknownExtensionNamesPath) {
-  const std::string path = test::temp_path("mesh.msh");
-  test::write_text(path, "$MeshFormat\n");
-  EXPECT_TRUE(ThrowsInputError([&] { io::read_mesh(path); }, path, 0, "unknown file format '.msh'"));
+  const std::string path = test::temp_path("mesh.unv");
+  test::write_text(path, "    -1\n");
+  EXPECT_TRUE(ThrowsInputError([&] { io::read_mesh(path); }, path, 0, "unknown file format '.unv'"));
 }
 
 TEST(ReadMesh, MissingFileNamesPath) {
