@@ -88,7 +88,7 @@ class Surface:
 
 
 def read_mesh(path):
-    """Reads .k, .vtk, .vtu, .inp, .stl or .obj into a Mesh."""
+    """Reads .k, .vtk, .vtu, .inp, .msh (Gmsh), .stl or .obj into a Mesh."""
     return Mesh(*_hexdom.read_mesh(os.fspath(path)))
 
 

@@ -1,4 +1,4 @@
-"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp), registered in Init.py.
+"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp; import also Gmsh .msh), registered in Init.py.
 FreeCAD calls open(filename), insert(filename, docname) and export(objects, filename); the same
 functions serve macros and the HexDom_ImportMesh / HexDom_ExportMesh commands.
 
@@ -11,12 +11,12 @@ import FreeCAD
 
 from . import core
 
-READ_EXTENSIONS = (".k", ".vtk", ".vtu", ".inp")
+READ_EXTENSIONS = (".k", ".vtk", ".vtu", ".inp", ".msh")
 WRITE_EXTENSIONS = (".vtk", ".vtu", ".k", ".inp")
 
 
 def read_mesh(path):
-    """core.Mesh from a .k, .vtk, .vtu or .inp file (raises core.Error)."""
+    """core.Mesh from a .k, .vtk, .vtu, .inp or .msh file (raises core.Error)."""
     return core.read_mesh(path)
 
 

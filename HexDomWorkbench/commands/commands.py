@@ -20,14 +20,14 @@ _EXPORT_FILTERS = [
 
 class _ImportMesh(CommandManager):
     menutext = "Import mesh..."
-    tooltip = "Reads a hex-dominant volume mesh (.k, .vtk, .vtu, .inp) into a HexDom Mesh object"
+    tooltip = "Reads a hex-dominant volume mesh (.k, .vtk, .vtu, .inp, .msh) into a HexDom Mesh object"
     is_active = "always"
 
     def Activated(self):
         from PySide import QtGui
         path, _ = QtGui.QFileDialog.getOpenFileName(
             manager.main_window(), "Import HexDom mesh", manager.get_param("LastDir"),
-            "HexDom meshes (*.k *.vtk *.vtu *.inp);;All files (*)")
+            "HexDom meshes (*.k *.vtk *.vtu *.inp *.msh);;All files (*)")
         if path:
             self.import_file(path)
 

@@ -36,9 +36,9 @@ void add_autopolycube_options(CLI::App& cmd, AutoPolycubeArgs& a) {
 }
 
 void run_autopolycube(AutoPolycubeArgs& a) {
-  io::format_of(a.out);
-  io::format_of(a.patches);
-  if (!a.polycube.empty()) io::format_of(a.polycube);
+  io::output_format_of(a.out);
+  io::output_format_of(a.patches);
+  if (!a.polycube.empty()) io::output_format_of(a.polycube);
   a.opt.log = print_log;
   const auto t0 = std::chrono::steady_clock::now();
   mesh::SurfaceMesh labels = io::read_surface(a.in);
@@ -290,7 +290,7 @@ void add_mesh(CLI::App& app) {
   auto a = std::make_shared<MeshArgs>();
   add_mesh_options(cmd, a);
   cmd->callback([a, cmd] {
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     a->opt.log = print_log;
     a->opt.improve = !a->no_improve;
     a->opt.align = !a->no_align;

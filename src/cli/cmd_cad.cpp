@@ -38,7 +38,7 @@ void add_cad_commands(CLI::App& app) {
   cmd->add_option("--solid", a->solid, "which solid of a multi-solid file (1-based); default: the first, with a warning")
       ->check(CLI::PositiveNumber);
   cmd->callback([a] {
-    io::format_of(a->out);  // an unknown output type fails before any work
+    io::output_format_of(a->out);  // an unknown output type fails before any work
     cad::ReadOptions ro;
     ro.solid = a->solid;
     ro.log = print_log;

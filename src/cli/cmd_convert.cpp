@@ -6,15 +6,15 @@
 namespace hexdom::cli {
 
 void add_convert(CLI::App& app) {
-  auto* cmd = app.add_subcommand("convert", "Convert a mesh between .k, .vtk, .vtu, .inp, .stl and .obj (format by extension)");
+  auto* cmd = app.add_subcommand("convert", "Convert a mesh between .k, .vtk, .vtu, .inp, .stl and .obj, or from Gmsh .msh (format by extension)");
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto binary = std::make_shared<bool>(false);
-  cmd->add_option("-i,--input", *in, "input mesh (.k, .vtk, .vtu, .inp, .stl, .obj)")->required();
+  cmd->add_option("-i,--input", *in, "input mesh (.k, .vtk, .vtu, .inp, .msh, .stl, .obj)")->required();
   cmd->add_option("-o,--output", *out, "output mesh (.k, .vtk, .vtu, .inp, .stl, .obj)")->required();
   cmd->add_flag("--binary", *binary, "write legacy VTK in binary");
   cmd->callback([=] {
-    io::format_of(*out);  // reject an unknown output format before reading
+    io::output_format_of(*out);  // reject an unknown output format before reading
     mesh::Mesh m = io::read_mesh(*in);
     io::WriteOptions opt;
     opt.binary = *binary;

@@ -26,7 +26,7 @@ void add_generate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--report", a->report, "also write the quality report as JSON to this file");
   cmd->callback([=] {
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     auto t0 = std::chrono::steady_clock::now();
     mesh::SurfaceMesh surface = io::read_surface(a->patches);
     mesh::Mesh structure = io::read_mesh(a->structure);

@@ -36,7 +36,7 @@ void add_improve(CLI::App& app) {
   cmd->footer("With no stage flags, runs the recommended sequence: pillow, then smoothing and optimisation until the worst cell stops "
               "improving, then passes that raise the mean scaled Jacobian without lowering the worst hex, prism or tet.");
   cmd->callback([=] {
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     mesh::Mesh m = io::read_mesh(a->in);
     if (!a->surface.empty()) a->opt.surface = io::read_surface(a->surface);
     if (!a->sharp.empty()) a->opt.sharp_nodes = io::read_sharp_nodes(a->sharp);

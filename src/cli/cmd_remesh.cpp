@@ -31,7 +31,7 @@ void add_remesh(CLI::App& app) {
   cmd->add_option("--iterations", a->opt.iterations, "remeshing sweeps")->capture_default_str()->check(CLI::Range(0, 100));
   cmd->add_flag("-v,--verbose", a->verbose, "print every sweep");
   cmd->callback([a] {
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     const mesh::SurfaceMesh in = io::read_surface(a->in);
     a->opt.log = [a](int level, const std::string& message) {
       if (a->verbose || level > 0 || message.rfind("remesh sweep", 0) != 0) print_log(level, message);

@@ -45,7 +45,7 @@ void add_segment(CLI::App& app) {
   cmd->add_option("--face-majority", a->opt.face_majority, "area share above which a curved CAD face takes one label")->capture_default_str();
   cmd->callback([=] {
     if (a->faces && a->no_faces) throw CLI::ValidationError("--respect-faces and --no-respect-faces exclude each other");
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     a->opt.respect_faces = a->faces ? segmentation::FaceMode::On : a->no_faces ? segmentation::FaceMode::Off : segmentation::FaceMode::Auto;
     if (!a->manual.empty()) a->opt.manual = segmentation::read_manual_labels(a->manual);
     a->opt.log = print_log;
@@ -142,7 +142,7 @@ void add_polycube(CLI::App& app) {
       run_autopolycube(x);
       return;
     }
-    io::format_of(a->out);
+    io::output_format_of(a->out);
     mesh::SurfaceMesh surface = io::read_surface(a->in);
     segmentation::PolycubeBoundary b = segmentation::polycube_boundary(surface);
     segmentation::CheckOptions check_options;

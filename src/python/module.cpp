@@ -105,7 +105,7 @@ PYBIND11_MODULE(_hexdom, m) {
     { py::gil_scoped_release nogil; r = io::read_mesh(path); }
     return mesh_tuple(r);
   }, py::arg("path"),
-  "Reads .k, .vtk, .vtu, .inp, .stl or .obj. Returns (V #V x 3, cells #C x 8 with -1 padding (#C x 20 for a\n"
+  "Reads .k, .vtk, .vtu, .inp, .msh, .stl or .obj. Returns (V #V x 3, cells #C x 8 with -1 padding (#C x 20 for a\n"
   "second-order mesh), VTK types #C, region #C).");
 
   m.def("read_k", [](const std::string& path) {

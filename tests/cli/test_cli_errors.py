@@ -184,9 +184,10 @@ def test_failed_conversion_keeps_existing_output(hexdom_bin, dirs):
 
 
 @pytest.mark.parametrize("target", ["result.xyz", "result", "result.vtk.bak", "missing_dir/result.vtk",
-                                    "result.stl", "result.obj"])
+                                    "result.stl", "result.obj", "result.msh"])
 def test_unwritable_output_is_an_error_and_leaves_nothing(hexdom_bin, dirs, target):
-    """Unknown extension, no extension, a missing directory, a volume mesh into a surface format."""
+    """Unknown extension, no extension, a missing directory, a volume mesh into a surface format,
+    a format that is only read (.msh)."""
     src, out = dirs
     (src / "good.k").write_text(GOOD_K)
     r = run(hexdom_bin, "convert", "-i", src / "good.k", "-o", out / target)
@@ -200,9 +201,9 @@ def test_unwritable_output_is_an_error_and_leaves_nothing(hexdom_bin, dirs, targ
 
 def test_unknown_input_extension(hexdom_bin, dirs):
     src, out = dirs
-    (src / "mesh.msh").write_text(GOOD_K)
-    r = run(hexdom_bin, "convert", "-i", src / "mesh.msh", "-o", out / "x.vtk")
-    assert r.returncode == 1 and "mesh.msh" in error_line(r) and "unknown file format" in r.stderr
+    (src / "mesh.unv").write_text(GOOD_K)
+    r = run(hexdom_bin, "convert", "-i", src / "mesh.unv", "-o", out / "x.vtk")
+    assert r.returncode == 1 and "mesh.unv" in error_line(r) and "unknown file format" in r.stderr
     assert list(out.iterdir()) == []
 
 

@@ -14,6 +14,7 @@
 #include "hexdom/io/inp.h"
 #include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
+#include "hexdom/io/msh.h"
 #include "hexdom/io/surface_formats.h"
 #include "hexdom/io/vtk.h"
 #include "hexdom/mesh/mesh.h"
@@ -26,7 +27,8 @@ namespace {
 const std::string kReader = HEXDOM_STR(HEXDOM_FUZZ_READER);
 
 std::string extension() {
-  if (kReader == "k" || kReader == "vtk" || kReader == "vtu" || kReader == "inp" || kReader == "stl" || kReader == "obj")
+  if (kReader == "k" || kReader == "vtk" || kReader == "vtu" || kReader == "inp" || kReader == "msh" || kReader == "stl" ||
+      kReader == "obj")
     return "." + kReader;
   return ".txt";
 }
@@ -52,6 +54,7 @@ void read() {
   else if (kReader == "vtk") mesh::validate(io::read_vtk(scratch()));
   else if (kReader == "vtu") mesh::validate(io::read_vtu(scratch()));
   else if (kReader == "inp") mesh::validate(io::read_inp(scratch()));
+  else if (kReader == "msh") mesh::validate(io::read_msh(scratch()));
   else if (kReader == "stl") check_surface(io::read_stl(scratch()));
   else if (kReader == "obj") check_surface(io::read_obj(scratch()));
   else if (kReader == "corner_points") io::read_corner_points(scratch());

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Seed inputs of the fuzz targets (tests/fuzz/corpus/<reader>/), made with the program's own writers
-# from a two-cell mesh and a tetrahedron's surface, plus the text formats written here.
+# from a two-cell mesh and a tetrahedron's surface, plus the text formats (and the .msh files) written here.
 #   tests/fuzz/make_seeds.sh build/bin/hexdom
 set -e
 HEXDOM=${1:-build/bin/hexdom}
@@ -102,6 +102,52 @@ CELL_TYPES 1
 24
 VTK
 "$HEXDOM" convert -i "$C/vtk/tet10.vtk" -o "$C/inp/tet10.inp" 2>/dev/null
+# Gmsh .msh: the hex and the prism of two.vtk (the prism in Gmsh's order) in MSH 4.1 and 2.2,
+# ASCII and binary, and a second-order tetrahedron (Gmsh type 11).
+mkdir -p "$C/msh"
+python3 - "$C/msh" <<'PY'
+import struct, sys
+out = sys.argv[1]
+P = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (2, 0, 0), (2, 0, 1)]
+HEX, PRISM = [1, 2, 3, 4, 5, 6, 7, 8], [2, 9, 3, 6, 10, 7]
+def ascii41():
+    s = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 5 \"solid\"\n$EndPhysicalNames\n"
+    s += "$Entities\n0 0 0 2\n1 0 0 0 1 1 1 1 5 0\n2 1 0 0 2 1 1 0 0\n$EndEntities\n"
+    s += "$Nodes\n2 10 1 10\n3 1 0 8\n" + "".join(f"{i}\n" for i in range(1, 9))
+    s += "".join(f"{x} {y} {z}\n" for x, y, z in P[:8]) + "3 2 1 2\n9\n10\n2 0 0 0.5 0.5 0.5\n2 0 1 0.5 0.5 0.5\n$EndNodes\n"
+    s += "$Elements\n2 2 1 2\n3 1 5 1\n1 " + " ".join(map(str, HEX)) + "\n3 2 6 1\n2 " + " ".join(map(str, PRISM))
+    return s + "\n$EndElements\n"
+def ascii22():
+    s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n10\n" + "".join(f"{i + 1} {x} {y} {z}\n" for i, (x, y, z) in enumerate(P))
+    s += "$EndNodes\n$Elements\n3\n1 5 2 5 1 " + " ".join(map(str, HEX)) + "\n2 6 2 0 2 " + " ".join(map(str, PRISM))
+    return s + "\n3 2 2 0 3 1 2 3\n$EndElements\n$NodeData\n1\n\"x\"\n0\n3\n0\n1\n1\n1 0.5\n$EndNodeData\n"
+def binary41():
+    L = lambda f, *v: struct.pack("<" + f * len(v), *v)
+    s = b"$MeshFormat\n4.1 1 8\n" + L("i", 1) + b"\n$EndMeshFormat\n$Entities\n" + L("Q", 0, 0, 0, 2)
+    s += L("i", 1) + L("d", 0, 0, 0, 1, 1, 1) + L("Q", 1) + L("i", 5) + L("Q", 0)
+    s += L("i", 2) + L("d", 1, 0, 0, 2, 1, 1) + L("Q", 0) + L("Q", 0) + b"\n$EndEntities\n$Nodes\n"
+    s += L("Q", 1, 10, 1, 10) + L("i", 3, 1, 0) + L("Q", 10) + L("Q", *range(1, 11)) + L("d", *[c for p in P for c in p])
+    s += b"\n$EndNodes\n$Elements\n" + L("Q", 2, 2, 1, 2) + L("i", 3, 1, 5) + L("Q", 1) + L("Q", 1, *HEX)
+    s += L("i", 3, 2, 6) + L("Q", 1) + L("Q", 2, *PRISM) + b"\n$EndElements\n"
+    return s
+def binary22():
+    B = lambda f, *v: struct.pack(">" + f * len(v), *v)  # big-endian, as the check int says
+    s = b"$MeshFormat\n2.2 1 8\n" + B("i", 1) + b"\n$EndMeshFormat\n$Nodes\n10\n"
+    s += b"".join(B("i", i + 1) + B("d", *p) for i, p in enumerate(P)) + b"\n$EndNodes\n$Elements\n2\n"
+    s += B("i", 5, 1, 2, 1, 5, 1, *HEX) + B("i", 6, 1, 2, 2, 0, 2, *PRISM) + b"\n$EndElements\n"
+    return s
+def tet10():
+    T = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    E = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)]
+    Q = T + [tuple((T[a][k] + T[b][k]) / 2 for k in range(3)) for a, b in E]
+    s = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 10 1 10\n3 1 0 10\n" + "".join(f"{i}\n" for i in range(1, 11))
+    s += "".join(f"{x} {y} {z}\n" for x, y, z in Q) + "$EndNodes\n$Elements\n1 1 1 1\n3 1 11 1\n1 "
+    return s + " ".join(map(str, range(1, 11))) + "\n$EndElements\n"
+for name, data in [("two_41_ascii.msh", ascii41()), ("two_22_ascii.msh", ascii22()), ("two_41_binary.msh", binary41()),
+                   ("two_22_binary_be.msh", binary22()), ("tet10_41.msh", tet10())]:
+    with open(f"{out}/{name}", "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+PY
 printf '0 0.0 0.0 0.0\n3 1.0 1.0 1.0\n' > "$C/corner_points/corners.txt"
 printf '# sharp nodes\n0\n1 7\n12\n' > "$C/sharp_nodes/sharp.txt"
 printf '# triangle label\n0 0\n1 5\n\n2 3\n' > "$C/manual_labels/labels.txt"

@@ -5,6 +5,7 @@
 #include "hexdom/common/error.h"
 #include "hexdom/io/inp.h"
 #include "hexdom/io/k_file.h"
+#include "hexdom/io/msh.h"
 #include "hexdom/io/surface_formats.h"
 #include "hexdom/io/text.h"
 #include "hexdom/io/vtk.h"
@@ -19,7 +20,15 @@ Format format_of(const std::string& path) {
   if (e == "inp") return Format::Inp;
   if (e == "stl") return Format::Stl;
   if (e == "obj") return Format::Obj;
-  throw InputError(path, 0, "unknown file format '." + e + "' (expected .k, .vtk, .vtu, .inp, .stl or .obj)");
+  if (e == "msh") return Format::Msh;
+  throw InputError(path, 0, "unknown file format '." + e + "' (expected .k, .vtk, .vtu, .inp, .msh, .stl or .obj)");
+}
+
+Format output_format_of(const std::string& path) {
+  const Format f = format_of(path);
+  if (f == Format::Msh)
+    throw InputError(path, 0, "writing .msh files is not supported yet (write .vtk, .vtu, .inp or .k)");
+  return f;
 }
 
 namespace {
@@ -44,7 +53,8 @@ mesh::Mesh read_mesh(const std::string& path) {
     case Format::Obj: return mesh::from_surface(read_obj(path));
     case Format::Vtu: return read_vtu(path);
     case Format::Inp: return read_inp(path);
-    default: throw InputError(path, 0, "reading ." + extension(path) + " files is not supported (read .k, .vtk, .vtu, .inp, .stl or .obj)");
+    case Format::Msh: return read_msh(path);
+    default: throw InputError(path, 0, "reading ." + extension(path) + " files is not supported (read .k, .vtk, .vtu, .inp, .msh, .stl or .obj)");
   }
 }
 
@@ -61,7 +71,7 @@ mesh::SurfaceMesh read_surface(const std::string& path) {
 }
 
 void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions& options) {
-  switch (format_of(path)) {
+  switch (output_format_of(path)) {
     case Format::K:
       if (m.second_order())
         throw InputError(path, 0, "LS-DYNA .k files are written with first-order solids only: the mesh is second order "
@@ -71,6 +81,7 @@ void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions
     case Format::Vtk: write_vtk(path, m, options.binary); break;
     case Format::Vtu: write_vtu(path, m); break;
     case Format::Inp: write_inp(path, m); break;
+    case Format::Msh: break;  // output_format_of refused it
     case Format::Stl:
     case Format::Obj: {
       mesh::SurfaceMesh s;

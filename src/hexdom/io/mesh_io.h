@@ -8,22 +8,26 @@
 
 namespace hexdom::io {
 
-/// Formats: k, vtk, vtu, inp, stl, obj (read); the same (write).
-enum class Format { K, Vtk, Vtu, Inp, Stl, Obj };
+/// Formats: k, vtk, vtu, inp, msh (Gmsh), stl, obj (read); the same but msh (write).
+enum class Format { K, Vtk, Vtu, Inp, Stl, Obj, Msh };
 
 /// Format from the extension; throws InputError naming the path for an unknown one.
 Format format_of(const std::string& path);
+/// Format of an output file: format_of, and an InputError naming the path for a format that is read
+/// only (.msh), so that a command refuses its output before any work.
+Format output_format_of(const std::string& path);
 
-/// Reads a mesh of any readable format (surfaces come back as triangle cells).
+/// Reads a mesh of any readable format (STL and OBJ surfaces come back as triangle cells).
 mesh::Mesh read_mesh(const std::string& path);
-/// Reads a triangle surface (k shells, stl, obj, vtk triangles/quads); quads are split.
+/// Reads a triangle surface (k shells, stl, obj, vtk or msh triangles/quads); quads are split.
 mesh::SurfaceMesh read_surface(const std::string& path);
 
 struct WriteOptions {
   bool binary = false;  ///< legacy VTK only
 };
 /// Writes a mesh in the format of the extension. STL and OBJ take surface cells only; a second-order
-/// mesh goes to .vtk, .vtu and .inp (.k refuses it with an InputError naming the file).
+/// mesh goes to .vtk, .vtu and .inp (.k refuses it with an InputError naming the file). Writing .msh
+/// is not supported: an InputError names the file.
 void write_mesh(const std::string& path, const mesh::Mesh& mesh, const WriteOptions& options = {});
 
 }  // namespace hexdom::io

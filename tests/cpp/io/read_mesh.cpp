@@ -38,9 +38,9 @@ TEST(ReadMesh, EveryWrittenFormatReadsBack) {
 }
 
 TEST(ReadMesh, UnknownExtensionNamesPath) {
-  const std::string path = test::temp_path("mesh.xyz");
-  test::write_text(path, "0 0 0\n");
-  EXPECT_TRUE(ThrowsInputError([&] { io::read_mesh(path); }, path, 0, "unknown file format '.xyz'"));
+  const std::string path = test::temp_path("mesh.unv");
+  test::write_text(path, "    -1\n");
+  EXPECT_TRUE(ThrowsInputError([&] { io::read_mesh(path); }, path, 0, "unknown file format '.unv'"));
 }
 
 TEST(ReadMesh, MissingFileNamesPath) {
