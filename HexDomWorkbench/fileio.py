@@ -1,6 +1,7 @@
-"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp; import also Gmsh .msh), registered in Init.py.
-FreeCAD calls open(filename), insert(filename, docname) and export(objects, filename); the same
-functions serve macros and the HexDom_ImportMesh / HexDom_ExportMesh commands.
+"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp; import also Gmsh .msh),
+registered in Init.py. FreeCAD calls open(filename), insert(filename, docname) and
+export(objects, filename); the same functions serve macros and the HexDom_ImportMesh /
+HexDom_ExportMesh commands.
 
 Reading and writing go through core (read_mesh / write_mesh). core.Error propagates to the caller.
 """
