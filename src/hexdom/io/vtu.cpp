@@ -340,8 +340,11 @@ std::vector<unsigned char> VtuReader::unpack(const Array& a, const unsigned char
   if (n < 3 * h) fail(a.tag, what + ": data ends in its compression header (truncated?)");
   const uint64_t blocks = header_word(a, p), block = header_word(a, p + h), last = header_word(a, p + 2 * h);
   if (blocks > (n - 3 * h) / h) fail(a.tag, what + ": " + std::to_string(blocks) + " compressed blocks do not fit the data");
-  const uint64_t total = blocks == 0 ? 0 : (blocks - 1) * block + (last ? last : block);
   if (block == 0 && blocks > 0) fail(a.tag, what + ": block size 0");
+  if (blocks > 0 && (blocks - 1 > want / block || last > block))  // before any product can overflow
+    fail(a.tag, what + ": " + std::to_string(blocks) + " blocks of " + std::to_string(block) + " bytes do not hold " +
+                    std::to_string(want) + " bytes");
+  const uint64_t total = blocks == 0 ? 0 : (blocks - 1) * block + (last ? last : block);
   if (total != want) fail(a.tag, what + ": its blocks hold " + std::to_string(total) + " bytes, expected " + std::to_string(want));
   std::vector<unsigned char> out(want);
   size_t at = 3 * h + blocks * h, done = 0;
@@ -349,6 +352,7 @@ std::vector<unsigned char> VtuReader::unpack(const Array& a, const unsigned char
     const uint64_t csize = header_word(a, p + 3 * h + k * h);
     if (csize > n - at) fail(a.tag, what + ": compressed block " + std::to_string(k) + " runs past the data (truncated?)");
     uLongf len = static_cast<uLongf>(k + 1 == blocks && last ? last : block);
+    if (len > want - done) fail(a.tag, what + ": compressed block " + std::to_string(k) + " holds more than the array");
     const uLongf expect = len;
     if (uncompress(out.data() + done, &len, p + at, static_cast<uLong>(csize)) != Z_OK || len != expect)
       fail(a.tag, what + ": compressed block " + std::to_string(k) + " does not inflate to " + std::to_string(expect) + " bytes");
@@ -383,6 +387,9 @@ std::vector<double> VtuReader::values(const Array& a, size_t count, const char* 
   std::vector<unsigned char> raw;
   std::vector<unsigned char> data;
   if (a.format == "appended" && !appended_base64_) {
+    if (appended_ == std::string::npos) fail(a.tag, "DataArray " + a.name + " is appended, but the file has no AppendedData");
+    if (a.offset > appended_end_ - appended_)
+      fail(a.tag, "DataArray " + a.name + ": offset " + std::to_string(a.offset) + " is past the appended data");
     const size_t b = appended_ + a.offset;
     data = unpack(a, reinterpret_cast<const unsigned char*>(s_.data()) + b, appended_end_ - b, count * w);
   } else {
