@@ -57,7 +57,7 @@ fuzz: deps
 	  -DHEXDOM_BUILD_TESTS=OFF -DHEXDOM_BUILD_PYTHON=OFF -DHEXDOM_WITH_CAD=OFF > build-fuzz.cmake.log 2>&1 \
 	  || (cat build-fuzz.cmake.log; exit 1)
 	@cmake --build build-fuzz -j $(JOBS) --target fuzz_k fuzz_vtk fuzz_vtu fuzz_inp fuzz_msh fuzz_stl fuzz_obj fuzz_corner_points \
-	  fuzz_sharp_nodes fuzz_manual_labels
+	  fuzz_sharp_nodes fuzz_manual_labels fuzz_surface_checks fuzz_structure
 	bash bench/fuzz_campaign.sh build-fuzz $(FUZZ_RUNS)
 
 clean:

@@ -148,6 +148,72 @@ for name, data in [("two_41_ascii.msh", ascii41()), ("two_22_ascii.msh", ascii22
     with open(f"{out}/{name}", "wb") as f:
         f.write(data.encode() if isinstance(data, str) else data)
 PY
+# The user-data checks: a unit cube's surface with one part id per face (surface_checks), and its
+# polycube structure, one hex block, and two hex blocks splitting it (structure).
+mkdir -p "$C/surface_checks" "$C/structure"
+cat > "$T/cube_faces.vtk" <<'VTK'
+# vtk DataFile Version 4.2
+cube faces
+ASCII
+DATASET UNSTRUCTURED_GRID
+POINTS 8 double
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+0 0 1
+1 0 1
+1 1 1
+0 1 1
+CELLS 6 30
+4 0 3 2 1
+4 4 5 6 7
+4 0 1 5 4
+4 1 2 6 5
+4 2 3 7 6
+4 3 0 4 7
+CELL_TYPES 6
+9
+9
+9
+9
+9
+9
+CELL_DATA 6
+SCALARS region int 1
+LOOKUP_TABLE default
+1
+2
+3
+4
+5
+6
+VTK
+"$HEXDOM" convert -i "$T/cube_faces.vtk" -o "$C/surface_checks/cube_faces.k" 2>/dev/null
+cp "$C/k/tet_shells.k" "$C/surface_checks/tet.k"
+cat > "$T/one_block.vtk" <<'VTK'
+# vtk DataFile Version 4.2
+one block
+ASCII
+DATASET UNSTRUCTURED_GRID
+POINTS 8 double
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+0 0 1
+1 0 1
+1 1 1
+0 1 1
+CELLS 1 9
+8 0 1 2 3 4 5 6 7
+CELL_TYPES 1
+12
+VTK
+"$HEXDOM" convert -i "$T/one_block.vtk" -o "$C/structure/one_block.k" 2>/dev/null
+sed -e 's/^POINTS 8 double/POINTS 12 double/' -e 's/^CELLS 1 9/CELLS 2 18/' -e 's/^8 0 1 2 3 4 5 6 7$/8 0 8 9 3 4 10 11 7\n8 8 1 2 9 10 5 6 11/' \
+  -e 's/^CELL_TYPES 1/CELL_TYPES 2\n12/' -e 's/^0 1 1$/0 1 1\n0.5 0 0\n0.5 1 0\n0.5 0 1\n0.5 1 1/' "$T/one_block.vtk" > "$T/two_blocks.vtk"
+"$HEXDOM" convert -i "$T/two_blocks.vtk" -o "$C/structure/two_blocks.k" 2>/dev/null
 printf '0 0.0 0.0 0.0\n3 1.0 1.0 1.0\n' > "$C/corner_points/corners.txt"
 printf '# sharp nodes\n0\n1 7\n12\n' > "$C/sharp_nodes/sharp.txt"
 printf '# triangle label\n0 0\n1 5\n\n2 3\n' > "$C/manual_labels/labels.txt"
