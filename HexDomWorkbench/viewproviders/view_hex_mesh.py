@@ -42,6 +42,12 @@ def cell_colors(mesh, color_by):
     return {}
 
 
+def _second_order(fem):
+    """Whether a FemMesh's volumes are quadratic (more nodes than corners)."""
+    volumes = fem.Volumes
+    return bool(volumes) and len(fem.getElementNodes(volumes[0])) > 8
+
+
 class VPHexMesh(VPBaseHexDomObject):
     """View provider of HexDom Mesh objects."""
 
@@ -49,7 +55,9 @@ class VPHexMesh(VPBaseHexDomObject):
         if not hasattr(vobj, "ColorBy"):
             vobj.addProperty("App::PropertyEnumeration", "ColorBy", "HexDom",
                              "Colour cells by type (hex blue, prism orange, tet magenta) or by "
-                             "scaled Jacobian (red 0, yellow 0.5, green 1, dark red inverted)")
+                             "scaled Jacobian (red 0, yellow 0.5, green 1, dark red inverted); a "
+                             "second-order mesh is drawn plain (FreeCAD colours quadratic cells' "
+                             "faces wrongly)")
             vobj.ColorBy = COLOR_BY
             vobj.ColorBy = "Cell type"
 
@@ -98,7 +106,10 @@ class VPHexMesh(VPBaseHexDomObject):
         obj = vobj.Object
         color_by = getattr(vobj, "ColorBy", "Cell type")
         try:
-            if color_by == "Plain" or obj.FemMesh.NodeCount == 0:
+            if color_by == "Plain" or obj.FemMesh.NodeCount == 0 or _second_order(obj.FemMesh):
+                # FreeCAD 0.20 binds ElementColor one colour per drawn face, and draws each face of
+                # a quadratic element as several: the colours would shift onto other cells and
+                # leave the rest green. A second-order mesh is drawn in its plain colour.
                 colors = {}
             else:
                 mesh, _, cell_ids = femmesh.from_femmesh(obj.FemMesh, with_ids=True, corners_only=True)

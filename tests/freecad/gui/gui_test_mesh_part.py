@@ -4,7 +4,9 @@
    toolbar; triggering that toolbar action on the selected STEP bracket (examples/data) adds a
    HexDom Surface, Segmentation, Polycube (Mode Automatic) and Mesh, all valid, the mesh with no
    inverted cell. Then HexDom_MeshRegion on the Mesh adds a FreeCAD FEM mesh region; on the hole's
-   face with a length of 1 the recomputed mesh is refined there (mesh_region_bracket.png). While the core works the GUI keeps processing events (a 50 ms timer keeps
+   face with a length of 1 the recomputed mesh is refined there (mesh_region_bracket.png). Before that,
+   ElementOrder 2nd gives 20-node hexes, drawn plain (FreeCAD 0.20 cannot colour quadratic cells
+   one by one; mesh_part_bracket_2nd.png), and 1st the first mesh back, coloured again. While the core works the GUI keeps processing events (a 50 ms timer keeps
    ticking; the longest gap is printed and checked). Screenshot of the mesh coloured by cell type
    (artifacts/mesh_part_bracket.png): hex blue must show; one of the patches
    (mesh_part_patches.png) too.
@@ -166,6 +168,33 @@ def mesh_region(doc, part, mesh):
     check(drawn > 0.05, "the refined mesh shows")
 
 
+def second_order(doc, mesh):
+    """ElementOrder 2nd on the bracket's Mesh: the FEM mesh holds 20-node hexes (a node per edge:
+    more nodes than corners), is drawn plain (mesh_part_bracket_2nd.png), and 1st gives the first
+    mesh back, coloured by cell type again."""
+    nodes, hexes = mesh.FemMesh.NodeCount, mesh.HexCount
+    mesh.ElementOrder = "2nd"
+    doc.recompute()
+    g.process_events()
+    fem = mesh.FemMesh
+    quadratic = fem.NodeCount > nodes and all(len(fem.getElementNodes(e)) == 20 for e in list(fem.Volumes)[:50])
+    check(quadratic and mesh.HexCount == hexes and mesh.InvertedCount == 0,
+          "ElementOrder 2nd: {} nodes ({} first order), {} hex, 20 nodes each, {} inverted".format(
+              fem.NodeCount, nodes, mesh.HexCount, mesh.InvertedCount))
+    path = screenshot("mesh_part_bracket_2nd.png", [mesh])
+    drawn, share = colour_shares(path, {"green": 120})
+    # Drawn plain: FreeCAD 0.20's per-element colours do not fit quadratic faces (the cells past
+    # the colours it has would show green).
+    check(drawn > 0.05 and share["green"] < 0.01, "the second-order mesh shows, drawn plain (green {:.3f})".format(
+        share["green"]))
+    mesh.ElementOrder = "1st"
+    doc.recompute()
+    g.process_events()
+    check(mesh.FemMesh.NodeCount == nodes, "1st gives the first-order mesh back")
+    drawn, share = colour_shares(screenshot("mesh_part_bracket_1st_again.png", [mesh]), TYPE_HUES)
+    check(share["hex blue"] > 0.2, "coloured by cell type again")
+
+
 def run():
     import FreeCAD
     import FreeCADGui
@@ -247,6 +276,7 @@ def run():
     path = screenshot("mesh_part_patches.png", [seg])
     drawn, _ = colour_shares(path, {})
     check(drawn > 0.05, "the segmentation shows")
+    second_order(doc, mesh)
 
     edit_automatic_polycube(poly, mesh)
     mesh_region(doc, part, mesh)
