@@ -15,6 +15,7 @@
 #include "hexdom/common/format.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/text.h"
+#include "hexdom/mesh/closest_point.h"
 #include "hexdom/segmentation/labels_of_parts.h"
 
 namespace hexdom::cli {
@@ -229,6 +230,18 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
 }
 
+// For an .inp output, the boundary faces of `m` tagged with the patch (CAD face) of `surface`
+// each lies on, for the Face<k> sets; none for other formats or without a surface.
+io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface) {
+  io::WriteOptions w;
+  if (io::format_of(out) != io::Format::Inp || surface.F.rows() == 0) return w;
+  w.face_sets.faces = mesh::boundary_faces(m);
+  const std::vector<int> tris =
+      mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), m.V, w.face_sets.faces);
+  for (int t : tris) w.face_sets.tag.push_back(t >= 0 ? surface.patch(t) : 0);
+  return w;
+}
+
 // `hexdom mesh`'s arguments and options.
 struct MeshArgs {
   std::string in, out, report;
@@ -402,7 +415,7 @@ void add_mesh(CLI::App& app) {
     print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
     if (snapped) print_snap(snap, snap_seconds);
     if (a->keep) write_intermediate(true);
-    io::write_mesh(a->out, run.mesh);
+    io::write_mesh(a->out, run.mesh, face_sets_for(a->out, run.mesh, surface));
     if (!a->report.empty())
       io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(run.quality) << "\n"; });
     std::cerr << "hexdom: wrote " << a->out << "\n";

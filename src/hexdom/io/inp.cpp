@@ -14,12 +14,80 @@
 #include "hexdom/common/error.h"
 #include "hexdom/io/cell_assembly.h"
 #include "hexdom/io/text.h"
+#include "hexdom/mesh/cell_faces.h"
 
 namespace hexdom::io {
 
 using mesh::CellType;
 
-void write_inp(const std::string& path, const mesh::Mesh& m) {
+namespace {
+
+// Abaqus's face n (S1, S2, ...) of an element type as its 1-based corners, the element's nodes in
+// .inp order (C3D8 / C3D20, C3D6 / C3D15, C3D4 / C3D10 share them).
+const std::vector<std::vector<int>>& abaqus_faces(CellType t) {
+  static const std::vector<std::vector<int>> hex = {{1, 2, 3, 4}, {5, 8, 7, 6}, {1, 5, 6, 2},
+                                                    {2, 6, 7, 3}, {3, 7, 8, 4}, {4, 8, 5, 1}};
+  static const std::vector<std::vector<int>> wedge = {{1, 2, 3}, {4, 6, 5}, {1, 4, 5, 2}, {2, 5, 6, 3}, {3, 6, 4, 1}};
+  static const std::vector<std::vector<int>> tet = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
+  return t == CellType::Hex ? hex : t == CellType::Wedge ? wedge : tet;
+}
+
+// The .inp corner j of a cell is VTK corner kInpCorner(t)[j] (the prism's first face reversed).
+const int* inp_corners(CellType t) {
+  static const int identity[8] = {0, 1, 2, 3, 4, 5, 6, 7}, wedge[6] = {0, 2, 1, 3, 5, 4};
+  return t == CellType::Wedge ? wedge : identity;
+}
+
+// Abaqus's face number (1-based) of boundary face f of its cell; 0 when no face has its corners.
+int abaqus_face(const mesh::Mesh& m, const mesh::BoundaryFace& f) {
+  const CellType t = m.type(f.cell);
+  if (!mesh::is_volume(t)) return 0;
+  std::vector<int> want(f.v.begin(), f.v.begin() + f.n);
+  std::sort(want.begin(), want.end());
+  const auto& faces = abaqus_faces(t);
+  const int* corner = inp_corners(t);
+  for (size_t k = 0; k < faces.size(); ++k) {
+    if (static_cast<int>(faces[k].size()) != f.n) continue;
+    std::vector<int> have;
+    for (int j : faces[k]) have.push_back(m.cells(f.cell, corner[j - 1]));
+    std::sort(have.begin(), have.end());
+    if (have == want) return static_cast<int>(k) + 1;
+  }
+  return 0;
+}
+
+// *NSET and *SURFACE per tag of `sets` (see write_inp).
+void write_face_sets(std::ostream& out, const mesh::Mesh& m, const FaceSets& sets) {
+  std::map<int, std::vector<size_t>> by_tag;
+  for (size_t i = 0; i < sets.faces.size() && i < sets.tag.size(); ++i)
+    if (sets.tag[i] >= 1) by_tag[sets.tag[i]].push_back(i);
+  for (const auto& [tag, faces] : by_tag) {
+    std::vector<int> nodes;
+    for (size_t i : faces) {
+      const mesh::BoundaryFace& f = sets.faces[i];
+      nodes.insert(nodes.end(), f.v.begin(), f.v.begin() + f.n);
+      if (!m.second_order()) continue;
+      const auto [edges, ne] = mesh::cell_edges(m.type(f.cell));
+      auto on_face = [&](int node) { return std::find(f.v.begin(), f.v.begin() + f.n, node) != f.v.begin() + f.n; };
+      for (int e = 0; e < ne; ++e)
+        if (on_face(m.cells(f.cell, edges[e][0])) && on_face(m.cells(f.cell, edges[e][1]))) nodes.push_back(m.mid(f.cell, e));
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    out << "*NSET, NSET=Face" << tag << "\n";
+    for (size_t i = 0; i < nodes.size(); ++i)
+      out << nodes[i] + 1 << ((i + 1) % 16 == 0 || i + 1 == nodes.size() ? "\n" : ", ");
+    out << "*SURFACE, NAME=Face" << tag << ", TYPE=ELEMENT\n";
+    for (size_t i : faces) {
+      const int s = abaqus_face(m, sets.faces[i]);
+      if (s > 0) out << sets.faces[i].cell + 1 << ", S" << s << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+void write_inp(const std::string& path, const mesh::Mesh& m, const FaceSets* sets) {
   write_atomically(path, false, [&](std::ostream& out) {
     char buf[256];
     out << "*HEADING\nHexDom mesh (" << m.count(CellType::Hex) << " hex, "
@@ -65,6 +133,7 @@ void write_inp(const std::string& path, const mesh::Mesh& m) {
     };
     for (const auto& [r, ids] : regions) write_set("REGION_" + std::to_string(r), ids);
     if (!volume.empty()) write_set("EALL", volume);
+    if (sets) write_face_sets(out, m, *sets);
   });
 }
 

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "hexdom/io/face_sets.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::io {
@@ -10,8 +11,11 @@ namespace hexdom::io {
 /// Writes *NODE and one *ELEMENT block per cell type: C3D8 (hex, VTK order), C3D6 (prism: VTK
 /// [a b c d e f] as a c b d f e, Abaqus numbering its first face inward), C3D4 (tet, VTK order),
 /// S3/S4 for surface cells; a second-order mesh: C3D20, C3D15 (its corners as C3D6's), C3D10. An
-/// element set REGION_<id> per region and EALL for all volume cells.
-void write_inp(const std::string& path, const mesh::Mesh& mesh);
+/// element set REGION_<id> per region and EALL for all volume cells. With `sets`, for each tag k a
+/// node set Face<k> (the nodes of its faces, mid-edge nodes included) and an element-based surface
+/// Face<k> ("element, S<n>" lines, S<n> the face of the element type's Abaqus numbering whose
+/// corners are the face's), for *BOUNDARY and *DSLOAD on a CAD face.
+void write_inp(const std::string& path, const mesh::Mesh& mesh, const FaceSets* sets = nullptr);
 
 /// Reads the mesh of an .inp file as FEM tools write it (the subset of the keywords that hold the
 /// mesh; keywords are case-blind, "**" lines are comments):

@@ -80,7 +80,7 @@ void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions
       break;
     case Format::Vtk: write_vtk(path, m, options.binary); break;
     case Format::Vtu: write_vtu(path, m); break;
-    case Format::Inp: write_inp(path, m); break;
+    case Format::Inp: write_inp(path, m, options.face_sets.empty() ? nullptr : &options.face_sets); break;
     case Format::Msh: break;  // output_format_of refused it
     case Format::Stl:
     case Format::Obj: {

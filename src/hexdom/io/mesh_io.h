@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "hexdom/io/face_sets.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::io {
@@ -24,6 +25,8 @@ mesh::SurfaceMesh read_surface(const std::string& path);
 
 struct WriteOptions {
   bool binary = false;  ///< legacy VTK only
+  /// .inp only: node sets and surfaces named Face<k> for the boundary faces on each CAD face k.
+  FaceSets face_sets;
 };
 /// Writes a mesh in the format of the extension. STL and OBJ take surface cells only; a second-order
 /// mesh goes to .vtk, .vtu and .inp (.k refuses it with an InputError naming the file). Writing .msh
