@@ -230,11 +230,12 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
 }
 
-// For an .inp output, the boundary faces of `m` tagged with the patch (CAD face) of `surface`
-// each lies on, for the Face<k> sets; none for other formats or without a surface.
+// For an .inp or .msh output, the boundary faces of `m` tagged with the patch (CAD face) of
+// `surface` each lies on, for the Face<k> sets; none for other formats or without a surface.
 io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface) {
   io::WriteOptions w;
-  if (io::format_of(out) != io::Format::Inp || surface.F.rows() == 0) return w;
+  const io::Format f = io::format_of(out);
+  if ((f != io::Format::Inp && f != io::Format::Msh) || surface.F.rows() == 0) return w;
   w.face_sets.faces = mesh::boundary_faces(m);
   const std::vector<int> tris =
       mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), m.V, w.face_sets.faces);

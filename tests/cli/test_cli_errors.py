@@ -184,10 +184,9 @@ def test_failed_conversion_keeps_existing_output(hexdom_bin, dirs):
 
 
 @pytest.mark.parametrize("target", ["result.xyz", "result", "result.vtk.bak", "missing_dir/result.vtk",
-                                    "result.stl", "result.obj", "result.msh"])
+                                    "result.stl", "result.obj"])
 def test_unwritable_output_is_an_error_and_leaves_nothing(hexdom_bin, dirs, target):
-    """Unknown extension, no extension, a missing directory, a volume mesh into a surface format,
-    a format that is only read (.msh)."""
+    """Unknown extension, no extension, a missing directory, a volume mesh into a surface format."""
     src, out = dirs
     (src / "good.k").write_text(GOOD_K)
     r = run(hexdom_bin, "convert", "-i", src / "good.k", "-o", out / target)

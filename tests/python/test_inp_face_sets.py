@@ -54,3 +54,55 @@ def test_face_sets_hold_the_face_nodes_and_calculix_loads_them(hexdom_bin, box_s
     force = np.array([float(v) for v in match.groups()])
     # A pull of 2 on the 20 x 10 face at x = 40: the support at x = 0 holds -400 along x.
     np.testing.assert_allclose(force, [-400.0, 0.0, 0.0], atol=1e-6)
+
+
+FACE_PLANES = {1: (0, 0.0, 200.0), 2: (0, 40.0, 200.0), 3: (1, 0.0, 400.0), 4: (1, 20.0, 400.0),
+               5: (2, 0.0, 800.0), 6: (2, 10.0, 800.0)}  # FreeCAD face: (axis, value, area)
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_msh_has_a_physical_group_per_cad_face(hexdom_bin, box_step, tmp_path, order):
+    """The .msh: Gmsh (python3-gmsh) lists a physical group Face<k> per FreeCAD face, 2D elements
+    on that face only and covering it (their areas add up to the face's), together every boundary
+    face of the volume once; and the volume groups hold every cell (meshio agrees)."""
+    gmsh = pytest.importorskip("gmsh")
+    out = tmp_path / "box.msh"
+    r = subprocess.run([str(hexdom_bin), "mesh", str(box_step), "-o", str(out), "--size", "4", "--order", str(order)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Verbosity", 1)
+    try:
+        gmsh.open(str(out))
+        groups = {(d, gmsh.model.getPhysicalName(d, t)): t for d, t in gmsh.model.getPhysicalGroups()}
+        assert {name for d, name in groups if d == 2} == {f"Face{k}" for k in range(1, 7)}
+        faces, cells = 0, 0
+        for (dim, name), tag in groups.items():
+            for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
+                types, _, node_tags = gmsh.model.mesh.getElements(dim, entity)
+                for t, nodes in zip(types, node_tags):
+                    _, _, _, n, _, _ = gmsh.model.mesh.getElementProperties(t)
+                    corners = 4 if t in (3, 16) else 3 if t in (2, 9) else None
+                    elements = np.asarray(nodes).reshape(-1, n)
+                    if dim == 3:
+                        cells += len(elements)
+                        continue
+                    faces += len(elements)
+                    axis, value, area = FACE_PLANES[int(name[4:])]
+                    xyz = np.array([gmsh.model.mesh.getNode(int(v))[0] for v in elements[:, :corners].ravel()])
+                    assert np.abs(xyz[:, axis] - value).max() < 1e-9, name
+                    P = xyz.reshape(len(elements), corners, 3)
+                    q = (np.cross(P[:, 2] - P[:, 0], P[:, 3] - P[:, 1]) if corners == 4
+                         else np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]))
+                    assert 0.5 * np.linalg.norm(q, axis=1).sum() == pytest.approx(area, rel=1e-9), name
+    finally:
+        gmsh.finalize()
+    m = meshio.read(out)
+    volume_cells = sum(len(c.data) for c in m.cells if c.type.startswith(("hexahedron", "wedge", "tetra")))
+    assert cells == volume_cells > 0
+    # Every boundary face of the volume is in exactly one group: count faces used by one hex.
+    hexes = np.concatenate([c.data[:, :8] for c in m.cells if c.type.startswith("hexahedron")])
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    keys = [tuple(sorted(h[list(q)])) for h in hexes for q in quads]
+    _, counts = np.unique(np.array(keys), axis=0, return_counts=True)
+    assert faces == int((counts == 1).sum())

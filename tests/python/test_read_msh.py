@@ -200,12 +200,3 @@ def test_malformed_file_fails_naming_file_and_line_and_writes_nothing(hexdom_bin
     assert r.returncode == 1
     assert f"{msh}:{line}: {message}" in r.stderr
     assert not out.exists()
-
-
-def test_writing_msh_is_refused_before_reading(hexdom_bin, tmp_path):
-    src = tmp_path / "in.vtk"
-    out = tmp_path / "out.msh"
-    r = run(hexdom_bin, "convert", "-i", src, "-o", out)  # the input does not even exist
-    assert r.returncode == 1
-    assert f"{out}: writing .msh files is not supported" in r.stderr
-    assert not out.exists()

@@ -24,12 +24,7 @@ Format format_of(const std::string& path) {
   throw InputError(path, 0, "unknown file format '." + e + "' (expected .k, .vtk, .vtu, .inp, .msh, .stl or .obj)");
 }
 
-Format output_format_of(const std::string& path) {
-  const Format f = format_of(path);
-  if (f == Format::Msh)
-    throw InputError(path, 0, "writing .msh files is not supported yet (write .vtk, .vtu, .inp or .k)");
-  return f;
-}
+Format output_format_of(const std::string& path) { return format_of(path); }
 
 namespace {
 // For .k and .vtk: the format the first non-blank character says ('$' or '*' for keyword files,
@@ -81,7 +76,7 @@ void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions
     case Format::Vtk: write_vtk(path, m, options.binary); break;
     case Format::Vtu: write_vtu(path, m); break;
     case Format::Inp: write_inp(path, m, options.face_sets.empty() ? nullptr : &options.face_sets); break;
-    case Format::Msh: break;  // output_format_of refused it
+    case Format::Msh: write_msh(path, m, options.face_sets.empty() ? nullptr : &options.face_sets); break;
     case Format::Stl:
     case Format::Obj: {
       mesh::SurfaceMesh s;

@@ -9,13 +9,13 @@
 
 namespace hexdom::io {
 
-/// Formats: k, vtk, vtu, inp, msh (Gmsh), stl, obj (read); the same but msh (write).
+/// Formats: k, vtk, vtu, inp, msh (Gmsh), stl, obj (read and write).
 enum class Format { K, Vtk, Vtu, Inp, Stl, Obj, Msh };
 
 /// Format from the extension; throws InputError naming the path for an unknown one.
 Format format_of(const std::string& path);
-/// Format of an output file: format_of, and an InputError naming the path for a format that is read
-/// only (.msh), so that a command refuses its output before any work.
+/// Format of an output file (every readable format is written too): format_of, called by the
+/// commands so that an unknown output is refused before any work.
 Format output_format_of(const std::string& path);
 
 /// Reads a mesh of any readable format (STL and OBJ surfaces come back as triangle cells).
@@ -25,7 +25,8 @@ mesh::SurfaceMesh read_surface(const std::string& path);
 
 struct WriteOptions {
   bool binary = false;  ///< legacy VTK only
-  /// .inp only: node sets and surfaces named Face<k> for the boundary faces on each CAD face k.
+  /// .inp and .msh: the boundary faces on each CAD face k as a set named Face<k> (.inp: node set and
+  /// element surface; .msh: physical group of surface elements).
   FaceSets face_sets;
 };
 /// Writes a mesh in the format of the extension. STL and OBJ take surface cells only; a second-order

@@ -1,8 +1,9 @@
-// Gmsh .msh files: MSH 4.1 and 2.2, ASCII and binary (reading only).
+// Gmsh .msh files: MSH 4.1 and 2.2, ASCII and binary (reading); MSH 4.1 ASCII (writing).
 #pragma once
 
 #include <string>
 
+#include "hexdom/io/face_sets.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::io {
@@ -35,5 +36,16 @@ namespace hexdom::io {
 /// $Nodes, an unknown element type, another 3D type (pyramids, hex27, prism18, third order, ...), a
 /// second-order 2D element in a surface mesh, first- and second-order cells in one mesh.
 mesh::Mesh read_msh(const std::string& path);
+
+/// Writes MSH 4.1 ASCII, as Gmsh writes it: the cells of region r in volume entity r, physical group
+/// (3, r) named "Region<r>" (every id shifted to start at 1 when a region is below 1, the names
+/// keeping the ids); Gmsh types 4, 5, 6 (11, 17,
+/// 18 for a second-order mesh, in Gmsh's node order). With `sets`, the boundary faces tagged k as
+/// triangles / quads (6-node triangles, 8-node quads for a second-order mesh) in surface entity k,
+/// physical group (2, k) named "Face<k>", oriented out of the mesh. A mesh of 2D cells writes them in
+/// surface entities, one per region, physical groups "Region<r>". Every node is in one block of the
+/// first entity. Cells keep their order (a new element block wherever the region or the type
+/// changes), so cell c has element tag c + 1; the faces' tags follow.
+void write_msh(const std::string& path, const mesh::Mesh& mesh, const FaceSets* sets = nullptr);
 
 }  // namespace hexdom::io

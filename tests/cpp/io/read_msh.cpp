@@ -9,6 +9,7 @@
 #include "hexdom/io/msh.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/quality/metrics.h"
+#include "hexdom/mesh/second_order.h"
 #include "io_test_util.h"
 
 using namespace hexdom;
@@ -325,15 +326,29 @@ TEST(ReadMsh, SurfaceOnlyFileGivesItsTrianglesAndQuads) {
   EXPECT_EQ(io::read_surface(path).F.rows(), 3);
 }
 
-TEST(ReadMsh, ReadMeshDispatchesAndWritingIsRefused) {
+TEST(ReadMsh, ReadMeshDispatchesAndWritesBack) {
   EXPECT_EQ(io::format_of("a/b.MSH"), io::Format::Msh);
   const std::string path = write("dispatch.msh", kHexPrism41);
-  EXPECT_EQ(io::read_mesh(path).num_cells(), 2);
+  const mesh::Mesh m = io::read_mesh(path);
+  EXPECT_EQ(m.num_cells(), 2);
+  // write_msh then read_msh: the same cells, nodes and regions.
   const std::string out = test::temp_path("out.msh");
-  EXPECT_TRUE(ThrowsInputError([&] { io::write_mesh(out, io::read_mesh(path)); }, out, 0, "writing .msh files is not supported"));
-  EXPECT_TRUE(ThrowsInputError([&] { io::output_format_of(out); }, out, 0, "writing .msh files is not supported"));
-  EXPECT_FALSE(std::filesystem::exists(out));
+  io::write_mesh(out, m);
+  EXPECT_TRUE(test::SameMesh(io::read_mesh(out), m));
   EXPECT_TRUE(ThrowsInputError([&] { io::format_of("m.xyz"); }, "m.xyz", 0, ".msh"));
+}
+
+TEST(ReadMsh, SecondOrderAndFaceSetsWriteBack) {
+  mesh::Mesh m = mesh::add_mid_edge_nodes(test::volume_part(test::mixed_mesh()));
+  m.V(m.mid(0, 3), 0) += 0.05;
+  io::FaceSets sets;
+  sets.faces = mesh::boundary_faces(m);
+  for (size_t i = 0; i < sets.faces.size(); ++i) sets.tag.push_back(1 + static_cast<int>(i % 3));
+  const std::string out = test::temp_path("quadratic_sets.msh");
+  io::write_msh(out, m, &sets);
+  const mesh::Mesh r = io::read_msh(out);  // the boundary elements are skipped: the volume comes back
+  EXPECT_TRUE(test::SameMesh(r, m));
+  EXPECT_EQ(r.mid, m.mid);
 }
 
 // ---- malformed files ----
