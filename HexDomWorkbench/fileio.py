@@ -1,4 +1,4 @@
-"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp; import also Gmsh .msh),
+"""File > Open / Import / Export of HexDom meshes (.k, .vtk, .vtu, .inp, Gmsh .msh),
 registered in Init.py. FreeCAD calls open(filename), insert(filename, docname) and
 export(objects, filename); the same functions serve macros and the HexDom_ImportMesh /
 HexDom_ExportMesh commands.
@@ -13,7 +13,7 @@ import FreeCAD
 from . import core
 
 READ_EXTENSIONS = (".k", ".vtk", ".vtu", ".inp", ".msh")
-WRITE_EXTENSIONS = (".vtk", ".vtu", ".k", ".inp")
+WRITE_EXTENSIONS = (".vtk", ".vtu", ".k", ".inp", ".msh")
 
 
 def read_mesh(path):

@@ -15,6 +15,7 @@ _EXPORT_FILTERS = [
     ("VTK XML (*.vtu)", ".vtu"),
     ("LS-DYNA keyword (*.k)", ".k"),
     ("Abaqus / CalculiX input (*.inp)", ".inp"),
+    ("Gmsh mesh (*.msh)", ".msh"),
 ]
 
 

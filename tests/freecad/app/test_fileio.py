@@ -42,7 +42,7 @@ def test_open_makes_a_new_document(tmp_path):
         FreeCAD.closeDocument(doc.Name)
 
 
-@pytest.mark.parametrize("ext", [".vtk", ".vtu", ".k", ".inp"])
+@pytest.mark.parametrize("ext", [".vtk", ".vtu", ".k", ".inp", ".msh"])
 def test_export_writes_what_core_reads_back(doc, tmp_path, ext):
     from HexDomWorkbench import make
     obj = make.make_hex_mesh(doc, sample())
