@@ -213,7 +213,10 @@ def test_quality_and_convert_read_the_second_order_file(bracket, hexdom_bin):
     out = bracket["dir"] / "converted.inp"
     r = _run(hexdom_bin, "convert", "-i", bracket[(2, "vtk")], "-o", out)
     assert r.returncode == 0, r.stderr
-    assert out.read_text() == bracket[(2, "inp")].read_text()
+    # `hexdom mesh` adds the CAD faces' sets after the mesh; convert has no CAD part to name them by.
+    meshed = bracket[(2, "inp")].read_text()
+    assert "*NSET, NSET=Face1\n" in meshed and "*NSET, NSET=Face" not in out.read_text()
+    assert out.read_text() == meshed[:meshed.index("*NSET, NSET=Face")]
 
 
 def test_order_2_into_a_k_file_or_order_3_is_refused_without_output(hexdom_bin, tmp_path):
