@@ -304,11 +304,16 @@ class InpReader {
     return kw;
   }
 
+  // Index of the element set `name` (from *ELEMENT ELSET= or *ELSET), or -1 when no such set exists.
+  int find_set(const std::string& name) const {
+    auto it = std::find(set_names_.begin(), set_names_.end(), upper(name));
+    return it == set_names_.end() ? -1 : static_cast<int>(it - set_names_.begin());
+  }
+
   int set_index(const std::string& name) {
-    const std::string u = upper(name);
-    auto it = std::find(set_names_.begin(), set_names_.end(), u);
-    if (it != set_names_.end()) return static_cast<int>(it - set_names_.begin());
-    set_names_.push_back(u);
+    const int s = find_set(name);
+    if (s >= 0) return s;
+    set_names_.push_back(upper(name));
     set_elements_.emplace_back();
     return static_cast<int>(set_names_.size() - 1);
   }
@@ -319,7 +324,6 @@ class InpReader {
     const bool nodes = k.name == "NSET";
     auto n = k.params.find(nodes ? "NSET" : "ELSET");
     if (n == k.params.end() || n->second.empty()) cur_.fail("*" + k.name + " without " + k.name + "=");
-    std::set<std::string>& names = nodes ? nset_names_ : elset_names_;
     const bool generate = k.params.count("GENERATE") > 0;
     const int members = nodes ? -1 : set_index(n->second);
     bool kw;
@@ -338,12 +342,14 @@ class InpReader {
         if (parse_int(field, v)) {
           if (v <= 0) cur_.fail("set member '" + std::string(field) + "' is not a positive id");
           set_members_.push_back({nodes, v, cur_.line(), members});
-        } else if (!names.count(upper(field))) {
+        } else if (nodes ? nset_names_.count(upper(field)) > 0 : find_set(std::string(field)) >= 0) {
+          if (!nodes) set_includes_.push_back({members, find_set(std::string(field))});
+        } else {
           cur_.fail("*" + k.name + " " + n->second + ": '" + std::string(field.substr(0, 40)) + "' is neither an id nor a set defined above");
         }
       }
     }
-    names.insert(upper(n->second));
+    if (nodes) nset_names_.insert(upper(n->second));
     return kw;
   }
 
@@ -360,7 +366,8 @@ class InpReader {
   std::vector<long> nodes_;  // node ids of every element, in file order
   std::vector<std::string> set_names_;  // element sets (upper case)
   std::vector<std::vector<long>> set_elements_;
-  std::set<std::string> nset_names_, elset_names_;
+  std::set<std::string> nset_names_;
+  std::vector<std::pair<int, int>> set_includes_;  // (element set, element set named among its members), in file order
   std::vector<Member> set_members_;
 };
 
@@ -373,6 +380,8 @@ mesh::Mesh InpReader::assemble() {
                                           " of a set is not defined in the file");
     if (m.elset >= 0) set_elements_[m.elset].push_back(m.id);
   }
+  for (auto [to, from] : set_includes_)
+    if (to != from) set_elements_[to].insert(set_elements_[to].end(), set_elements_[from].begin(), set_elements_[from].end());
   // Region of each element id: REGION_<n> sets when present, else the *ELEMENT sets numbered 1, 2, ...
   std::unordered_map<long, int> region;
   bool numbered = false;

@@ -79,6 +79,21 @@ TEST(ReadInp, ReadsAPrismInAbaqusOrderAsVtkOrder) {
   for (int j = 0; j < 6; ++j) EXPECT_EQ(r.cells(0, j), vtk[j]);
 }
 
+TEST(ReadInp, AnElementSetMayNameASetOfTheElementLines) {
+  // "*ELSET, ELSET=All" listing the set that "*ELEMENT, ..., ELSET=Solid" made, as FreeCAD's and
+  // CalculiX users' files do; a REGION_<n> set given by name takes that set's elements.
+  const std::string path = test::temp_path("read_inp_set_of_sets.inp");
+  test::write_text(path, "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n5,1,1,1\n"
+                         "*ELEMENT, TYPE=C3D4, ELSET=Solid\n1, 1, 2, 3, 4\n"
+                         "*ELEMENT, TYPE=C3D4, ELSET=Other\n2, 2, 3, 4, 5\n"
+                         "*ELSET, ELSET=All\nSolid, Other\n"
+                         "*ELSET, ELSET=REGION_3\nSolid\n*ELSET, ELSET=REGION_4\n2\n");
+  const mesh::Mesh r = io::read_inp(path);
+  ASSERT_EQ(r.num_cells(), 2);
+  EXPECT_EQ(r.region(0), 3);
+  EXPECT_EQ(r.region(1), 4);
+}
+
 TEST(ReadInp, NamesFileAndLineOfWhatIsWrong) {
   const std::string head = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n";  // lines 1..5
   struct Case { std::string body; long line; std::string text; };
