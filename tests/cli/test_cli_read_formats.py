@@ -31,20 +31,12 @@ def _gmsh_box(path, kind):
     written as .inp with a physical volume; returns Gmsh's count of 3D elements."""
     gmsh.clear()
     gmsh.model.add(kind)
-    if kind == "prism":
-        gmsh.model.occ.addRectangle(0, 0, 0, BOX[0], BOX[1])
-        gmsh.model.occ.extrude([(2, 1)], 0, 0, BOX[2], numElements=[4], recombine=True)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", 0.6)
+    if kind in ("hex", "prism"):
+        oracles.gmsh_structured_box(gmsh, kind, BOX, 3 if kind == "hex" else 4)
     else:
         gmsh.model.occ.addBox(0, 0, 0, *BOX)
-    gmsh.model.occ.synchronize()
-    gmsh.option.setNumber("Mesh.MeshSizeMax", 0.6)
-    if kind == "hex":
-        for _, c in gmsh.model.getEntities(1):
-            gmsh.model.mesh.setTransfiniteCurve(c, 4)
-        for _, s in gmsh.model.getEntities(2):
-            gmsh.model.mesh.setTransfiniteSurface(s)
-            gmsh.model.mesh.setRecombine(2, s)
-        gmsh.model.mesh.setTransfiniteVolume(1)
+        gmsh.model.occ.synchronize()
     gmsh.model.addPhysicalGroup(3, [1], 7)
     gmsh.model.mesh.generate(3)
     if kind == "tet10":

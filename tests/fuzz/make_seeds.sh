@@ -8,21 +8,23 @@ HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 C=$HERE/corpus
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-# A hex and a wedge sharing a face, as legacy VTK (the reader's input and the others' source).
-cat > "$T/two.vtk" <<'VTK'
-# vtk DataFile Version 4.2
-two cells
-ASCII
-DATASET UNSTRUCTURED_GRID
-POINTS 10 double
-0 0 0
+# The unit cube's corners in VTK's hexahedron order, for the legacy VTK files below.
+CUBE='0 0 0
 1 0 0
 1 1 0
 0 1 0
 0 0 1
 1 0 1
 1 1 1
-0 1 1
+0 1 1'
+# A hex and a wedge sharing a face, as legacy VTK (the reader's input and the others' source).
+cat > "$T/two.vtk" <<VTK
+# vtk DataFile Version 4.2
+two cells
+ASCII
+DATASET UNSTRUCTURED_GRID
+POINTS 10 double
+$CUBE
 2 0 0
 2 0 1
 CELLS 2 16
@@ -151,20 +153,13 @@ PY
 # The user-data checks: a unit cube's surface with one part id per face (surface_checks), and its
 # polycube structure, one hex block, and two hex blocks splitting it (structure).
 mkdir -p "$C/surface_checks" "$C/structure"
-cat > "$T/cube_faces.vtk" <<'VTK'
+cat > "$T/cube_faces.vtk" <<VTK
 # vtk DataFile Version 4.2
 cube faces
 ASCII
 DATASET UNSTRUCTURED_GRID
 POINTS 8 double
-0 0 0
-1 0 0
-1 1 0
-0 1 0
-0 0 1
-1 0 1
-1 1 1
-0 1 1
+$CUBE
 CELLS 6 30
 4 0 3 2 1
 4 4 5 6 7
@@ -191,20 +186,13 @@ LOOKUP_TABLE default
 VTK
 "$HEXDOM" convert -i "$T/cube_faces.vtk" -o "$C/surface_checks/cube_faces.k" 2>/dev/null
 cp "$C/k/tet_shells.k" "$C/surface_checks/tet.k"
-cat > "$T/one_block.vtk" <<'VTK'
+cat > "$T/one_block.vtk" <<VTK
 # vtk DataFile Version 4.2
 one block
 ASCII
 DATASET UNSTRUCTURED_GRID
 POINTS 8 double
-0 0 0
-1 0 0
-1 1 0
-0 1 0
-0 0 1
-1 0 1
-1 1 1
-0 1 1
+$CUBE
 CELLS 1 9
 8 0 1 2 3 4 5 6 7
 CELL_TYPES 1

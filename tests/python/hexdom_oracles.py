@@ -336,3 +336,25 @@ def max_brep_distance(FreeCAD, Part, shape, g):
     faces = Part.Compound(shape.Faces)
     return max(faces.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, p))))[0] for p in boundary_points(g))
 
+
+
+def gmsh_structured_box(gmsh, kind, box, divisions):
+    """Adds to Gmsh's current model a box (0, 0, 0)-box meshed in structure by Gmsh itself: "hex" a
+    transfinite, recombined box of `divisions` cells along each edge; "prism" a rectangle extruded
+    along z in `divisions` recombined layers (triangles swept into prisms). The model is synchronized;
+    generating the mesh is left to the caller."""
+    if kind == "hex":
+        gmsh.model.occ.addBox(0, 0, 0, *box)
+        gmsh.model.occ.synchronize()
+        for _, c in gmsh.model.getEntities(1):
+            gmsh.model.mesh.setTransfiniteCurve(c, divisions + 1)
+        for _, s in gmsh.model.getEntities(2):
+            gmsh.model.mesh.setTransfiniteSurface(s)
+            gmsh.model.mesh.setRecombine(2, s)
+        gmsh.model.mesh.setTransfiniteVolume(1)
+    elif kind == "prism":
+        rect = gmsh.model.occ.addRectangle(0, 0, 0, box[0], box[1])
+        gmsh.model.occ.extrude([(2, rect)], 0, 0, box[2], numElements=[divisions], recombine=True)
+        gmsh.model.occ.synchronize()
+    else:
+        raise ValueError(f"gmsh_structured_box: kind {kind!r} is neither 'hex' nor 'prism'")

@@ -50,21 +50,11 @@ def build(kind):
             gmsh.model.addPhysicalGroup(3, [tag], 11 if x < 1 else 12)
         gmsh.option.setNumber("Mesh.MeshSizeMax", 0.35)
     elif base == "hex":
-        gmsh.model.occ.addBox(0, 0, 0, 2, 1, 1.5)
-        gmsh.model.occ.synchronize()
-        for _, c in gmsh.model.getEntities(1):
-            gmsh.model.mesh.setTransfiniteCurve(c, 4)
-        for _, s in gmsh.model.getEntities(2):
-            gmsh.model.mesh.setTransfiniteSurface(s)
-            gmsh.model.mesh.setRecombine(2, s)
-        gmsh.model.mesh.setTransfiniteVolume(1)
+        O.gmsh_structured_box(gmsh, "hex", (2, 1, 1.5), 3)
         gmsh.model.addPhysicalGroup(3, [1], 21)
     else:
-        rect = gmsh.model.occ.addRectangle(0, 0, 0, 2, 1)
-        gmsh.model.occ.synchronize()
         gmsh.option.setNumber("Mesh.MeshSizeMax", 0.4)
-        gmsh.model.occ.extrude([(2, rect)], 0, 0, 1.5, numElements=[3], recombine=True)
-        gmsh.model.occ.synchronize()
+        O.gmsh_structured_box(gmsh, "prism", (2, 1, 1.5), 3)
     gmsh.model.mesh.generate(3)
     if kind != base:
         gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1)  # hex20 and prism15, not hex27 / prism18

@@ -24,6 +24,8 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -318,12 +320,15 @@ std::vector<Shape> read_solids(const std::string& source, const ReadOptions& opt
   return out;
 }
 
-std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>& solids, double tolerance) {
+std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>& solids, double relative_tolerance) {
   std::vector<Bnd_Box> boxes(solids.size());
+  double diagonal = 0;
   for (size_t k = 0; k < solids.size(); ++k) {
     BRepBndLib::Add(solids[k].impl().shape, boxes[k]);
-    boxes[k].Enlarge(tolerance);
+    if (!boxes[k].IsVoid()) diagonal = std::max(diagonal, std::sqrt(boxes[k].SquareExtent()));
   }
+  const double tolerance = relative_tolerance * diagonal;
+  for (Bnd_Box& b : boxes) b.Enlarge(tolerance);
   std::vector<std::array<int, 2>> out;
   for (size_t a = 0; a < solids.size(); ++a)
     for (size_t b = a + 1; b < solids.size(); ++b) {

@@ -33,10 +33,11 @@ Shape read_brep_string(const std::string& brep, const ReadOptions& options = {})
 /// with one solid gives one. Throws as read_shape.
 std::vector<Shape> read_solids(const std::string& source, const ReadOptions& options = {});
 
-/// The pairs (1-based, first < second) of `solids` that touch or overlap: closer than `tolerance`
-/// (BRepExtrema distance 0 for solids that overlap or share a face). Meshing them one by one gives
-/// meshes that do not conform where they touch.
-std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>& solids, double tolerance);
+/// The pairs (1-based, first < second) of `solids` that touch or overlap: closer than
+/// `relative_tolerance` times the largest bounding-box diagonal among them (BRepExtrema distance 0
+/// for solids that overlap or share a face). Meshing them one by one gives meshes that do not
+/// conform where they touch.
+std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>& solids, double relative_tolerance);
 
 /// True when `text` looks like BREP text rather than a file name (it holds "CASCADE Topology").
 bool is_brep_string(const std::string& text);

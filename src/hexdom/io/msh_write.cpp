@@ -27,9 +27,6 @@ int gmsh_type_of(CellType t, bool second) {
   return 0;
 }
 
-// Gmsh's node order of a cell: gmsh[order[i]] = vtk[i] (GmshNodeOrders reads the other way).
-const int* order_of(const GmshNodeOrders& orders, int gmsh_type) { return orders.of(gmsh_type); }
-
 struct Block {
   int dim, entity, type;
   std::vector<std::vector<int>> elements;  // node indices (0-based), Gmsh order
@@ -99,7 +96,7 @@ void write_msh(const std::string& path, const mesh::Mesh& m, const FaceSets* set
     if (volumes && !mesh::is_volume(m.type(c))) continue;
     const int type = gmsh_type_of(m.type(c), second);
     const int n = mesh::cell_nodes(m, c, nodes);
-    const int* order = order_of(orders, type);
+    const int* order = orders.of(type);
     for (int i = 0; i < n; ++i) gmsh[order[i]] = nodes[i];
     const int entity = entity_of_region.at(m.region(c));
     if (cells.empty() || cells.back().entity != entity || cells.back().type != type)

@@ -156,9 +156,10 @@ class VtuReader {
   void data_array(const Tag& t, size_t& pos, const std::string& section);
   void add_piece(const Piece& p, long base, std::vector<double>& pts, CellAssembly& cells);
   std::vector<double> values(const Array& a, size_t count, const char* what);
+  size_t appended_start(const Array& a) const;
   std::vector<unsigned char> bytes_of(const Array& a);
   std::vector<unsigned char> unpack(const Array& a, const unsigned char* p, size_t n, size_t want);
-  uint64_t header_word(const Array& a, const unsigned char* p) const;
+  uint64_t header_word(const unsigned char* p) const;
 
   std::string path_;
   const std::string& s_;
@@ -271,7 +272,7 @@ void VtuReader::data_array(const Tag& t, size_t& pos, const std::string& section
   }
 }
 
-uint64_t VtuReader::header_word(const Array&, const unsigned char* p) const {
+uint64_t VtuReader::header_word(const unsigned char* p) const {
   uint64_t v = 0;
   for (size_t k = 0; k < header_size_; ++k) {
     const size_t byte = big_endian_ ? header_size_ - 1 - k : k;
@@ -280,16 +281,20 @@ uint64_t VtuReader::header_word(const Array&, const unsigned char* p) const {
   return v;
 }
 
-// The bytes of a binary or appended array, header included (base64 decoded; raw: up to the end of
-// the appended data).
+// Where an appended array starts in the file; fails when there is no appended data or the offset
+// lies past it.
+size_t VtuReader::appended_start(const Array& a) const {
+  if (appended_ == std::string::npos) fail(a.tag, "DataArray " + a.name + " is appended, but the file has no AppendedData");
+  if (a.offset > appended_end_ - appended_) fail(a.tag, "DataArray " + a.name + ": offset " + std::to_string(a.offset) + " is past the appended data");
+  return appended_ + a.offset;
+}
+
+// The decoded bytes of a base64 array (binary, or appended in base64), header included.
 std::vector<unsigned char> VtuReader::bytes_of(const Array& a) {
   size_t b = a.text_begin, e = a.text_end;
   if (a.format == "appended") {
-    if (appended_ == std::string::npos) fail(a.tag, "DataArray " + a.name + " is appended, but the file has no AppendedData");
-    if (a.offset > appended_end_ - appended_) fail(a.tag, "DataArray " + a.name + ": offset " + std::to_string(a.offset) + " is past the appended data");
-    b = appended_ + a.offset;
+    b = appended_start(a);
     e = appended_end_;
-    if (!appended_base64_) return std::vector<unsigned char>(s_.begin() + b, s_.begin() + e);
     auto next = std::upper_bound(appended_offsets_.begin(), appended_offsets_.end(), a.offset);
     if (next != appended_offsets_.end()) e = std::min(e, appended_ + *next);
   }
@@ -332,13 +337,13 @@ std::vector<unsigned char> VtuReader::unpack(const Array& a, const unsigned char
   const size_t h = header_size_;
   if (!zlib_) {
     if (n < h) fail(a.tag, what + ": data ends in its header (truncated?)");
-    const uint64_t size = header_word(a, p);
+    const uint64_t size = header_word(p);
     if (size != want) fail(a.tag, what + ": its header gives " + std::to_string(size) + " bytes, expected " + std::to_string(want));
     if (size > n - h) fail(a.tag, what + ": " + std::to_string(size) + " bytes announced, " + std::to_string(n - h) + " present (truncated?)");
     return std::vector<unsigned char>(p + h, p + h + size);
   }
   if (n < 3 * h) fail(a.tag, what + ": data ends in its compression header (truncated?)");
-  const uint64_t blocks = header_word(a, p), block = header_word(a, p + h), last = header_word(a, p + 2 * h);
+  const uint64_t blocks = header_word(p), block = header_word(p + h), last = header_word(p + 2 * h);
   if (blocks > (n - 3 * h) / h) fail(a.tag, what + ": " + std::to_string(blocks) + " compressed blocks do not fit the data");
   if (block == 0 && blocks > 0) fail(a.tag, what + ": block size 0");
   if (blocks > 0 && (blocks - 1 > want / block || last > block))  // before any product can overflow
@@ -349,7 +354,7 @@ std::vector<unsigned char> VtuReader::unpack(const Array& a, const unsigned char
   std::vector<unsigned char> out(want);
   size_t at = 3 * h + blocks * h, done = 0;
   for (uint64_t k = 0; k < blocks; ++k) {
-    const uint64_t csize = header_word(a, p + 3 * h + k * h);
+    const uint64_t csize = header_word(p + 3 * h + k * h);
     if (csize > n - at) fail(a.tag, what + ": compressed block " + std::to_string(k) + " runs past the data (truncated?)");
     uLongf len = static_cast<uLongf>(k + 1 == blocks && last ? last : block);
     if (len > want - done) fail(a.tag, what + ": compressed block " + std::to_string(k) + " holds more than the array");
@@ -387,10 +392,7 @@ std::vector<double> VtuReader::values(const Array& a, size_t count, const char* 
   std::vector<unsigned char> raw;
   std::vector<unsigned char> data;
   if (a.format == "appended" && !appended_base64_) {
-    if (appended_ == std::string::npos) fail(a.tag, "DataArray " + a.name + " is appended, but the file has no AppendedData");
-    if (a.offset > appended_end_ - appended_)
-      fail(a.tag, "DataArray " + a.name + ": offset " + std::to_string(a.offset) + " is past the appended data");
-    const size_t b = appended_ + a.offset;
+    const size_t b = appended_start(a);
     data = unpack(a, reinterpret_cast<const unsigned char*>(s_.data()) + b, appended_end_ - b, count * w);
   } else {
     raw = bytes_of(a);

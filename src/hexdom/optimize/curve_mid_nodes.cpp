@@ -68,7 +68,8 @@ CurveReport curve_mid_nodes(mesh::Mesh& m, const Eigen::MatrixXd& target, const 
     for (int c : cells_of[v])
       if (!queued[c]) queued[c] = 1, judge.push_back(c);
   }
-  std::vector<double> straight(nc, std::numeric_limits<double>::quiet_NaN());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> straight(nc, nan), sj(nc, nan);  // sj: the cell's value as it stands, NaN when unknown
   const double smallest = std::ldexp(1.0, -opt.halvings);
   // Every pass lowers the share of some node, and a share takes halvings + 2 values at most, so the
   // loop ends; a cell whose mid-edge nodes all have share 0 has its straight shape and is accepted.
@@ -78,7 +79,8 @@ CurveReport curve_mid_nodes(mesh::Mesh& m, const Eigen::MatrixXd& target, const 
     for (int c : judge) {
       queued[c] = 0;
       if (std::isnan(straight[c])) straight[c] = straight_sj(m, c);
-      if (!(cell_sj(m, c) < std::min(opt.min_sj, straight[c]))) continue;
+      sj[c] = cell_sj(m, c);
+      if (!(sj[c] < std::min(opt.min_sj, straight[c]))) continue;
       for (int e = 0; e < mesh::edge_count(m.type(c)); ++e)
         if (share[m.mid(c, e)] > 0) lower.push_back(m.mid(c, e));
     }
@@ -88,8 +90,10 @@ CurveReport curve_mid_nodes(mesh::Mesh& m, const Eigen::MatrixXd& target, const 
     for (int v : lower) {
       share[v] = share[v] > smallest ? share[v] / 2 : 0;
       place(v);
-      for (int c : cells_of[v])
+      for (int c : cells_of[v]) {
+        sj[c] = nan;
         if (!queued[c]) queued[c] = 1, judge.push_back(c);
+      }
     }
   }
   for (int v = 0; v < nv; ++v) {
@@ -99,9 +103,9 @@ CurveReport curve_mid_nodes(mesh::Mesh& m, const Eigen::MatrixXd& target, const 
     r.shortened += share[v] > 0 && share[v] < 1;
     r.max_gap = std::max(r.max_gap, (m.V.row(v) - target.row(v)).norm());
   }
-  r.worst_sj = std::numeric_limits<double>::quiet_NaN();
+  r.worst_sj = nan;
   for (int c = 0; c < nc; ++c) {
-    const double q = cell_sj(m, c);
+    const double q = std::isnan(sj[c]) ? cell_sj(m, c) : sj[c];
     r.worst_sj = std::isnan(r.worst_sj) ? q : std::min(r.worst_sj, q);
     r.inverted += !(q > 0);
   }

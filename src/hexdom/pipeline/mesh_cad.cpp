@@ -249,9 +249,7 @@ MeshSolidsRun mesh_cad_solids(const std::vector<cad::Shape>& solids, const MeshC
   }
   r = MeshSolidsRun{};
   if (solids.empty()) throw InputError("no solid to mesh");
-  double diagonal = 0;
-  for (const cad::Shape& s : solids) diagonal = std::max(diagonal, cad::shape_info(s).box.diagonal().norm());
-  r.touching = cad::touching_solids(solids, 1e-6 * diagonal);
+  r.touching = cad::touching_solids(solids, 1e-6);
   for (const auto& [a, b] : r.touching)
     if (opt.log)
       opt.log(1, "solids " + std::to_string(a) + " and " + std::to_string(b) +
