@@ -525,6 +525,7 @@ class MeshRun:
     polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
     face_only: list = None    # overlay mesh: per node, 1 when it goes onto a CAD face only (snap_to_brep's face_only)
     solids: int = 1           # solids meshed (each its own region when more than one)
+    touching: list = None     # mesh_part, several solids: the pairs (1-based) that touch (meshes not conforming there)
     second_order: dict = None  # order 2: how the mid-edge nodes were placed (_hexdom.mesh_surface's)
 
     @property
@@ -554,6 +555,7 @@ def _cad_run(r):
     run.tessellations = int(r["tessellations"])
     run.tessellation_factor = float(r["tessellation_factor"])
     run.tessellation_size = float(r.get("tessellation_size", 0.0))
+    run.touching = [tuple(int(k) for k in pair) for pair in r.get("touching", [])]
     if r.get("snap") is not None:
         run.snap = dict(r["snap"])
         run.snap["max_distance"] = run.snap["max_after"]
@@ -700,7 +702,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
     min_size, cells_across, growth_rate, order (2: hex20 / wedge15 / tet10 with the boundary's
     mid-edge nodes on the B-rep), time_limit (seconds for the whole call) go to it, and face_sizes, {FreeCAD face number of the
-    solid meshed: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
+    source's shape: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
     likewise along edges (Edge<number>, `--edge-size`); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube
@@ -709,7 +711,11 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     OpenCASCADE. Raises MeshingError when inverted cells remain, unless allow_inverted. Returns a
     MeshRun whose seconds include "tessellate" and "snap", ``snap`` the snap report and
     ``surface`` the tessellation meshed. An Error raised carries ``run`` (a MeshRun of what the
-    finished stages made, or None) and ``stage`` (the stage that failed)."""
+    finished stages made, or None) and ``stage`` (the stage that failed).
+    A source with several solids (a compound) has every solid meshed, solid k's cells in region k
+    (``solid``: 1-based, one solid only), as `hexdom mesh`: ``surface`` and ``snap`` are then the
+    whole part's, their face, edge and vertex numbers FreeCAD's for the whole shape, ``solids`` the
+    count and ``touching`` the pairs of solids that touch (their meshes do not conform there)."""
     if not getattr(_hexdom, "has_opencascade", lambda: False)():
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",

@@ -355,6 +355,7 @@ void add_mesh(CLI::App& app) {
       co.snap = !a->no_snap;
       co.edge_sizes = a->edge_sizes;
       if (a->opt.verbose) co.snap_options.log = print_log;
+      pipeline::MeshCadRun cr;
       if (solids.size() > 1) {
         print_log(0, a->in + " holds " + std::to_string(solids.size()) +
                          " solids: each is meshed, its cells in region k for solid k (--solid N meshes one)");
@@ -368,16 +369,8 @@ void add_mesh(CLI::App& app) {
           failed();
           throw;
         }
-        run = std::move(sr.run);
-        reference_volume = sr.brep_volume;
-        reference = "B-rep";
-        for (size_t k = 0; k < sr.solids.size(); ++k)
-          if (sr.solids[k].snapped) {
-            print_log(0, "solid " + std::to_string(k + 1) + ":");
-            print_snap(sr.solids[k].snap.report, sr.solids[k].snap_seconds);
-          }
+        cr = std::move(sr.part);
       } else {
-        pipeline::MeshCadRun cr;
         try {
           pipeline::mesh_cad_part(shape, co, &cr);
         } catch (const TimeLimitError&) {
@@ -388,17 +381,17 @@ void add_mesh(CLI::App& app) {
           failed();
           throw;
         }
-        surface = std::move(cr.surface);
-        run = std::move(cr.run);
-        snapped = cr.snapped;
-        snap = cr.snap.report;
-        snap_seconds = cr.snap_seconds;
-        reference_volume = cr.stats.brep_volume;
-        reference = "B-rep";
-        if (cr.tessellation_factor != 1)
-          print_log(0, fmt("tessellate: the mesh is the one of the tessellation at %.2f x the size (%.0f triangles)",
-                           cr.tessellation_factor, cr.stats.triangles));
       }
+      surface = std::move(cr.surface);
+      run = std::move(cr.run);
+      snapped = cr.snapped;
+      snap = cr.snap.report;
+      snap_seconds = cr.snap_seconds;
+      reference_volume = cr.stats.brep_volume;
+      reference = "B-rep";
+      if (cr.tessellation_factor != 1)
+        print_log(0, fmt("tessellate: the mesh is the one of the tessellation at %.2f x the size (%.0f triangles)",
+                         cr.tessellation_factor, cr.stats.triangles));
     } else {
       if (!a->edge_sizes.empty())
         throw InputError("--edge-size needs a CAD part (.step, .iges, .brep): " + a->in + " is a triangle surface");

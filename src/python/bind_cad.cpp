@@ -107,7 +107,12 @@ std::string mesh_cad_doc() {
       "inverted cells; the polycube grid kept)\n"
       "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
       "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
-      "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor, tessellation_size (its target triangle size). Raises the first\n"
+      "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor, tessellation_size (its target triangle size),\n"
+      "solids and touching. A source with several solids (solid=0) has each meshed, solid k's cells in region k:\n"
+      "surface, run and snap are then the whole part's, numbered as FreeCAD numbers the source's faces, edges\n"
+      "and vertices (face_sizes and edge_sizes too), solids a dict per solid in its own numbers, touching the\n"
+      "pairs (1-based) of solids that touch (their meshes do not conform there); with one solid, solids and\n"
+      "touching are empty. Raises the first\n"
       "tessellation's error when none gives a mesh, with what the finished stages made as its attribute\n"
       "partial (this dict; partial[\"stage\"] the stage that failed).\n") + kPolycubeSecondsDoc +
       " The budget covers the polycube path on every tessellation of the call; once it has passed, no\n"
@@ -184,16 +189,32 @@ void bind_mesh_cad(py::module_& m) {
                                           polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order,
                                           time_limit);
           opt.snap = snap;
-          pipeline::MeshCadRun r;
+          pipeline::MeshSolidsRun r;
           try {
             py::gil_scoped_release nogil;
-            pipeline::mesh_cad_part(read_source(source, solid), opt, &r);
+            cad::ReadOptions ro;
+            ro.solid = solid;
+            const std::vector<cad::Shape> solids = cad::read_solids(source, ro);
+            if (solids.size() > 1) {
+              pipeline::mesh_cad_solids(solids, opt, &r);
+            } else {
+              r.solids.emplace_back();
+              pipeline::mesh_cad_part(solids.front(), opt, &r.solids.back());
+              r.part = std::move(r.solids.back());
+              r.solids.clear();
+            }
           } catch (const Error& e) {
             // Raised with what the finished stages made (error.partial: this dict, its run's
             // stage the one that failed), for the front ends that show the stages.
-            raise_with(module, e, "partial", cad_run_dict(r));
+            raise_with(module, e, "partial", cad_run_dict(r.solids.empty() ? r.part : r.solids.back()));
           }
-          return cad_run_dict(r);
+          py::dict d = cad_run_dict(r.part);
+          py::list solids, touching;
+          for (const pipeline::MeshCadRun& s : r.solids) solids.append(cad_run_dict(s));
+          for (const auto& [a, b] : r.touching) touching.append(py::make_tuple(a, b));
+          d["solids"] = solids;
+          d["touching"] = touching;
+          return d;
         },
         py::arg("source"), py::arg("size") = defaults.mesh.size, py::arg("solid") = 0, py::arg("snap") = defaults.snap,
         py::arg("level") = defaults.mesh.level, py::arg("edge_weight") = defaults.mesh.segment.edge_weight,

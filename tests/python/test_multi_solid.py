@@ -90,3 +90,74 @@ def test_second_order_solids_are_put_together_too(hexdom_bin, parts, tmp_path):
     # Each solid's nodes are its own: no cell of region 1 shares a node with one of region 2.
     cells = m.cells[0].data
     assert not set(cells[region == 1].ravel()) & set(cells[region == 2].ravel())
+
+
+def test_face_sets_of_several_solids_are_numbered_as_freecad_numbers_the_compound(freecad, hexdom_bin, parts,
+                                                                                  tmp_path):
+    """The .inp's Face<k> node sets follow FreeCAD's Face<k> of the whole STEP (box 1-6, cylinder 7-9):
+    each set's nodes lie on that face of the compound FreeCAD reads and far from the other solid (but
+    for the nodes of the few boundary quads the overlay lets straddle the cylinder's rims, whose
+    set is that of their centre), and a size given on the cylinder's Face7 refines the cylinder's
+    cells only."""
+    FreeCAD, Part = freecad
+    step, _ = parts["apart"]
+    compound = Part.read(str(step))
+    assert len(compound.Faces) == 9
+    out = tmp_path / "apart.inp"
+    r = _mesh(hexdom_bin, step, out)
+    assert r.returncode == 0, r.stderr
+    m = meshio.read(out)
+    other = {k: Part.Compound(compound.Solids[1 if k <= 6 else 0].Faces) for k in range(1, 10)}
+    for k in range(1, 10):
+        nodes = m.point_sets[f"Face{k}"]
+        assert len(nodes) > 4, k
+        points = [Part.Vertex(FreeCAD.Vector(*map(float, m.points[i]))) for i in nodes]
+        on = np.array([compound.Faces[k - 1].distToShape(p)[0] for p in points])
+        assert (on < 1e-6).mean() > 0.85, (k, on.max())
+        assert min(other[k].distToShape(p)[0] for p in points) > 5, k
+    assert "Face10" not in m.point_sets
+
+    def figures(path):  # (cells of the box, nodes of Face7)
+        m = meshio.read(path)
+        return sum(len(c) for c in m.cell_sets["REGION_1"]), len(m.point_sets["Face7"])
+
+    plain, sized = tmp_path / "plain.inp", tmp_path / "sized.inp"
+    for path, extra in ((plain, []), (sized, ["--face-size", "7=0.5"])):
+        r = _mesh(hexdom_bin, step, path, "--method", "overlay", *extra)
+        assert r.returncode == 0, r.stderr
+    (box_before, face_before), (box_after, face_after) = figures(plain), figures(sized)
+    assert box_after == box_before and face_after > 3 * face_before, (figures(plain), figures(sized))
+    r = _mesh(hexdom_bin, step, tmp_path / "none.vtu", "--face-size", "10=1")
+    assert r.returncode == 1 and "Face10" in r.stderr and not (tmp_path / "none.vtu").exists()
+
+
+def test_core_meshes_every_solid_of_a_brep_numbered_as_freecad(freecad, parts):
+    """_hexdom.mesh_cad through HexDomWorkbench.core.mesh_part, on the BREP text FreeCAD exports for a
+    compound (what the workbench's Mesh Part hands over): both solids meshed in regions 1 and 2, the
+    tessellation's face ids FreeCAD's Face1..Face9 of the compound (each triangle's corners on that
+    face), the snap's face nodes on the face its entity names; touching solids listed."""
+    from hexdom_test_support import load_core
+    core = load_core()
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    FreeCAD, Part = freecad
+    compound = Part.read(str(parts["apart"][0]))
+    run = core.mesh_part(compound.exportBrepToString(), size=4)
+    assert run.solids == 2 and run.touching == []
+    region = np.asarray(run.mesh.region)
+    assert sorted(set(region.tolist())) == [1, 2]
+    assert run.quality["total_volume"] == pytest.approx(sum(s.Volume for s in compound.Solids), rel=0.01)
+    V, F, face_id = np.asarray(run.surface.V), np.asarray(run.surface.F), np.asarray(run.surface.patch)
+    assert sorted(set(face_id.tolist())) == list(range(1, 10))
+    for t in range(0, len(F), 11):
+        face = compound.Faces[int(face_id[t]) - 1]
+        for v in F[t]:
+            assert face.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, V[v]))))[0] < 1e-6, (t, face_id[t])
+    kind, entity = np.asarray(run.snap["kind"]), np.asarray(run.snap["entity"])
+    P = np.asarray(run.mesh.V)
+    assert len(kind) == len(P)
+    for v in np.flatnonzero(kind == 1)[::13]:
+        face = compound.Faces[int(entity[v]) - 1]
+        assert face.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, P[v]))))[0] < 1e-6, (v, entity[v])
+    touching = Part.read(str(parts["touching"][0]))
+    assert core.mesh_part(touching.exportBrepToString(), size=4).touching == [(1, 2)]

@@ -311,11 +311,21 @@ std::vector<Shape> read_solids(const std::string& source, const ReadOptions& opt
   const TopoDS_Shape shape = brep ? load_brep_string(source) : load_file(source, options);
   const int n = count(shape, TopAbs_SOLID);
   if (options.solid != 0 || n <= 1) return {select_solid(shape, name, options)};
+  // Each solid keeps the whole shape's numbers of its faces, edges and vertices (FreeCAD's for the
+  // compound), so that sizes and face sets can be given and reported in them.
+  TopTools_IndexedMapOfShape whole[3];
+  const TopAbs_ShapeEnum kinds[3] = {TopAbs_VERTEX, TopAbs_EDGE, TopAbs_FACE};
+  for (int d = 0; d < 3; ++d) TopExp::MapShapes(shape, kinds[d], whole[d]);
   std::vector<Shape> out;
   for (int k = 1; k <= n; ++k) {
     ReadOptions one = options;
     one.solid = k;
-    out.push_back(select_solid(shape, name, one));
+    auto impl = std::make_shared<Shape::Impl>(select_solid(shape, name, one).impl());
+    const TopTools_IndexedMapOfShape* own[3] = {&impl->vertices, &impl->edges, &impl->faces};
+    std::vector<int>* numbers[3] = {&impl->source_vertices, &impl->source_edges, &impl->source_faces};
+    for (int d = 0; d < 3; ++d)
+      for (int i = 1; i <= own[d]->Extent(); ++i) numbers[d]->push_back(whole[d].FindIndex((*own[d])(i)));
+    out.emplace_back(std::move(impl));
   }
   return out;
 }

@@ -81,6 +81,16 @@ Shape make_shape(const TopoDS_Shape& solid, const std::string& source) {
   return Shape(std::move(impl));
 }
 
+std::vector<int> source_numbers(const Shape& shape, int dim) {
+  const auto& s = shape.impl();
+  if (dim < 0 || dim > 2) throw std::invalid_argument("source_numbers: dim " + std::to_string(dim) + " is not 0, 1 or 2");
+  const std::vector<int>& given = dim == 2 ? s.source_faces : dim == 1 ? s.source_edges : s.source_vertices;
+  if (!given.empty()) return given;
+  std::vector<int> out((dim == 2 ? s.faces : dim == 1 ? s.edges : s.vertices).Extent());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<int>(i) + 1;
+  return out;
+}
+
 ShapeInfo shape_info(const Shape& shape) {
   const auto& s = shape.impl();
   ShapeInfo info;

@@ -53,6 +53,12 @@ struct ShapeInfo {
 };
 ShapeInfo shape_info(const Shape& shape);
 
+/// The numbers FreeCAD gives the solid's faces (`dim` 2), edges (1) or vertices (0) in the shape
+/// the solid was read from: element i is Face{i+1}'s (Edge, Vertex) number in the whole file's or
+/// BREP text's shape, a compound of several solids for instance (cad::read_solids). 1..n for a
+/// solid that is its whole source. Throws std::invalid_argument for another `dim`.
+std::vector<int> source_numbers(const Shape& shape, int dim);
+
 /// Signed volume of the solid (OCCT GProp), as ShapeInfo::volume.
 double shape_volume(const Shape& shape);
 

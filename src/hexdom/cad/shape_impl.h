@@ -8,6 +8,7 @@
 #include <TopoDS_Shape.hxx>
 
 #include <string>
+#include <vector>
 
 #include "hexdom/cad/shape.h"
 
@@ -19,6 +20,9 @@ struct Shape::Impl {
   TopTools_IndexedMapOfShape faces;   ///< TopExp::MapShapes order: index i is Face{i}
   TopTools_IndexedMapOfShape edges;
   TopTools_IndexedMapOfShape vertices;
+  /// When the solid is one of several in its source: the source shape's numbers (TopExp::MapShapes
+  /// of the whole shape) of faces[i], edges[i], vertices[i]; empty when the solid is the whole source.
+  std::vector<int> source_faces, source_edges, source_vertices;
 };
 
 /// Wraps a solid, filling the maps.

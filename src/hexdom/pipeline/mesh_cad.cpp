@@ -238,42 +238,4 @@ MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& o
 
 }  // namespace
 
-MeshSolidsRun mesh_cad_solids(const std::vector<cad::Shape>& solids, const MeshCadOptions& opt, MeshSolidsRun* progress) {
-  MeshSolidsRun local;
-  MeshSolidsRun& r = progress ? *progress : local;
-  if (opt.mesh.time_limit > 0) {
-    MeshCadOptions inner = opt;
-    inner.mesh.time_limit = 0;
-    run_with_time_limit(opt.mesh.time_limit, [&] { mesh_cad_solids(solids, inner, &r); });
-    return r;
-  }
-  r = MeshSolidsRun{};
-  if (solids.empty()) throw InputError("no solid to mesh");
-  r.touching = cad::touching_solids(solids, 1e-6);
-  for (const auto& [a, b] : r.touching)
-    if (opt.log)
-      opt.log(1, "solids " + std::to_string(a) + " and " + std::to_string(b) +
-                     " touch: their meshes are made one by one and do not conform where they meet");
-  std::vector<MeshSurfaceRun> runs;
-  for (size_t k = 0; k < solids.size(); ++k) {
-    MeshCadOptions one = opt;
-    const std::string prefix = "solid " + std::to_string(k + 1) + ": ";
-    if (opt.log) one.log = [&opt, prefix](int level, const std::string& m) { opt.log(level, prefix + m); };
-    r.solids.emplace_back();
-    try {
-      mesh_cad_part(solids[k], one, &r.solids.back());
-    } catch (const InputError& e) {
-      throw InputError(prefix + e.what());
-    } catch (const GeometryError& e) {
-      throw GeometryError(prefix + e.what());
-    } catch (const MeshingError& e) {
-      throw MeshingError(prefix + e.what());
-    }
-    r.brep_volume += r.solids.back().stats.brep_volume;
-    runs.push_back(r.solids.back().run);
-  }
-  merge_solid_runs(std::move(runs), r.run);
-  return r;
-}
-
 }  // namespace hexdom::pipeline

@@ -74,18 +74,25 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& options 
 /// Several solids (a CAD file's, cad::read_solids) meshed one by one by mesh_cad_part with the same
 /// options.
 struct MeshSolidsRun {
-  /// The solids' runs put together (merge_solid_runs): the cells of solid k in region k, one mesh
-  /// whose solids share no node; its quality the whole mesh's.
-  MeshSurfaceRun run;
-  std::vector<MeshCadRun> solids;              ///< each solid's own run (its run.solids is empty)
+  /// The whole part as one run, numbered as the source (a compound's faces, edges and vertices as
+  /// FreeCAD numbers them, cad::source_numbers): run the solids' runs put together
+  /// (merge_solid_runs: the cells of solid k in region k, solids sharing no node, its quality the
+  /// whole mesh's); surface the solids' tessellations, each triangle's patch the source's face
+  /// number; snap, when every solid was snapped, the node kinds and entities (source numbers) in
+  /// run.mesh's node order, the report over all boundary nodes and the quality run.quality
+  /// (snap.mesh is empty: it is run.mesh); stats, snap_seconds and tessellations summed (stats.brep_volume the solids'
+  /// volumes), tessellation_factor the first solid's.
+  MeshCadRun part;
+  std::vector<MeshCadRun> solids;              ///< each solid's own run, in the solid's own numbers
   std::vector<std::array<int, 2>> touching;    ///< pairs of solids that touch (cad::touching_solids)
-  double brep_volume = 0;                      ///< the solids' volumes, summed
 };
 
-/// Meshes every solid of `solids` (mesh_cad_part each, options.mesh.time_limit over them all);
-/// logs (options.log) a warning for each pair that touches: their meshes do not conform there.
-/// Throws the first solid's error that has no mesh, the message prefixed "solid k: "; `progress`,
-/// when given, holds the solids meshed so far.
+/// Meshes every solid of `solids` (cad::read_solids; mesh_cad_part each, options.mesh.time_limit
+/// over them all). Local sizes on faces (options.mesh.overlay.local_sizes without polyline) and
+/// edges (options.edge_sizes) are given in the source's numbers and reach the solid that has the
+/// face or edge; InputError when no solid has it. Logs (options.log) a warning for each pair that
+/// touches: their meshes do not conform there. Throws the first solid's error that has no mesh, the
+/// message prefixed "solid k: "; `progress`, when given, holds the solids meshed so far.
 MeshSolidsRun mesh_cad_solids(const std::vector<cad::Shape>& solids, const MeshCadOptions& options = {},
                               MeshSolidsRun* progress = nullptr);
 

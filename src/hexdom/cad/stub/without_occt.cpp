@@ -45,6 +45,7 @@ Shape read_shape_or_brep(const std::string& source, const ReadOptions& options) 
 std::vector<Shape> read_solids(const std::string& source, const ReadOptions& options) {
   return {read_shape_or_brep(source, options)};
 }
+std::vector<int> source_numbers(const Shape&, int) { no_occt("number CAD faces"); }
 std::vector<std::array<int, 2>> touching_solids(const std::vector<Shape>&, double) { no_occt("compare CAD solids"); }
 
 mesh::SurfaceMesh tessellate(const Shape&, const TessellateOptions&, TessellateStats*) { no_occt("tessellate CAD shapes"); }
