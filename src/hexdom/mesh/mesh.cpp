@@ -176,6 +176,24 @@ SurfaceMesh to_surface(const Mesh& mesh) {
   return s;
 }
 
+SurfaceMesh join_surfaces(const std::vector<const SurfaceMesh*>& surfaces) {
+  Eigen::Index nv = 0, nf = 0;
+  for (const SurfaceMesh* s : surfaces) nv += s->V.rows(), nf += s->F.rows();
+  SurfaceMesh out;
+  out.V.resize(nv, 3);
+  out.F.resize(nf, 3);
+  out.patch.setZero(nf);
+  Eigen::Index v0 = 0, f0 = 0;
+  for (const SurfaceMesh* s : surfaces) {
+    out.V.middleRows(v0, s->V.rows()) = s->V;
+    out.F.middleRows(f0, s->F.rows()) = s->F.array() + static_cast<int>(v0);
+    if (s->patch.size() == s->F.rows()) out.patch.segment(f0, s->F.rows()) = s->patch;
+    v0 += s->V.rows();
+    f0 += s->F.rows();
+  }
+  return out;
+}
+
 Mesh from_surface(const SurfaceMesh& surface) {
   Mesh m;
   m.V = surface.V;

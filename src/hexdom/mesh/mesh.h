@@ -98,6 +98,9 @@ struct SurfaceMesh {
 SurfaceMesh to_surface(const Mesh& mesh);
 /// A SurfaceMesh as a Mesh of triangle cells (patch -> region).
 Mesh from_surface(const SurfaceMesh& surface);
+/// The surfaces side by side in one SurfaceMesh (no vertex shared between them), in order; a
+/// surface without patch ids gives its triangles patch 0.
+SurfaceMesh join_surfaces(const std::vector<const SurfaceMesh*>& surfaces);
 /// Volume a closed triangle surface encloses (divergence theorem): positive when the triangles
 /// are counter-clockwise seen from outside, negative when they face inward.
 double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);

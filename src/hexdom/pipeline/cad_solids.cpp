@@ -61,24 +61,15 @@ void check_size_numbers(const std::vector<cad::Shape>& solids, const MeshCadOpti
 
 // The solids' tessellations as one surface, each triangle's patch the source's face number.
 mesh::SurfaceMesh surfaces_together(const std::vector<cad::Shape>& solids, const std::vector<MeshCadRun>& runs) {
-  Eigen::Index nv = 0, nf = 0;
-  for (const MeshCadRun& r : runs) nv += r.surface.V.rows(), nf += r.surface.F.rows();
-  mesh::SurfaceMesh s;
-  s.V.resize(nv, 3);
-  s.F.resize(nf, 3);
-  s.patch.resize(nf);
-  Eigen::Index v0 = 0, f0 = 0;
+  std::vector<const mesh::SurfaceMesh*> parts;
+  for (const MeshCadRun& r : runs) parts.push_back(&r.surface);
+  mesh::SurfaceMesh s = mesh::join_surfaces(parts);
+  Eigen::Index f0 = 0;
   for (size_t k = 0; k < runs.size(); ++k) {
-    const mesh::SurfaceMesh& t = runs[k].surface;
     const std::vector<int> faces = cad::source_numbers(solids[k], 2);
-    s.V.middleRows(v0, t.V.rows()) = t.V;
-    s.F.middleRows(f0, t.F.rows()) = t.F.array() + static_cast<int>(v0);
-    for (Eigen::Index f = 0; f < t.F.rows(); ++f) {
-      const int p = f < t.patch.size() ? t.patch(f) : 0;
-      s.patch(f0 + f) = p >= 1 && p <= static_cast<int>(faces.size()) ? faces[p - 1] : 0;
-    }
-    v0 += t.V.rows();
-    f0 += t.F.rows();
+    for (Eigen::Index f = f0; f < f0 + runs[k].surface.F.rows(); ++f)
+      s.patch(f) = s.patch(f) >= 1 && s.patch(f) <= static_cast<int>(faces.size()) ? faces[s.patch(f) - 1] : 0;
+    f0 += runs[k].surface.F.rows();
   }
   return s;
 }

@@ -42,29 +42,6 @@ mesh::Mesh put_together(const std::vector<MeshSurfaceRun>& runs, mesh::Mesh Mesh
   return m;
 }
 
-mesh::SurfaceMesh labels_together(const std::vector<MeshSurfaceRun>& runs) {
-  Eigen::Index nv = 0, nf = 0;
-  for (const MeshSurfaceRun& r : runs) {
-    nv += r.labels.V.rows();
-    nf += r.labels.F.rows();
-  }
-  mesh::SurfaceMesh s;
-  s.V.resize(nv, 3);
-  s.F.resize(nf, 3);
-  s.patch.resize(nf);
-  Eigen::Index v0 = 0, f0 = 0;
-  for (const MeshSurfaceRun& r : runs) {
-    const mesh::SurfaceMesh& l = r.labels;
-    s.V.middleRows(v0, l.V.rows()) = l.V;
-    s.F.middleRows(f0, l.F.rows()) = l.F.array() + static_cast<int>(v0);
-    if (l.patch.size() == l.F.rows()) s.patch.segment(f0, l.F.rows()) = l.patch;
-    else s.patch.segment(f0, l.F.rows()).setZero();
-    v0 += l.V.rows();
-    f0 += l.F.rows();
-  }
-  return s;
-}
-
 }  // namespace
 
 void merge_solid_runs(std::vector<MeshSurfaceRun> runs, MeshSurfaceRun& r) {
@@ -76,7 +53,9 @@ void merge_solid_runs(std::vector<MeshSurfaceRun> runs, MeshSurfaceRun& r) {
                  : Method::Polycube;
   r.mesh = put_together(runs, &MeshSurfaceRun::mesh);
   r.generated = put_together(runs, &MeshSurfaceRun::generated);
-  r.labels = labels_together(runs);
+  std::vector<const mesh::SurfaceMesh*> labels;
+  for (const MeshSurfaceRun& s : runs) labels.push_back(&s.labels);
+  r.labels = mesh::join_surfaces(labels);
   r.quality = quality::quality_report(r.mesh);
   r.generated_quality = quality::quality_report(r.generated);
   r.edge_weight = first.edge_weight;
