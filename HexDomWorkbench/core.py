@@ -123,6 +123,23 @@ def quality_report(mesh):
     return _hexdom.quality_report(mesh.V, mesh.cells, mesh.types)
 
 
+def face_sets(mesh, surface):
+    """{CAD face id: 0-based node indices, sorted} of the volume ``mesh``'s boundary: the nodes of
+    the boundary faces lying on each CAD face (mid-edge nodes included for a second-order mesh),
+    each face's CAD face being the face id of the triangle of ``surface`` (the tessellation the
+    mesh was made from, ids as FreeCAD's Face<k>) nearest its centre. Empty without triangles."""
+    if surface is None or not len(surface.F):
+        return {}
+    nodes, _, _, tag = _hexdom.face_sets(mesh.V, mesh.cells, mesh.types, surface.V,
+                                         np.asarray(surface.F, np.int32), np.asarray(surface.patch, np.int32))
+    nodes, tag = np.asarray(nodes), np.asarray(tag)
+    out = {}
+    for k in np.unique(tag[tag > 0]).tolist():
+        rows = nodes[tag == k]
+        out[int(k)] = np.unique(rows[rows >= 0])
+    return out
+
+
 def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, untangle=True, threads=0):
     """Hex-dominant mesh from a segmented Surface and a polycube structure Mesh (hex, prism and tet
     blocks): 8^level cells per block, conforming across blocks; region = 1-based block number.

@@ -1,5 +1,9 @@
 """FEM set-up without GUI: puts HexDom meshes into FEM analyses."""
 
+from . import femmesh
+
+FACE_GROUP = "Face{}"  # the HexDom Mesh's node group of the CAD face Face<k> of the Part it meshes
+
 
 def analysis_meshes(analysis):
     """FEM mesh objects inside ``analysis``."""
@@ -26,4 +30,38 @@ def add_to_analysis(analysis, mesh_obj):
     if parent is not None:
         raise ValueError("{} already belongs to {}".format(mesh_obj.Label, parent.Label))
     analysis.addObject(mesh_obj)
+    add_constraint_groups(analysis, mesh_obj)
     return mesh_obj
+
+
+def meshed_part(mesh_obj):
+    """The Part a HexDom Mesh was made from (Segmentation -> Surface -> Source), or None."""
+    seg = getattr(mesh_obj, "Segmentation", None)
+    return getattr(getattr(seg, "Surface", None), "Source", None)
+
+
+def add_constraint_groups(analysis, mesh_obj, part=None):
+    """For each member of ``analysis`` whose References name faces of ``part`` (default: the Part the
+    HexDom Mesh ``mesh_obj`` meshes), a node group "<member Name>_Nodes" on the mesh: the nodes of its
+    faces' groups Face<k> (made when the mesh was stored). FreeCAD's CalculiX writer takes a
+    constraint's nodes from such a group instead of searching them by geometry, as it does for
+    FemMeshGmsh's groups. Members on other objects or on edges and vertices are left to the search.
+    Returns the names of the groups made."""
+    part = part if part is not None else meshed_part(mesh_obj)
+    fem = mesh_obj.FemMesh
+    faces = femmesh.node_groups(fem, "Face")
+    if part is None or not faces:
+        return []
+    groups = {}
+    for member in analysis.Group:
+        nodes = set()
+        for obj, subs in getattr(member, "References", []) or []:
+            if obj != part:
+                continue
+            for sub in subs:
+                nodes.update(faces.get(sub, []) if sub.startswith("Face") else [])
+        if nodes:
+            groups[member.Name + "_Nodes"] = sorted(n - 1 for n in nodes)
+    if groups:
+        mesh_obj.FemMesh = femmesh.set_node_groups(fem, groups)
+    return sorted(groups)

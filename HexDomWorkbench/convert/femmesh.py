@@ -77,6 +77,24 @@ def to_femmesh(mesh):
     return fem
 
 
+def set_node_groups(fem, groups):
+    """Replaces the node groups of Fem.FemMesh ``fem`` named in ``groups`` ({name: 0-based node
+    indices}; node k is FemMesh node k + 1, as to_femmesh numbers them) with those nodes."""
+    names = {fem.getGroupName(g): g for g in fem.Groups}
+    for name, nodes in groups.items():
+        if name in names:
+            fem.removeGroup(names[name])
+        g = fem.addGroup(name, "Node")
+        fem.addGroupElements(g, [int(i) + 1 for i in nodes])
+    return fem
+
+
+def node_groups(fem, prefix=""):
+    """{name: sorted FemMesh node ids} of the node groups of ``fem`` whose name starts with ``prefix``."""
+    return {fem.getGroupName(g): sorted(fem.getGroupElements(g)) for g in fem.Groups
+            if fem.getGroupName(g).startswith(prefix) and fem.getGroupElementType(g) == "Node"}
+
+
 def from_femmesh(fem, with_ids=False, corners_only=False):
     """Returns the core.Mesh held by a Fem.FemMesh (VTK order): second order (hex20 / wedge15 /
     tet10, cells #C x 20) when every volume is second order and not ``corners_only``, else the

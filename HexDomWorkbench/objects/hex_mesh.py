@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from .. import core
-from ..convert import femmesh
+from ..convert import fem_setup, femmesh
 from ..logic.stages import core_has
 from ..progress import Progress
 from . import chain, pipeline, polycube, segmentation, tessellation
@@ -337,7 +337,7 @@ class HexMesh(BaseHexDomObject):
         self.path = None
         mesh = self.generate(obj)
         if mesh is not None:
-            store_mesh(obj, mesh)
+            store_mesh(obj, mesh, cad_face_surface(obj) if core_has("face_sets") else None)
             if hasattr(obj, "BrepDistance") and obj.BrepDistance != self.brep_distance:
                 obj.BrepDistance = self.brep_distance
             if self.path is not None and hasattr(obj, "MeshingPath"):
@@ -368,18 +368,32 @@ def meshing_path(obj):
 polycubes_of = chain.polycubes_of  # The HexDom Polycubes built on a Segmentation
 
 
+def _part_shape(obj):
+    """(Shape, Surface object) of the Part behind HexDom Mesh ``obj``'s Segmentation, or None."""
+    seg = getattr(obj, "Segmentation", None)
+    surface_obj = getattr(seg, "Surface", None)
+    shape = getattr(fem_setup.meshed_part(obj), "Shape", None)
+    if shape is None or shape.isNull() or not shape.Faces:
+        return None
+    return shape, surface_obj
+
+
+def cad_face_surface(obj):
+    """The tessellation, with the Part's face numbers, that HexDom Mesh ``obj`` was made from, or
+    None when no Part is behind its Segmentation."""
+    found = _part_shape(obj)
+    return None if found is None else tessellation.get_surface(found[1])
+
+
 def snap_source(obj):
     """(BREP text, core.Surface with CAD face ids) to snap the mesh of HexDom Mesh ``obj`` to, or
     None: SnapToCAD off, the core without snap_to_brep, or no Part behind the Segmentation."""
     if not getattr(obj, "SnapToCAD", False) or not core_has("snap_to_brep"):
         return None
-    seg = getattr(obj, "Segmentation", None)
-    surface_obj = getattr(seg, "Surface", None)
-    part = getattr(surface_obj, "Source", None)
-    shape = getattr(part, "Shape", None)
-    if shape is None or shape.isNull() or not shape.Faces:
+    found = _part_shape(obj)
+    if found is None:
         return None
-    return shape.exportBrepToString(), tessellation.get_surface(surface_obj)
+    return found[0].exportBrepToString(), tessellation.get_surface(found[1])
 
 
 def is_hex_mesh(obj):
@@ -403,9 +417,20 @@ def get_mesh(obj):
     return mesh
 
 
-def store_mesh(obj, mesh):
-    """Puts ``mesh`` into obj (FemMesh, Region) and refreshes the quality properties."""
-    obj.FemMesh = femmesh.to_femmesh(mesh)
+def store_mesh(obj, mesh, surface=None):
+    """Puts ``mesh`` into obj (FemMesh, Region) and refreshes the quality properties. With
+    ``surface`` (the tessellation it was made from, CAD face ids), the FemMesh gets a node group
+    Face<k> per CAD face (core.face_sets), and one per constraint of the analyses holding obj
+    (fem_setup.add_constraint_groups)."""
+    fem = femmesh.to_femmesh(mesh)
+    if surface is not None:
+        femmesh.set_node_groups(fem, {fem_setup.FACE_GROUP.format(k): nodes
+                                      for k, nodes in core.face_sets(mesh, surface).items()})
+    obj.FemMesh = fem
+    if surface is not None:
+        for analysis in getattr(obj, "InList", []):
+            if analysis.isDerivedFrom("Fem::FemAnalysis"):
+                fem_setup.add_constraint_groups(analysis, obj)
     obj.Region = [int(r) for r in np.asarray(mesh.region).tolist()]
     update_quality(obj, mesh)
 

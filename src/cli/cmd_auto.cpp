@@ -15,7 +15,6 @@
 #include "hexdom/common/format.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/text.h"
-#include "hexdom/mesh/closest_point.h"
 #include "hexdom/segmentation/labels_of_parts.h"
 
 namespace hexdom::cli {
@@ -235,11 +234,7 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
 io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface) {
   io::WriteOptions w;
   const io::Format f = io::format_of(out);
-  if ((f != io::Format::Inp && f != io::Format::Msh) || surface.F.rows() == 0) return w;
-  w.face_sets.faces = mesh::boundary_faces(m);
-  const std::vector<int> tris =
-      mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), m.V, w.face_sets.faces);
-  for (int t : tris) w.face_sets.tag.push_back(t >= 0 ? surface.patch(t) : 0);
+  if (f == io::Format::Inp || f == io::Format::Msh) w.face_sets = io::face_sets(m, surface);
   return w;
 }
 

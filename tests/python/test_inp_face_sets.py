@@ -106,3 +106,22 @@ def test_msh_has_a_physical_group_per_cad_face(hexdom_bin, box_step, tmp_path, o
     keys = [tuple(sorted(h[list(q)])) for h in hexes for q in quads]
     _, counts = np.unique(np.array(keys), axis=0, return_counts=True)
     assert faces == int((counts == 1).sum())
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_core_face_sets_are_the_nodes_on_each_face(freecad, tmp_path, order):
+    """core.face_sets (the workbench's FEM groups): for each FreeCAD face of the box, exactly the
+    mesh nodes on its plane, mid-edge nodes included at order 2."""
+    from hexdom_test_support import load_core
+    core = load_core()
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE")
+    FreeCAD, Part = freecad
+    run = core.mesh_part(Part.makeBox(40, 20, 10).exportBrepToString(), size=4, order=order)
+    sets = core.face_sets(run.mesh, run.surface)
+    assert sorted(sets) == [1, 2, 3, 4, 5, 6]
+    P = np.asarray(run.mesh.V)
+    for k, (axis, value, _) in FACE_PLANES.items():
+        on_face = np.flatnonzero(np.abs(P[:, axis] - value) < 1e-9)
+        assert sets[k].tolist() == on_face.tolist(), k
+    assert core.face_sets(run.mesh, None) == {}

@@ -14,4 +14,10 @@ struct FaceSets {
   bool empty() const { return faces.empty(); }
 };
 
+/// The boundary faces of `mesh` (mesh::boundary_faces), each tagged with the patch (CAD face id) of
+/// the triangle of `surface` nearest its centre: for a mesh made from a tessellation with CAD face
+/// ids, the CAD face it lies on (a face the overlay lets straddle a sharp curve gets the face of its
+/// centre). Empty when `surface` has no triangles.
+FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface);
+
 }  // namespace hexdom::io

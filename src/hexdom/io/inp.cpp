@@ -64,13 +64,8 @@ void write_face_sets(std::ostream& out, const mesh::Mesh& m, const FaceSets& set
   for (const auto& [tag, faces] : by_tag) {
     std::vector<int> nodes;
     for (size_t i : faces) {
-      const mesh::BoundaryFace& f = sets.faces[i];
-      nodes.insert(nodes.end(), f.v.begin(), f.v.begin() + f.n);
-      if (!m.second_order()) continue;
-      const auto [edges, ne] = mesh::cell_edges(m.type(f.cell));
-      auto on_face = [&](int node) { return std::find(f.v.begin(), f.v.begin() + f.n, node) != f.v.begin() + f.n; };
-      for (int e = 0; e < ne; ++e)
-        if (on_face(m.cells(f.cell, edges[e][0])) && on_face(m.cells(f.cell, edges[e][1]))) nodes.push_back(m.mid(f.cell, e));
+      const std::vector<int> own = mesh::face_nodes(m, sets.faces[i]);
+      nodes.insert(nodes.end(), own.begin(), own.end());
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());

@@ -54,17 +54,7 @@ std::map<int, Block> face_blocks(const mesh::Mesh& m, const FaceSets& sets) {
   for (size_t i = 0; i < sets.faces.size() && i < sets.tag.size(); ++i) {
     if (sets.tag[i] < 1) continue;
     const mesh::BoundaryFace& f = sets.faces[i];
-    std::vector<int> nodes(f.v.begin(), f.v.begin() + f.n);
-    if (m.second_order()) {
-      const auto [edges, ne] = mesh::cell_edges(m.type(f.cell));
-      for (int k = 0; k < f.n; ++k) {
-        const int a = f.v[k], b = f.v[(k + 1) % f.n];
-        for (int e = 0; e < ne; ++e) {
-          const int x = m.cells(f.cell, edges[e][0]), y = m.cells(f.cell, edges[e][1]);
-          if ((x == a && y == b) || (x == b && y == a)) nodes.push_back(m.mid(f.cell, e));
-        }
-      }
-    }
+    std::vector<int> nodes = mesh::face_nodes(m, f);
     const int type = f.n == 3 ? (m.second_order() ? 9 : 2) : (m.second_order() ? 16 : 3);
     Block& b = out[sets.tag[i] * 100 + type];  // one block per tag and type
     b.dim = 2;

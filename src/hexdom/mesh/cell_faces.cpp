@@ -99,6 +99,20 @@ std::vector<std::array<int, 2>> face_neighbours(const Mesh& m) {
   return pairs;
 }
 
+std::vector<int> face_nodes(const Mesh& m, const BoundaryFace& f) {
+  std::vector<int> nodes(f.v.begin(), f.v.begin() + f.n);
+  if (!m.second_order()) return nodes;
+  const auto [edges, ne] = cell_edges(m.type(f.cell));
+  for (int k = 0; k < f.n; ++k) {
+    const int a = f.v[k], b = f.v[(k + 1) % f.n];
+    for (int e = 0; e < ne; ++e) {
+      const int x = m.cells(f.cell, edges[e][0]), y = m.cells(f.cell, edges[e][1]);
+      if ((x == a && y == b) || (x == b && y == a)) nodes.push_back(m.mid(f.cell, e));
+    }
+  }
+  return nodes;
+}
+
 Eigen::Vector3d face_area_vector(const Mesh& m, const BoundaryFace& f) {
   using Vec = Eigen::Vector3d;
   Vec n = Vec::Zero();

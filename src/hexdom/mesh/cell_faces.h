@@ -36,6 +36,10 @@ std::vector<BoundaryFace> boundary_faces(const Mesh& mesh);
 /// GeometryError like boundary_faces for a face shared by more than two cells.
 std::vector<std::array<int, 2>> face_neighbours(const Mesh& mesh);
 
+/// The nodes of a boundary face: its corners, then for a second-order mesh the mid-edge node of each
+/// edge from corner k to corner k + 1 (Gmsh's and VTK's quadratic quad / triangle order).
+std::vector<int> face_nodes(const Mesh& mesh, const BoundaryFace& face);
+
 /// Area vector of a boundary face: half the sum of the cross products of consecutive corners taken
 /// about the corners' centroid; it points out of the mesh, and its length is the area of a planar
 /// face.
