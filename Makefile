@@ -7,7 +7,7 @@ HEXDOM_DATA ?= $(abspath $(CURDIR)/../shared/data)
 FREECAD_MOD ?= $(HOME)/.local/share/FreeCAD/Mod/HexDom
 export HEXDOM_DATA
 
-.PHONY: all deps build test test-cpp test-python test-freecad demo install bench clean sanitize fuzz
+.PHONY: all deps build test test-cpp test-python test-freecad demo install package bench clean sanitize fuzz
 
 all: build
 
@@ -37,6 +37,11 @@ demo: build
 
 install: build
 	@bash scripts/install-freecad.sh $(BUILD) $(FREECAD_MOD)
+
+# The Debian package build/hexdom_<version>_<arch>.deb (CPack; see CMakeLists.txt); scripts/check-package.sh
+# installs it, checks it and removes it again.
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 bench: build
 	HEXDOM_BUILD_DIR=$(abspath $(BUILD)) $(PYTHON) bench/bench_io_quality.py
