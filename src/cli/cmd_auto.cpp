@@ -229,12 +229,14 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
 }
 
-// For an .inp or .msh output, the boundary faces of `m` tagged with the patch (CAD face) of
-// `surface` each lies on, for the Face<k> sets; none for other formats or without a surface.
-io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface) {
+// For an .inp or .msh output (a .vtu one with `vtu_faces`), the boundary faces of `m` tagged with
+// the patch (CAD face) of `surface` each lies on, for the Face<k> sets; none for other formats or
+// without a surface.
+io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface,
+                               bool vtu_faces = false) {
   io::WriteOptions w;
   const io::Format f = io::format_of(out);
-  if (f == io::Format::Inp || f == io::Format::Msh) w.face_sets = io::face_sets(m, surface);
+  if (f == io::Format::Inp || f == io::Format::Msh || (vtu_faces && f == io::Format::Vtu)) w.face_sets = io::face_sets(m, surface);
   return w;
 }
 
@@ -242,6 +244,7 @@ io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, cons
 struct MeshArgs {
   std::string in, out, report;
   bool keep = false, allow_inverted = false, no_improve = false, no_snap = false, no_align = false;
+  bool boundary_faces = false;
   int solid = 0;
   std::string method = "auto";
   std::vector<std::pair<int, double>> edge_sizes;
@@ -285,6 +288,9 @@ void add_mesh_options(CLI::App* cmd, const std::shared_ptr<MeshArgs>& a) {
                 "lying at an angle is turned into that frame and back; the default size is that frame's box diagonal / 30)");
   cmd->add_flag("--no-snap", a->no_snap, "CAD files: leave the boundary nodes on the tessellation instead of the B-rep");
   cmd->add_option("--solid", a->solid, "CAD files: mesh only this solid (1-based); default: every solid, solid k in region k")->check(CLI::PositiveNumber);
+  cmd->add_flag("--boundary-faces", a->boundary_faces,
+                ".vtu output: also the boundary faces, as quads / triangles after the volume cells, with a cell array "
+                "face_id naming each one's CAD face (FreeCAD's Face<k>; 0 for the volume cells)");
   cmd->add_flag("--keep", a->keep,
                 "also write <output stem>_surface.k (the triangle surface meshed: the tessellation kept, or the "
                 "input), and from the polycube path _labels.k, _structure.k, _patches.k and _polycube.vtk (on failure "
@@ -404,7 +410,7 @@ void add_mesh(CLI::App& app) {
     print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
     if (snapped) print_snap(snap, snap_seconds);
     if (a->keep) write_intermediate(true);
-    io::write_mesh(a->out, run.mesh, face_sets_for(a->out, run.mesh, surface));
+    io::write_mesh(a->out, run.mesh, face_sets_for(a->out, run.mesh, surface, a->boundary_faces));
     if (!a->report.empty())
       io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(run.quality) << "\n"; });
     std::cerr << "hexdom: wrote " << a->out << "\n";

@@ -125,3 +125,47 @@ def test_core_face_sets_are_the_nodes_on_each_face(freecad, tmp_path, order):
         on_face = np.flatnonzero(np.abs(P[:, axis] - value) < 1e-9)
         assert sets[k].tolist() == on_face.tolist(), k
     assert core.face_sets(run.mesh, None) == {}
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_vtu_boundary_faces_carry_their_cad_face(hexdom_bin, box_step, tmp_path, order):
+    """`--boundary-faces` on a .vtu: after the volume cells VTK reads quads (quad8 at order 2) with a
+    face_id array; the quads of face k lie on its plane and their areas (vtkCellSizeFilter) add up
+    to FreeCAD's area of the face; the volume cells are those of the plain .vtu; the program
+    reads the file back as the volume mesh alone."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    plain, faces = tmp_path / "plain.vtu", tmp_path / "faces.vtu"
+    for out, extra in ((plain, []), (faces, ["--boundary-faces"])):
+        r = subprocess.run([str(hexdom_bin), "mesh", str(box_step), "-o", str(out), "--size", "4", "--order", str(order),
+                            *extra], capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stderr
+    volumes = meshio.read(plain).cells
+    m = meshio.read(faces)
+    assert [(c.type, len(c.data)) for c in m.cells[:len(volumes)]] == [(c.type, len(c.data)) for c in volumes]
+    quad = "quad" if order == 1 else "quad8"
+    assert [c.type for c in m.cells[len(volumes):]] == [quad]
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(faces))
+    reader.Update()
+    g = reader.GetOutput()
+    face_id = vtk_to_numpy(g.GetCellData().GetArray("face_id"))
+    sizes = vtk.vtkCellSizeFilter()
+    sizes.SetInputData(g)
+    sizes.Update()
+    area = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Area"))
+    P = vtk_to_numpy(g.GetPoints().GetData())
+    n_volumes = sum(len(c.data) for c in volumes)
+    assert not face_id[:n_volumes].any()
+    for k, (axis, value, face_area) in FACE_PLANES.items():
+        cells = np.flatnonzero(face_id == k)
+        assert len(cells) > 0 and cells.min() >= n_volumes, k
+        for c in cells:
+            cell = g.GetCell(int(c))
+            ids = [cell.GetPointId(j) for j in range(cell.GetNumberOfPoints())]
+            assert np.all(np.abs(P[ids, axis] - value) < 1e-9), (k, c)
+        assert area[cells].sum() == pytest.approx(face_area, rel=1e-9), k
+    assert len(face_id) == n_volumes + sum(len(np.flatnonzero(face_id == k)) for k in FACE_PLANES)
+    r = subprocess.run([str(hexdom_bin), "quality", "-i", str(faces)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines()[1].split()[:2] == ["hex", str(n_volumes)], r.stdout

@@ -74,7 +74,7 @@ void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions
       write_k(path, m);
       break;
     case Format::Vtk: write_vtk(path, m, options.binary); break;
-    case Format::Vtu: write_vtu(path, m); break;
+    case Format::Vtu: write_vtu(path, m, options.face_sets.empty() ? nullptr : &options.face_sets); break;
     case Format::Inp: write_inp(path, m, options.face_sets.empty() ? nullptr : &options.face_sets); break;
     case Format::Msh: write_msh(path, m, options.face_sets.empty() ? nullptr : &options.face_sets); break;
     case Format::Stl:

@@ -561,12 +561,13 @@ void data_array(std::ostream& out, const char* vtk_type, const char* name, int n
 
 }  // namespace
 
-void write_vtu(const std::string& path, const mesh::Mesh& m) {
+void write_vtu(const std::string& path, const mesh::Mesh& m, const FaceSets* faces) {
+  const size_t nb = faces ? faces->faces.size() : 0;
   write_atomically(path, false, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
            "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
            "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
-        << "    <Piece NumberOfPoints=\"" << m.num_nodes() << "\" NumberOfCells=\"" << m.num_cells()
+        << "    <Piece NumberOfPoints=\"" << m.num_nodes() << "\" NumberOfCells=\"" << m.num_cells() + nb
         << "\">\n      <Points>\n";
     std::vector<double> pts(3 * static_cast<size_t>(m.num_nodes()));
     for (int i = 0; i < m.num_nodes(); ++i)
@@ -582,12 +583,25 @@ void write_vtu(const std::string& path, const mesh::Mesh& m) {
       offsets.push_back(static_cast<int64_t>(conn.size()));
       types.push_back(static_cast<uint8_t>(m.vtk_type(c)));
     }
+    for (size_t i = 0; i < nb; ++i) {
+      const mesh::BoundaryFace& f = faces->faces[i];
+      const std::vector<int> own = mesh::face_nodes(m, f);
+      conn.insert(conn.end(), own.begin(), own.end());
+      offsets.push_back(static_cast<int64_t>(conn.size()));
+      types.push_back(static_cast<uint8_t>(f.n == 3 ? (m.second_order() ? 22 : 5) : (m.second_order() ? 23 : 9)));
+    }
     data_array(out, "Int64", "connectivity", 1, conn);
     data_array(out, "Int64", "offsets", 1, offsets);
     data_array(out, "UInt8", "types", 1, types);
     out << "      </Cells>\n      <CellData Scalars=\"region\">\n";
     std::vector<int32_t> reg(m.region.data(), m.region.data() + m.num_cells());
+    reg.resize(reg.size() + nb, 0);
     data_array(out, "Int32", "region", 1, reg);
+    if (nb > 0) {
+      std::vector<int32_t> face_id(static_cast<size_t>(m.num_cells()), 0);
+      for (size_t i = 0; i < nb; ++i) face_id.push_back(i < faces->tag.size() ? faces->tag[i] : 0);
+      data_array(out, "Int32", "face_id", 1, face_id);
+    }
     out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   });
 }

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "hexdom/io/face_sets.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::io {
@@ -20,8 +21,10 @@ mesh::Mesh read_vtk(const std::string& path);
 /// (base64, inline) or appended (raw or base64) format, header_type UInt32 or UInt64, either byte
 /// order, uncompressed or compressed with vtkZLibDataCompressor; every Piece (their points and cells
 /// one after the other). Cell types, collapsed hexahedra, second order and region ids as read_vtk
-/// (a cell array with one of its region names). Throws InputError "path:line: ..." naming the
-/// element or array for anything malformed or unsupported (other compressors, polyhedra).
+/// (a cell array with one of its region names). With volume cells, the triangles and quads beside
+/// them (first or second order: boundary faces, as write_vtu adds them) are left out; without, the
+/// triangles and quads are the mesh. Throws InputError "path:line: ..." naming the element or array
+/// for anything malformed or unsupported (other compressors, polyhedra).
 mesh::Mesh read_vtu(const std::string& path);
 
 /// Writes a legacy VTK 4.2 UNSTRUCTURED_GRID with native cell types (a second-order mesh's: 25, 26,
@@ -29,7 +32,9 @@ mesh::Mesh read_vtu(const std::string& path);
 void write_vtk(const std::string& path, const mesh::Mesh& mesh, bool binary = false);
 
 /// Writes a VTK XML UnstructuredGrid (.vtu) with base64-encoded binary arrays and "region"; cell
-/// types as write_vtk.
-void write_vtu(const std::string& path, const mesh::Mesh& mesh);
+/// types as write_vtk. With `faces` (not empty), its boundary faces follow the cells as triangles
+/// and quads (second order: VTK 22 and 23, mid-edge nodes as mesh::face_nodes), region 0, and a
+/// cell array "face_id" gives each its tag (the CAD face; 0 for the volume cells).
+void write_vtu(const std::string& path, const mesh::Mesh& mesh, const FaceSets* faces = nullptr);
 
 }  // namespace hexdom::io

@@ -67,7 +67,7 @@ class VtuReader {
 
   mesh::Mesh read() {
     scan();
-    CellAssembly cells(path_, "cell");
+    Cells cells{CellAssembly(path_, "cell"), CellAssembly(path_, "cell")};
     std::vector<double> pts;
     long base = 0;
     for (const Piece& p : pieces_) {
@@ -77,7 +77,12 @@ class VtuReader {
     Eigen::MatrixXd V(base, 3);
     for (long i = 0; i < base; ++i)
       for (int k = 0; k < 3; ++k) V(i, k) = pts[3 * i + k];
-    return cells.finish(std::move(V));
+    // Volume cells, with the boundary faces some writers add beside them (ours, with face ids) left
+    // out; a surface only when there is no volume cell.
+    if (cells.volumes.size() > 0) return cells.volumes.finish(std::move(V));
+    if (cells.quadratic_faces > 0)
+      throw InputError(path_, 0, "second-order triangles and quads (VTK types 22 and 23) are read only beside volume cells");
+    return cells.surfaces.finish(std::move(V));
   }
 
  private:
@@ -154,7 +159,11 @@ class VtuReader {
   // The XML part: the VTKFile element, its Pieces and their DataArrays, up to <AppendedData>.
   void scan();
   void data_array(const Tag& t, size_t& pos, const std::string& section);
-  void add_piece(const Piece& p, long base, std::vector<double>& pts, CellAssembly& cells);
+  struct Cells {
+    CellAssembly volumes, surfaces;
+    long quadratic_faces = 0;  // VTK 22 and 23 cells seen (skipped)
+  };
+  void add_piece(const Piece& p, long base, std::vector<double>& pts, Cells& cells);
   std::vector<double> values(const Array& a, size_t count, const char* what);
   size_t appended_start(const Array& a) const;
   std::vector<unsigned char> bytes_of(const Array& a);
@@ -420,7 +429,7 @@ std::vector<double> VtuReader::values(const Array& a, size_t count, const char* 
   return out;
 }
 
-void VtuReader::add_piece(const Piece& p, long base, std::vector<double>& pts, CellAssembly& cells) {
+void VtuReader::add_piece(const Piece& p, long base, std::vector<double>& pts, Cells& cells) {
   if (!p.has_points && p.npts > 0) fail(p.tag, "Piece has no Points");
   if (p.ncells > 0 && !(p.has_conn && p.has_offsets && p.has_types))
     fail(p.tag, "Piece's Cells need connectivity, offsets and types arrays");
@@ -459,7 +468,8 @@ void VtuReader::add_piece(const Piece& p, long base, std::vector<double>& pts, C
     }
     const double t = types[c];
     const int vt = t == std::floor(t) && t >= 0 && t < 256 ? static_cast<int>(t) : -1;
-    cells.add(vt, n, static_cast<int>(e - b), r, static_cast<long>(c), cells_line, types_line);
+    if (vt == 22 || vt == 23) cells.quadratic_faces++;
+    else (vt == 5 || vt == 9 ? cells.surfaces : cells.volumes).add(vt, n, static_cast<int>(e - b), r, static_cast<long>(c), cells_line, types_line);
   }
 }
 

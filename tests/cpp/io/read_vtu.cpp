@@ -57,6 +57,29 @@ TEST(ReadVtu, DecodesBase64WithItsHeaderEncodedApart) {
   EXPECT_EQ(m.V(2, 0), 0.0);
 }
 
+TEST(ReadVtu, LeavesOutTheFacesBesideVolumeCells) {
+  // A tet with one of its faces as a triangle (type 5) and a second-order triangle (22): the mesh
+  // is the tet; the triangle alone is a surface; the second-order triangle alone is refused.
+  const std::string path = test::temp_path("read_vtu_faces.vtu");
+  auto with = [](const std::string& conn, const std::string& offsets, const std::string& types, int n) {
+    std::string p = piece(conn, types);
+    p.replace(p.find("NumberOfCells=\"1\""), 17, "NumberOfCells=\"" + std::to_string(n) + "\"");
+    p.replace(p.find(">4</DataArray>"), 14, ">" + offsets + "</DataArray>");
+    p.replace(p.find(">7</DataArray>"), 14, ">" + std::string(n == 2 ? "7 0" : "7") + "</DataArray>");
+    return file(p);
+  };
+  test::write_text(path, with("0 1 2 3 0 2 1", "4 7", "10 5", 2));
+  mesh::Mesh m = io::read_vtu(path);
+  ASSERT_EQ(m.num_cells(), 1);
+  EXPECT_EQ(m.type(0), mesh::CellType::Tet);
+  test::write_text(path, with("0 2 1", "3", "5", 1));
+  m = io::read_vtu(path);
+  ASSERT_EQ(m.num_cells(), 1);
+  EXPECT_EQ(m.vtk_type(0), 5);
+  test::write_text(path, with("0 1 2 3 0 2", "6", "22", 1));
+  EXPECT_TRUE(test::ThrowsInputError([&] { io::read_vtu(path); }, path, 0, "types 22 and 23) are read only beside volume cells"));
+}
+
 TEST(ReadVtu, NamesFileAndLineOfWhatIsWrong) {
   const std::string path = test::temp_path("read_vtu_bad.vtu");
   struct Case { std::string text; long line; std::string what; };
