@@ -229,14 +229,15 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
 }
 
-// For an .inp or .msh output (a .vtu one with `vtu_faces`), the boundary faces of `m` tagged with
+// For an .inp, .msh or .k output (a .vtu one with `vtu_faces`), the boundary faces of `m` tagged with
 // the patch (CAD face) of `surface` each lies on, for the Face<k> sets; none for other formats or
 // without a surface.
 io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface,
                                bool vtu_faces = false) {
   io::WriteOptions w;
   const io::Format f = io::format_of(out);
-  if (f == io::Format::Inp || f == io::Format::Msh || (vtu_faces && f == io::Format::Vtu)) w.face_sets = io::face_sets(m, surface);
+  if (f == io::Format::Inp || f == io::Format::Msh || f == io::Format::K || (vtu_faces && f == io::Format::Vtu))
+    w.face_sets = io::face_sets(m, surface);
   return w;
 }
 

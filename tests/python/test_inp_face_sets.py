@@ -169,3 +169,52 @@ def test_vtu_boundary_faces_carry_their_cad_face(hexdom_bin, box_step, tmp_path,
     r = subprocess.run([str(hexdom_bin), "quality", "-i", str(faces)], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
     assert r.stdout.splitlines()[1].split()[:2] == ["hex", str(n_volumes)], r.stdout
+
+
+def _k_segment_sets(path):
+    """{title: (set id, [(n1, n2, n3, n4), ...])} of the *SET_SEGMENT_TITLE blocks of an LS-DYNA .k
+    (fixed 10-character fields), and {node id: (x, y, z)} of its *NODE lines (comma format)."""
+    sets, nodes, block, title = {}, {}, None, None
+    for line in open(path):
+        line = line.rstrip("\n")
+        if not line or line.startswith("$"):
+            continue
+        if line.startswith("*"):
+            block, title = line[1:].strip().upper(), None
+            continue
+        if block == "NODE":
+            i, x, y, z = line.split(",")
+            nodes[int(i)] = (float(x), float(y), float(z))
+        elif block == "SET_SEGMENT_TITLE":
+            if title is None:
+                title = line.strip()
+            elif title not in sets:
+                sets[title] = (int(line[:10]), [])
+            else:
+                sets[title][1].append(tuple(int(line[10 * j:10 * j + 10]) for j in range(4)))
+    return sets, nodes
+
+
+def test_k_has_a_segment_set_per_cad_face(hexdom_bin, box_step, tmp_path):
+    """The .k: a *SET_SEGMENT_TITLE Face<k> (set id k) per FreeCAD face, whose quads lie on its
+    plane, turn their normal out of the box and cover its area; the program still reads the file."""
+    out = tmp_path / "box.k"
+    r = subprocess.run([str(hexdom_bin), "mesh", str(box_step), "-o", str(out), "--size", "4"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    sets, nodes = _k_segment_sets(out)
+    assert sorted(sets) == [f"Face{k}" for k in range(1, 7)]
+    for k, (axis, value, face_area) in FACE_PLANES.items():
+        sid, segments = sets[f"Face{k}"]
+        assert sid == k and segments
+        outward = 1.0 if value > 0 else -1.0
+        total = 0.0
+        for seg in segments:
+            P = np.array([nodes[n] for n in seg])
+            assert np.all(np.abs(P[:, axis] - value) < 1e-9), (k, seg)
+            normal = 0.5 * (np.cross(P[1] - P[0], P[2] - P[0]) + np.cross(P[2] - P[0], P[3] - P[0]))
+            assert normal[axis] * outward > 0, (k, seg)
+            total += np.linalg.norm(normal)
+        assert total == pytest.approx(face_area, rel=1e-9), k
+    r = subprocess.run([str(hexdom_bin), "quality", "-i", str(out)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr

@@ -4,6 +4,13 @@
 
 namespace hexdom::io {
 
+std::map<int, std::vector<size_t>> FaceSets::by_tag() const {
+  std::map<int, std::vector<size_t>> out;
+  for (size_t i = 0; i < faces.size() && i < tag.size(); ++i)
+    if (tag[i] >= 1) out[tag[i]].push_back(i);
+  return out;
+}
+
 FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface) {
   FaceSets sets;
   if (surface.F.rows() == 0) return sets;

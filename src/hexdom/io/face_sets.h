@@ -2,6 +2,7 @@
 // on, the writers name the sets as FreeCAD names faces (Face1, Face2, ...).
 #pragma once
 
+#include <map>
 #include <vector>
 
 #include "hexdom/mesh/cell_faces.h"
@@ -12,6 +13,8 @@ struct FaceSets {
   std::vector<mesh::BoundaryFace> faces;  ///< boundary faces of the mesh written
   std::vector<int> tag;                   ///< per face: its CAD face id (>= 1), or < 1 for none
   bool empty() const { return faces.empty(); }
+  /// The faces (indices into `faces`) of each tag >= 1, by increasing tag.
+  std::map<int, std::vector<size_t>> by_tag() const;
 };
 
 /// The boundary faces of `mesh` (mesh::boundary_faces), each tagged with the patch (CAD face id) of

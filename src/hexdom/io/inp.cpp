@@ -58,10 +58,7 @@ int abaqus_face(const mesh::Mesh& m, const mesh::BoundaryFace& f) {
 
 // *NSET and *SURFACE per tag of `sets` (see write_inp).
 void write_face_sets(std::ostream& out, const mesh::Mesh& m, const FaceSets& sets) {
-  std::map<int, std::vector<size_t>> by_tag;
-  for (size_t i = 0; i < sets.faces.size() && i < sets.tag.size(); ++i)
-    if (sets.tag[i] >= 1) by_tag[sets.tag[i]].push_back(i);
-  for (const auto& [tag, faces] : by_tag) {
+  for (const auto& [tag, faces] : sets.by_tag()) {
     std::vector<int> nodes;
     for (size_t i : faces) {
       const std::vector<int> own = mesh::face_nodes(m, sets.faces[i]);

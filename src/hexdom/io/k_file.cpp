@@ -195,7 +195,7 @@ KFile read_k(const std::string& path) {
   return out;
 }
 
-void write_k(const std::string& path, const mesh::Mesh& m) {
+void write_k(const std::string& path, const mesh::Mesh& m, const FaceSets* faces) {
   write_atomically(path, false, [&](std::ostream& out) {
     char buf[160];
     out << "$# LS-DYNA keyword file written by HexDom " HEXDOM_VERSION "\n*KEYWORD\n";
@@ -230,6 +230,17 @@ void write_k(const std::string& path, const mesh::Mesh& m) {
       double x = m.V(i, 0), y = m.V(i, 1), z = m.V(i, 2);
       std::snprintf(buf, sizeof buf, "%d,%.17g,%.17g,%.17g\n", i + 1, x, y, z);
       out << buf;
+    }
+    if (faces) {
+      for (const auto& [tag, list] : faces->by_tag()) {
+        std::snprintf(buf, sizeof buf, "*SET_SEGMENT_TITLE\nFace%d\n%10d\n", tag, tag);
+        out << buf;
+        for (size_t i : list) {
+          const mesh::BoundaryFace& f = faces->faces[i];
+          std::snprintf(buf, sizeof buf, "%10d%10d%10d%10d\n", f.v[0] + 1, f.v[1] + 1, f.v[2] + 1, f.v[f.n - 1] + 1);
+          out << buf;
+        }
+      }
     }
     out << "*END\n";
   });

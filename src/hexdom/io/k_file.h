@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "hexdom/io/face_sets.h"
 #include "hexdom/mesh/mesh.h"
 
 namespace hexdom::io {
@@ -27,8 +28,10 @@ KFile read_k(const std::string& path);
 
 /// Writes nodes (ids 1..N), 2D cells as *ELEMENT_SHELL (triangles repeat n3) and 3D cells as
 /// *ELEMENT_SOLID (prism a c b b d f e e, tet a b c d d d d d), part id = region;
-/// elements in fixed width, nodes comma-separated with full double precision.
-void write_k(const std::string& path, const mesh::Mesh& mesh);
+/// elements in fixed width, nodes comma-separated with full double precision. With `faces` (not
+/// empty), a *SET_SEGMENT_TITLE per tag k >= 1 titled Face<k> (set id k): its boundary faces as
+/// segments, outward (triangles repeat n3).
+void write_k(const std::string& path, const mesh::Mesh& mesh, const FaceSets* faces = nullptr);
 
 /// One entry of the original PrismGen/TetGen corner file `<input>_Output_CornerPoints.txt`.
 struct CornerPoint {

@@ -27,7 +27,8 @@ struct WriteOptions {
   bool binary = false;  ///< legacy VTK only
   /// .inp and .msh: the boundary faces on each CAD face k as a set named Face<k> (.inp: node set and
   /// element surface; .msh: physical group of surface elements); .vtu: the boundary faces as
-  /// triangle / quad cells after the volume cells, with a "face_id" cell array (write_vtu).
+  /// triangle / quad cells after the volume cells, with a "face_id" cell array (write_vtu); .k: a
+  /// segment set Face<k> per CAD face (write_k).
   FaceSets face_sets;
 };
 /// Writes a mesh in the format of the extension. STL and OBJ take surface cells only; a second-order
