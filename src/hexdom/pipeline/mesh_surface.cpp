@@ -47,7 +47,8 @@ bool edge_ratio_met(const MeshSurfaceRun& r, const MeshSurfaceOptions& opt) {
 }
 
 // Whether run b is better than run a: fewer inverted cells; then the one whose worst SJ meets the
-// target; then the one whose volume does; then the one whose edge ratio does; then the higher worst SJ.
+// target; then the one whose volume does; then the one whose edge ratio does; when both miss the
+// edge-ratio target (and meet the SJ one), the smaller largest edge ratio; then the higher worst SJ.
 bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& opt) {
   const int ib = inverted_cells(b.quality), ia = inverted_cells(a.quality);
   if (ib != ia) return ib < ia;
@@ -57,6 +58,10 @@ bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, 
   if (vb != va) return vb;
   const bool eb = edge_ratio_met(b, opt), ea = edge_ratio_met(a, opt);
   if (eb != ea) return eb;
+  if (!eb && sb) {
+    const double rb = quality::max_edge_ratio(b.quality), ra = quality::max_edge_ratio(a.quality);
+    if (rb != ra) return rb < ra;
+  }
   return worst_sj(b.quality) > worst_sj(a.quality);
 }
 

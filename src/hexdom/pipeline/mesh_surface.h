@@ -262,7 +262,8 @@ std::string polycube_failure_note(const Error& error, const std::string& stage);
 
 /// Whether run b is better than run a by the candidates' order (see try_without_widths): fewer
 /// inverted cells, then a worst SJ >= target_sj, then a volume within target_volume of `reference`,
-/// then a largest edge ratio within target_edge_ratio, then the higher worst SJ.
+/// then a largest edge ratio within target_edge_ratio (when both miss it and meet target_sj: the
+/// smaller largest edge ratio), then the higher worst SJ.
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options);
 
 /// Whether a run meets every target: no inverted cell, worst SJ >= target_sj, volume within

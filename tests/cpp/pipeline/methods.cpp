@@ -110,6 +110,27 @@ TEST(AutomaticChoice, TheEdgeRatioTargetComesBeforeTheWorstSJ) {
   EXPECT_TRUE(pipeline::meets_path_targets(needle, 1.0, o));
 }
 
+// Both beyond the edge-ratio target, both above the SJ target: the smaller edge ratio first (a cell
+// 17 times longer than wide serves FEM better than one 77 times), whatever the worst SJ; below the
+// SJ target the worst SJ decides.
+TEST(AutomaticChoice, BeyondTheEdgeRatioTargetTheSmallerEdgeRatioComesFirst) {
+  pipeline::MeshSurfaceRun thin, thinner;
+  for (auto* r : {&thin, &thinner}) {
+    r->quality.hex.count = 10;
+    r->quality.total_volume = 1.0;
+  }
+  thin.quality.hex.sj_min = 0.447;
+  thin.quality.hex.edge_ratio_max = 17.1;
+  thinner.quality.hex.sj_min = 0.455;
+  thinner.quality.hex.edge_ratio_max = 77.3;
+  const pipeline::MeshSurfaceOptions o;
+  EXPECT_TRUE(pipeline::better_run(thin, thinner, 1.0, o));
+  EXPECT_FALSE(pipeline::better_run(thinner, thin, 1.0, o));
+  thin.quality.hex.sj_min = 0.2;
+  thinner.quality.hex.sj_min = 0.25;
+  EXPECT_TRUE(pipeline::better_run(thinner, thin, 1.0, o));
+}
+
 // A time budget too small for anything: auto meshes the box (whose polycube mesh it keeps without a
 // budget, test above) with the overlay grid, and polycube_note says that the budget stopped the
 // polycube path; for mesh_cad_part one budget stops every tessellation's polycube.
