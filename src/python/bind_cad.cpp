@@ -110,7 +110,7 @@ std::string mesh_cad_doc() {
       "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor, tessellation_size (its target triangle size),\n"
       "solids and touching. A source with several solids (solid=0) has each meshed, solid k's cells in region k:\n"
       "surface, run and snap are then the whole part's, numbered as FreeCAD numbers the source's faces, edges\n"
-      "and vertices (face_sizes and edge_sizes too), solids a dict per solid in its own numbers, touching the\n"
+      "and vertices (face_sizes and edge_sizes too), solids a dict per solid (the same numbers), touching the\n"
       "pairs (1-based) of solids that touch (their meshes do not conform there); with one solid, solids and\n"
       "touching are empty. Raises the first\n"
       "tessellation's error when none gives a mesh, with what the finished stages made as its attribute\n"

@@ -65,6 +65,13 @@ def test_solid_option_meshes_only_that_one(hexdom_bin, parts, tmp_path):
     assert "holds 2 solids" not in r.stderr
     g = oracles.read_vtu(out)
     assert oracles.signed_volumes(g).sum() == pytest.approx(volumes[1], rel=0.01)
+    # Its faces keep the numbers FreeCAD gives them in the whole file: the cylinder's are Face7..Face9.
+    inp = tmp_path / "second.inp"
+    r = _mesh(hexdom_bin, step, inp, "--solid", "2", "--face-size", "7=3")
+    assert r.returncode == 0, r.stderr
+    assert sorted(k for k in meshio.read(inp).point_sets if k.startswith("Face")) == ["Face7", "Face8", "Face9"]
+    r = _mesh(hexdom_bin, step, inp, "--solid", "2", "--face-size", "1=3")
+    assert r.returncode == 1 and "Face1, which is not a face of the solid meshed (Face7, Face8, Face9)" in r.stderr
 
 
 def test_touching_solids_are_meshed_with_a_warning(hexdom_bin, parts, tmp_path):

@@ -310,14 +310,14 @@ std::vector<Shape> read_solids(const std::string& source, const ReadOptions& opt
   const std::string name = brep ? std::string(kBrepSource) : source;
   const TopoDS_Shape shape = brep ? load_brep_string(source) : load_file(source, options);
   const int n = count(shape, TopAbs_SOLID);
-  if (options.solid != 0 || n <= 1) return {select_solid(shape, name, options)};
+  if (n <= 1) return {select_solid(shape, name, options)};
   // Each solid keeps the whole shape's numbers of its faces, edges and vertices (FreeCAD's for the
   // compound), so that sizes and face sets can be given and reported in them.
   TopTools_IndexedMapOfShape whole[3];
   const TopAbs_ShapeEnum kinds[3] = {TopAbs_VERTEX, TopAbs_EDGE, TopAbs_FACE};
   for (int d = 0; d < 3; ++d) TopExp::MapShapes(shape, kinds[d], whole[d]);
   std::vector<Shape> out;
-  for (int k = 1; k <= n; ++k) {
+  for (int k = options.solid != 0 ? options.solid : 1; k <= (options.solid != 0 ? options.solid : n); ++k) {
     ReadOptions one = options;
     one.solid = k;
     auto impl = std::make_shared<Shape::Impl>(select_solid(shape, name, one).impl());

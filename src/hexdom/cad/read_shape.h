@@ -30,7 +30,8 @@ Shape read_brep_string(const std::string& brep, const ReadOptions& options = {})
 
 /// Every solid of a CAD file or BREP text (as read_shape_or_brep), in TopExp::MapShapes order,
 /// each checked as read_shape checks its one; only solid options.solid when it is given. A file
-/// with one solid gives one. Throws as read_shape.
+/// with one solid gives one. Solids of a source with several keep the source's numbers of their
+/// faces, edges and vertices (source_numbers), the chosen one too. Throws as read_shape.
 std::vector<Shape> read_solids(const std::string& source, const ReadOptions& options = {});
 
 /// The pairs (1-based, first < second) of `solids` that touch or overlap: closer than

@@ -1,6 +1,5 @@
 // Every solid of a CAD file meshed, and their runs put together as one part (mesh_cad_solids).
 #include <algorithm>
-#include <map>
 #include <set>
 #include <string>
 
@@ -12,33 +11,18 @@ namespace hexdom::pipeline {
 
 namespace {
 
-// Local (1-based) number of each source number of the solid's faces (dim 2) or edges (dim 1).
-std::map<int, int> local_of(const cad::Shape& solid, int dim) {
-  std::map<int, int> m;
-  const std::vector<int> numbers = cad::source_numbers(solid, dim);
-  for (size_t i = 0; i < numbers.size(); ++i) m[numbers[i]] = static_cast<int>(i) + 1;
-  return m;
-}
-
-// `opt` for one solid: the sizes on faces and edges, given in the source's numbers, in the solid's
-// own; those on other solids' faces and edges left out.
+// `opt` for one solid: the sizes on faces and edges of other solids left out (all in the source's
+// numbers, which mesh_cad_part takes).
 MeshCadOptions options_of_solid(const MeshCadOptions& opt, const cad::Shape& solid) {
   MeshCadOptions one = opt;
-  const std::map<int, int> faces = local_of(solid, 2), edges = local_of(solid, 1);
+  const std::vector<int> faces = cad::source_numbers(solid, 2), edges = cad::source_numbers(solid, 1);
+  auto has = [](const std::vector<int>& v, int n) { return std::find(v.begin(), v.end(), n) != v.end(); };
   one.mesh.overlay.local_sizes.clear();
-  for (overlay::LocalSize l : opt.mesh.overlay.local_sizes) {
-    if (l.patch > 0 && l.polyline.rows() == 0) {
-      auto it = faces.find(l.patch);
-      if (it == faces.end()) continue;
-      l.patch = it->second;
-    }
-    one.mesh.overlay.local_sizes.push_back(std::move(l));
-  }
+  for (const overlay::LocalSize& l : opt.mesh.overlay.local_sizes)
+    if (l.patch <= 0 || l.polyline.rows() > 0 || has(faces, l.patch)) one.mesh.overlay.local_sizes.push_back(l);
   one.edge_sizes.clear();
-  for (const auto& [edge, size] : opt.edge_sizes) {
-    auto it = edges.find(edge);
-    if (it != edges.end()) one.edge_sizes.emplace_back(it->second, size);
-  }
+  for (const auto& [edge, size] : opt.edge_sizes)
+    if (has(edges, edge)) one.edge_sizes.emplace_back(edge, size);
   return one;
 }
 
@@ -59,39 +43,19 @@ void check_size_numbers(const std::vector<cad::Shape>& solids, const MeshCadOpti
                        std::to_string(edges.size()) + " edges");
 }
 
-// The solids' tessellations as one surface, each triangle's patch the source's face number.
-mesh::SurfaceMesh surfaces_together(const std::vector<cad::Shape>& solids, const std::vector<MeshCadRun>& runs) {
-  std::vector<const mesh::SurfaceMesh*> parts;
-  for (const MeshCadRun& r : runs) parts.push_back(&r.surface);
-  mesh::SurfaceMesh s = mesh::join_surfaces(parts);
-  Eigen::Index f0 = 0;
-  for (size_t k = 0; k < runs.size(); ++k) {
-    const std::vector<int> faces = cad::source_numbers(solids[k], 2);
-    for (Eigen::Index f = f0; f < f0 + runs[k].surface.F.rows(); ++f)
-      s.patch(f) = s.patch(f) >= 1 && s.patch(f) <= static_cast<int>(faces.size()) ? faces[s.patch(f) - 1] : 0;
-    f0 += runs[k].surface.F.rows();
-  }
-  return s;
-}
-
-// The solids' snaps as one: node kinds and entities (in the source's numbers) in the merged mesh's
-// node order, counts summed, the largest distances and moves, the worst cells, means over all
-// boundary nodes. Its mesh and quality are left empty (they are the part's run.mesh and quality).
-cad::SnapResult snaps_together(const std::vector<cad::Shape>& solids, const std::vector<MeshCadRun>& runs) {
+// The solids' snaps as one: node kinds and entities in the merged mesh's node order, counts summed,
+// the largest distances and moves, the worst cells, means over all boundary nodes. Its mesh and
+// quality are left empty (they are the part's run.mesh and quality).
+cad::SnapResult snaps_together(const std::vector<MeshCadRun>& runs) {
   cad::SnapResult out;
   cad::SnapReport& t = out.report;
   bool first = true;
   for (size_t k = 0; k < runs.size(); ++k) {
     const cad::SnapResult& s = runs[k].snap;
     const cad::SnapReport& q = s.report;
-    const std::vector<int> numbers[4] = {{}, cad::source_numbers(solids[k], 2), cad::source_numbers(solids[k], 1),
-                                         cad::source_numbers(solids[k], 0)};
-    for (size_t v = 0; v < s.kind.size(); ++v) {
-      const std::vector<int>& n = numbers[static_cast<int>(s.kind[v])];
-      const int e = v < s.entity.size() ? s.entity[v] : 0;
-      out.kind.push_back(s.kind[v]);
-      out.entity.push_back(e >= 1 && e <= static_cast<int>(n.size()) ? n[e - 1] : 0);
-    }
+    out.kind.insert(out.kind.end(), s.kind.begin(), s.kind.end());
+    out.entity.insert(out.entity.end(), s.entity.begin(), s.entity.end());
+    out.entity.resize(out.kind.size(), 0);
     // A second-order mesh's mid-edge nodes follow its corners: none has a kind of its own.
     out.kind.resize(out.kind.size() + std::max<Eigen::Index>(0, runs[k].run.mesh.V.rows() - static_cast<Eigen::Index>(s.kind.size())),
                     cad::SnapKind::Interior);
@@ -122,11 +86,13 @@ cad::SnapResult snaps_together(const std::vector<cad::Shape>& solids, const std:
 }
 
 // The solids' runs as one part's (MeshSolidsRun::part).
-void put_part_together(const std::vector<cad::Shape>& solids, std::vector<MeshCadRun>& runs, MeshCadRun& part) {
+void put_part_together(std::vector<MeshCadRun>& runs, MeshCadRun& part) {
   part = MeshCadRun{};
-  part.surface = surfaces_together(solids, runs);
+  std::vector<const mesh::SurfaceMesh*> surfaces;
+  for (const MeshCadRun& r : runs) surfaces.push_back(&r.surface);
+  part.surface = mesh::join_surfaces(surfaces);
   part.snapped = !runs.empty() && std::all_of(runs.begin(), runs.end(), [](const MeshCadRun& r) { return r.snapped; });
-  if (part.snapped) part.snap = snaps_together(solids, runs);
+  if (part.snapped) part.snap = snaps_together(runs);
   part.stats = runs.front().stats;
   part.tessellation_factor = runs.front().tessellation_factor;
   for (size_t k = 1; k < runs.size(); ++k) {
@@ -185,7 +151,7 @@ MeshSolidsRun mesh_cad_solids(const std::vector<cad::Shape>& solids, const MeshC
       throw MeshingError(prefix + e.what());
     }
   }
-  put_part_together(solids, r.solids, r.part);
+  put_part_together(r.solids, r.part);
   return r;
 }
 

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <chrono>
 #include <exception>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/read_shape.h"
@@ -73,17 +76,8 @@ void mesh_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, const 
 
 MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress);
 
-}  // namespace
-
-MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
-  if (opt.mesh.time_limit > 0) {
-    MeshCadOptions inner = opt;
-    inner.mesh.time_limit = 0;
-    MeshCadRun local;
-    MeshCadRun& r = progress ? *progress : local;
-    run_with_time_limit(opt.mesh.time_limit, [&] { mesh_cad_part(shape, inner, &r); });
-    return r;
-  }
+// mesh_cad_part in the shape's own numbers (Face1..Face<n> of the solid).
+MeshCadRun mesh_cad_own(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
   check_order(opt.mesh.order);
   if (opt.mesh.order == 1) return mesh_cad_first_order(shape, opt, progress);
   MeshCadOptions first = opt;
@@ -104,6 +98,79 @@ MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, Mes
   if (opt.log) opt.log(0, second_order_text(r.run.second_order));
   check_interrupt("mesh");
   r.run.stage = "done";
+  return r;
+}
+
+// The solid's own number of each of the source's numbers of its faces (dim 2) or edges (dim 1).
+std::map<int, int> own_numbers(const std::vector<int>& source) {
+  std::map<int, int> own;
+  for (size_t i = 0; i < source.size(); ++i) own[source[i]] = static_cast<int>(i) + 1;
+  return own;
+}
+
+// "Face7, Face8, Face9" (at most 8 named, then a count).
+std::string entity_list(const char* kind, const std::vector<int>& source) {
+  std::string out;
+  for (size_t i = 0; i < source.size() && i < 8; ++i) out += (i ? ", " : "") + std::string(kind) + std::to_string(source[i]);
+  if (source.size() > 8) out += " and " + std::to_string(source.size() - 8) + " more";
+  return out;
+}
+
+// `opt` with its local sizes on faces and edges, given in the source's numbers, in the solid's own;
+// InputError for a number that is not one of the solid's.
+MeshCadOptions in_own_numbers(const MeshCadOptions& opt, const std::vector<int>& faces, const std::vector<int>& edges) {
+  MeshCadOptions o = opt;
+  const std::map<int, int> face = own_numbers(faces), edge = own_numbers(edges);
+  for (overlay::LocalSize& l : o.mesh.overlay.local_sizes) {
+    if (l.patch <= 0 || l.polyline.rows() > 0) continue;
+    auto it = face.find(l.patch);
+    if (it == face.end())
+      throw InputError("a local size is given on Face" + std::to_string(l.patch) + ", which is not a face of the solid meshed (" +
+                       entity_list("Face", faces) + ")");
+    l.patch = it->second;
+  }
+  for (auto& [number, size] : o.edge_sizes) {
+    auto it = edge.find(number);
+    if (it == edge.end())
+      throw InputError("a local size is given on Edge" + std::to_string(number) + ", which is not an edge of the solid meshed (" +
+                       entity_list("Edge", edges) + ")");
+    number = it->second;
+  }
+  return o;
+}
+
+// r's tessellation patches and snapped entities in the source's numbers.
+void to_source_numbers(const cad::Shape& shape, MeshCadRun& r) {
+  const std::vector<int> numbers[4] = {{}, cad::source_numbers(shape, 2), cad::source_numbers(shape, 1),
+                                       cad::source_numbers(shape, 0)};
+  auto map = [](const std::vector<int>& n, int own) { return own >= 1 && own <= static_cast<int>(n.size()) ? n[own - 1] : 0; };
+  for (Eigen::Index t = 0; t < r.surface.patch.size(); ++t) r.surface.patch(t) = map(numbers[1], r.surface.patch(t));
+  for (size_t v = 0; v < r.snap.entity.size() && v < r.snap.kind.size(); ++v)
+    r.snap.entity[v] = map(numbers[static_cast<int>(r.snap.kind[v])], r.snap.entity[v]);
+}
+
+}  // namespace
+
+MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& opt, MeshCadRun* progress) {
+  if (opt.mesh.time_limit > 0) {
+    MeshCadOptions inner = opt;
+    inner.mesh.time_limit = 0;
+    MeshCadRun local;
+    MeshCadRun& r = progress ? *progress : local;
+    run_with_time_limit(opt.mesh.time_limit, [&] { mesh_cad_part(shape, inner, &r); });
+    return r;
+  }
+  const std::vector<int> faces = cad::source_numbers(shape, 2);
+  bool own = true;
+  for (int dim = 0; dim < 3 && own; ++dim) {
+    const std::vector<int> n = dim == 2 ? faces : cad::source_numbers(shape, dim);
+    for (size_t i = 0; i < n.size() && own; ++i) own = n[i] == static_cast<int>(i) + 1;
+  }
+  if (own) return mesh_cad_own(shape, opt, progress);
+  MeshCadRun local;
+  MeshCadRun& r = progress ? *progress : local;
+  mesh_cad_own(shape, in_own_numbers(opt, faces, cad::source_numbers(shape, 1)), &r);
+  to_source_numbers(shape, r);
   return r;
 }
 

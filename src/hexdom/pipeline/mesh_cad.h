@@ -69,6 +69,10 @@ struct MeshCadRun {
 /// when it passes on the first tessellation before any mesh exists. InterruptedError once the
 /// calling thread's interrupt is raised (common/interrupt.h), as mesh_surface; TimeoutError past
 /// options.mesh.time_limit (the whole call: tessellations, paths, snap, second order).
+/// Numbers: local sizes on faces and edges are taken, and the result's surface patches and snapped
+/// entities given, in the numbers of the shape the solid was read from (cad::source_numbers: a
+/// compound's, FreeCAD's for the whole shape); InputError for a face or edge not of this solid. The
+/// run `progress` holds when this throws is in the solid's own numbers.
 MeshCadRun mesh_cad_part(const cad::Shape& shape, const MeshCadOptions& options = {}, MeshCadRun* progress = nullptr);
 
 /// Several solids (a CAD file's, cad::read_solids) meshed one by one by mesh_cad_part with the same
@@ -83,7 +87,7 @@ struct MeshSolidsRun {
   /// (snap.mesh is empty: it is run.mesh); stats, snap_seconds and tessellations summed (stats.brep_volume the solids'
   /// volumes), tessellation_factor the first solid's.
   MeshCadRun part;
-  std::vector<MeshCadRun> solids;              ///< each solid's own run, in the solid's own numbers
+  std::vector<MeshCadRun> solids;              ///< each solid's own run (also in the source's numbers)
   std::vector<std::array<int, 2>> touching;    ///< pairs of solids that touch (cad::touching_solids)
 };
 

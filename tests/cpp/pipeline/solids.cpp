@@ -133,4 +133,34 @@ TEST(Solids, TakeLocalSizesInTheSourcesNumbers) {
     EXPECT_NE(std::string(e.what()).find("Face10"), std::string::npos) << e.what();
   }
 }
+// One solid chosen from the compound (read_solids with options.solid) is meshed in the compound's
+// numbers as well: its tessellation's patches and a size on its Face7; a face of the other solid is
+// refused naming the solid's faces.
+TEST(Solids, OneChosenSolidKeepsTheSourcesNumbers) {
+  cad::ReadOptions ro;
+  ro.solid = 2;
+  const std::vector<cad::Shape> one = cad::read_solids(test::write_part(box_and_cylinder(), "solids_chosen"), ro);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(cad::source_numbers(one[0], 2), (std::vector<int>{7, 8, 9}));
+  pipeline::MeshCadOptions o;
+  o.mesh.method = pipeline::Method::Overlay;
+  overlay::LocalSize l;
+  l.patch = 7;
+  l.size = 0.5;
+  o.mesh.overlay.local_sizes.push_back(l);
+  const pipeline::MeshCadRun r = pipeline::mesh_cad_part(one[0], o);
+  std::set<int> patches(r.surface.patch.data(), r.surface.patch.data() + r.surface.patch.size());
+  EXPECT_EQ(patches, (std::set<int>{7, 8, 9}));
+  ASSERT_TRUE(r.snapped);
+  for (size_t v = 0; v < r.snap.kind.size(); ++v)
+    if (r.snap.kind[v] == cad::SnapKind::Face) ASSERT_TRUE(r.snap.entity[v] >= 7 && r.snap.entity[v] <= 9) << r.snap.entity[v];
+  o.mesh.overlay.local_sizes[0].patch = 1;
+  try {
+    pipeline::mesh_cad_part(one[0], o);
+    ADD_FAILURE() << "Face1 of the box accepted for the cylinder";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Face1, which is not a face of the solid meshed (Face7, Face8, Face9)"),
+              std::string::npos) << e.what();
+  }
+}
 #endif
