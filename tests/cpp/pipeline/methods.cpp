@@ -18,6 +18,16 @@ pipeline::MeshCadRun mesh_part(const TopoDS_Shape& part, const std::string& name
   return pipeline::mesh_cad_part(cad::read_shape(test::write_part(part, name)), o);
 }
 
+// A run of 10 hexes of volume 1 with this worst SJ and largest edge ratio, for the choice's order.
+pipeline::MeshSurfaceRun hex_run(double sj_min, double edge_ratio_max) {
+  pipeline::MeshSurfaceRun r;
+  r.quality.hex.count = 10;
+  r.quality.total_volume = 1.0;
+  r.quality.hex.sj_min = sj_min;
+  r.quality.hex.edge_ratio_max = edge_ratio_max;
+  return r;
+}
+
 }  // namespace
 
 // The overlay path alone on a torus, a sphere, a cone's apex, a 10 degree wedge and a box with
@@ -91,15 +101,7 @@ TEST(AutomaticChoice, AThinLayerOfCellsHasTheGridMeshedTooAndTheMeshWithoutItKep
 // The order of two meshes equal on the other targets: the one within the edge-ratio target first,
 // whatever its worst SJ; with the target off (0) the higher worst SJ.
 TEST(AutomaticChoice, TheEdgeRatioTargetComesBeforeTheWorstSJ) {
-  pipeline::MeshSurfaceRun needle, blunt;
-  for (auto* r : {&needle, &blunt}) {
-    r->quality.hex.count = 10;
-    r->quality.total_volume = 1.0;
-  }
-  needle.quality.hex.sj_min = 0.9;
-  needle.quality.hex.edge_ratio_max = 40;
-  blunt.quality.hex.sj_min = 0.5;
-  blunt.quality.hex.edge_ratio_max = 3;
+  const pipeline::MeshSurfaceRun needle = hex_run(0.9, 40), blunt = hex_run(0.5, 3);
   pipeline::MeshSurfaceOptions o;
   EXPECT_TRUE(pipeline::better_run(blunt, needle, 1.0, o));
   EXPECT_FALSE(pipeline::better_run(needle, blunt, 1.0, o));
@@ -114,15 +116,7 @@ TEST(AutomaticChoice, TheEdgeRatioTargetComesBeforeTheWorstSJ) {
 // 17 times longer than wide serves FEM better than one 77 times), whatever the worst SJ; below the
 // SJ target the worst SJ decides.
 TEST(AutomaticChoice, BeyondTheEdgeRatioTargetTheSmallerEdgeRatioComesFirst) {
-  pipeline::MeshSurfaceRun thin, thinner;
-  for (auto* r : {&thin, &thinner}) {
-    r->quality.hex.count = 10;
-    r->quality.total_volume = 1.0;
-  }
-  thin.quality.hex.sj_min = 0.447;
-  thin.quality.hex.edge_ratio_max = 17.1;
-  thinner.quality.hex.sj_min = 0.455;
-  thinner.quality.hex.edge_ratio_max = 77.3;
+  pipeline::MeshSurfaceRun thin = hex_run(0.447, 17.1), thinner = hex_run(0.455, 77.3);
   const pipeline::MeshSurfaceOptions o;
   EXPECT_TRUE(pipeline::better_run(thin, thinner, 1.0, o));
   EXPECT_FALSE(pipeline::better_run(thinner, thin, 1.0, o));
