@@ -63,5 +63,8 @@ def add_constraint_groups(analysis, mesh_obj, part=None):
         if nodes:
             groups[member.Name + "_Nodes"] = sorted(n - 1 for n in nodes)
     if groups:
+        untouched = "Touched" not in mesh_obj.State
         mesh_obj.FemMesh = femmesh.set_node_groups(fem, groups)
+        if untouched:  # groups added to an up-to-date mesh leave it up to date
+            mesh_obj.purgeTouched()
     return sorted(groups)

@@ -75,8 +75,9 @@ def test_constraint_on_a_face_group_solves_in_calculix(doc, tmp_path):
     analysis, solver, _ = fc_fem.static_analysis(
         doc, E, NU, [(cyl, "Face{}".format(bottom + 1))], [(cyl, "Face{}".format(top + 1))], F,
         (cyl, ["Face{}".format(top + 1)]), reversed)
-    fem_setup.add_to_analysis(analysis, mesh_obj)
     doc.recompute()
+    fem_setup.add_to_analysis(analysis, mesh_obj)
+    assert "Touched" not in mesh_obj.State  # the groups do not ask for a new mesh
     groups = femmesh.node_groups(mesh_obj.FemMesh)
     assert groups["ConstraintFixed_Nodes"] == groups["Face{}".format(bottom + 1)]
     assert groups["ConstraintForce_Nodes"] == groups["Face{}".format(top + 1)]
