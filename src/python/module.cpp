@@ -93,6 +93,33 @@ void bind_interrupt(py::module_& m) {
 }
 }  // namespace
 
+// face_sets: the boundary faces of a volume mesh tagged with their CAD faces (io::face_sets).
+static void bind_face_sets(py::module_& m) {
+  m.def("face_sets", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
+                        const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch) {
+    mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
+    io::FaceSets f;
+    {
+      py::gil_scoped_release nogil;
+      f = io::face_sets(msh, mesh::SurfaceMesh{SV, SF, patch});
+    }
+    const Eigen::Index n = static_cast<Eigen::Index>(f.faces.size());
+    CellArray nodes = CellArray::Constant(n, msh.second_order() ? 8 : 4, -1);
+    Eigen::VectorXi cell(n), local(n), tag(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const mesh::BoundaryFace& b = f.faces[i];
+      const std::vector<int> own = mesh::face_nodes(msh, b);
+      for (size_t j = 0; j < own.size(); ++j) nodes(i, j < static_cast<size_t>(b.n) ? j : 4 + j - b.n) = own[j];
+      cell(i) = b.cell, local(i) = b.local, tag(i) = f.tag[i];
+    }
+    return py::make_tuple(nodes, cell, local, tag);
+  }, py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("surface_V"), py::arg("surface_F"), py::arg("face_id"),
+  "The boundary faces of a volume mesh, each with the CAD face id (face_id of the surface triangle\n"
+  "nearest its centre: the tessellation the mesh was made from). Returns (nodes #B x 4, corners outward,\n"
+  "-1 padded for a triangle; #B x 8 for a second-order mesh, the mid-edge nodes of edges k..k+1 in columns\n"
+  "4..; cell #B; local face #B in VTK's numbering; face id #B, 0 where none).");
+}
+
 PYBIND11_MODULE(_hexdom, m) {
   m.doc() = "HexDom core: hex-dominant meshing by polycubes (numpy in, numpy out)";
   m.attr("__version__") = HEXDOM_VERSION;
@@ -157,29 +184,7 @@ PYBIND11_MODULE(_hexdom, m) {
   "face id, curves where two face ids meet and their corners kept. Returns (V, F, face_id). Raises InputError\n"
   "for an open or non-manifold surface (naming the edge) or a degenerate triangle.");
 
-  m.def("face_sets", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
-                        const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch) {
-    mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
-    io::FaceSets f;
-    {
-      py::gil_scoped_release nogil;
-      f = io::face_sets(msh, mesh::SurfaceMesh{SV, SF, patch});
-    }
-    const Eigen::Index n = static_cast<Eigen::Index>(f.faces.size());
-    CellArray nodes = CellArray::Constant(n, msh.second_order() ? 8 : 4, -1);
-    Eigen::VectorXi cell(n), local(n), tag(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const mesh::BoundaryFace& b = f.faces[i];
-      const std::vector<int> own = mesh::face_nodes(msh, b);
-      for (size_t j = 0; j < own.size(); ++j) nodes(i, j < static_cast<size_t>(b.n) ? j : 4 + j - b.n) = own[j];
-      cell(i) = b.cell, local(i) = b.local, tag(i) = f.tag[i];
-    }
-    return py::make_tuple(nodes, cell, local, tag);
-  }, py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("surface_V"), py::arg("surface_F"), py::arg("face_id"),
-  "The boundary faces of a volume mesh, each with the CAD face id (face_id of the surface triangle\n"
-  "nearest its centre: the tessellation the mesh was made from). Returns (nodes #B x 4, corners outward,\n"
-  "-1 padded for a triangle; #B x 8 for a second-order mesh, the mid-edge nodes of edges k..k+1 in columns\n"
-  "4..; cell #B; local face #B in VTK's numbering; face id #B, 0 where none).");
+  bind_face_sets(m);
 
   m.def("cell_metrics", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types) {
     mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
