@@ -123,21 +123,29 @@ def quality_report(mesh):
     return _hexdom.quality_report(mesh.V, mesh.cells, mesh.types)
 
 
-def face_sets(mesh, surface):
+def face_sets(mesh, surface, node_faces=None):
     """{CAD face id: 0-based node indices, sorted} of the volume ``mesh``'s boundary: the nodes of
     the boundary faces lying on each CAD face (mid-edge nodes included for a second-order mesh),
     each face's CAD face being the face id of the triangle of ``surface`` (the tessellation the
-    mesh was made from, ids as FreeCAD's Face<k>) nearest its centre. Empty without triangles."""
+    mesh was made from, ids as FreeCAD's Face<k>) nearest its centre. ``node_faces`` (the snap
+    report's "faces": per node the CAD faces it was snapped onto, -1 padded): a face takes the CAD
+    face its corners share, and a node snapped onto other faces only is left out of a face's
+    nodes (a boundary quad the overlay lets straddle a sharp curve). Empty without triangles."""
     if surface is None or not len(surface.F):
         return {}
-    nodes, _, _, tag = _hexdom.face_sets(mesh.V, mesh.cells, mesh.types, surface.V,
-                                         np.asarray(surface.F, np.int32), np.asarray(surface.patch, np.int32))
-    nodes, tag = np.asarray(nodes), np.asarray(tag)
-    out = {}
+    args = {}
+    if node_faces is not None and len(node_faces):
+        args["node_faces"] = np.asarray(node_faces, np.int32)
+    out = _hexdom.face_sets(mesh.V, mesh.cells, mesh.types, surface.V, np.asarray(surface.F, np.int32),
+                            np.asarray(surface.patch, np.int32), **args)
+    if len(out) > 4:  # the core gives each face's nodes
+        return {int(k): np.asarray(v) for k, v in out[4].items()}
+    nodes, tag = np.asarray(out[0]), np.asarray(out[3])
+    sets = {}
     for k in np.unique(tag[tag > 0]).tolist():
         rows = nodes[tag == k]
-        out[int(k)] = np.unique(rows[rows >= 0])
-    return out
+        sets[int(k)] = np.unique(rows[rows >= 0])
+    return sets
 
 
 def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, untangle=True, threads=0):
@@ -408,7 +416,8 @@ def snap_to_brep(mesh, source, surface, solid=0, edge_tolerance=0.25, smooth=3, 
     boundary_nodes, face_nodes, edge_nodes, vertex_nodes, max_before / mean_before / max_after /
     mean_after B-rep distances (max_distance = max_after), max_move, diagonal, inverted_snapped, inverted, worst_sj_before,
     worst_sj_snapped, worst_sj, seconds_project, seconds_restore, quality, kind and entity per node
-    (see SNAP_KINDS)). Inverted cells are reported, not raised."""
+    (see SNAP_KINDS), faces: #V x k, the CAD faces each node lies on, -1 padded). Inverted cells are
+    reported, not raised."""
     if not has_opencascade():
         raise Error("built without OpenCASCADE: cannot snap a mesh to the B-rep")
     text = os.fspath(source) if isinstance(source, os.PathLike) else source

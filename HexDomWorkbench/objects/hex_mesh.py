@@ -227,6 +227,7 @@ class HexMesh(BaseHexDomObject):
                 self.path = run.method
                 if run.snap:
                     self.brep_distance = float(run.snap["max_distance"])
+                    self.node_faces = run.snap.get("faces")
                 return run.mesh
             pipeline.leave_pipeline(objs)
         self.path = meshing_path(obj)
@@ -266,6 +267,7 @@ class HexMesh(BaseHexDomObject):
                 mesh, info = bar.run("snap to CAD", core.snap_to_brep, mesh, brep, cad_surface,
                                      max_edge_ratio=core.TARGET_EDGE_RATIO)
                 self.brep_distance = float(info["max_distance"])
+                self.node_faces = info.get("faces")
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
             if second:
                 mesh = self.second_order(bar, mesh, surface, snap, info)
@@ -327,6 +329,7 @@ class HexMesh(BaseHexDomObject):
                                      max_edge_ratio=core.TARGET_EDGE_RATIO,
                                      face_only=getattr(run, "face_only", None) or None)
                 self.brep_distance = float(info["max_distance"])
+                self.node_faces = info.get("faces")
                 bar.step("snapped to the CAD faces: {:.3g}".format(self.brep_distance))
             if second:
                 mesh = self.second_order(bar, mesh, surface, snap, info if snap else None)
@@ -335,9 +338,11 @@ class HexMesh(BaseHexDomObject):
     def execute(self, obj):
         self.brep_distance = -1.0
         self.path = None
+        self.node_faces = None  # the snap's CAD faces of each node, when it ran
         mesh = self.generate(obj)
         if mesh is not None:
-            store_mesh(obj, mesh, cad_face_surface(obj) if core_has("face_sets") else None)
+            store_mesh(obj, mesh, cad_face_surface(obj) if core_has("face_sets") else None,
+                       self.node_faces)
             if hasattr(obj, "BrepDistance") and obj.BrepDistance != self.brep_distance:
                 obj.BrepDistance = self.brep_distance
             if self.path is not None and hasattr(obj, "MeshingPath"):
@@ -417,15 +422,16 @@ def get_mesh(obj):
     return mesh
 
 
-def store_mesh(obj, mesh, surface=None):
+def store_mesh(obj, mesh, surface=None, node_faces=None):
     """Puts ``mesh`` into obj (FemMesh, Region) and refreshes the quality properties. With
     ``surface`` (the tessellation it was made from, CAD face ids), the FemMesh gets a node group
-    Face<k> per CAD face (core.face_sets), and one per constraint of the analyses holding obj
+    Face<k> per CAD face (core.face_sets, with ``node_faces``, the snap's CAD faces of each node,
+    when it was snapped), and one per constraint of the analyses holding obj
     (fem_setup.add_constraint_groups)."""
     fem = femmesh.to_femmesh(mesh)
     if surface is not None:
         femmesh.set_node_groups(fem, {fem_setup.FACE_GROUP.format(k): nodes
-                                      for k, nodes in core.face_sets(mesh, surface).items()})
+                                      for k, nodes in core.face_sets(mesh, surface, node_faces).items()})
     obj.FemMesh = fem
     if surface is not None:
         for analysis in getattr(obj, "InList", []):

@@ -238,7 +238,8 @@ def fill_mesh_part(objs, result, store_mesh=None, stages_only=False):
         if poly is not None:
             fill_polycube(poly, result, mesh)
         if store_mesh is not None:
-            store_mesh(mesh, result.mesh, result.surface if core_has("face_sets") else None)
+            store_mesh(mesh, result.mesh, result.surface if core_has("face_sets") else None,
+                       result.snap.get("faces") if result.snap else None)
             mesh.BrepDistance = float(result.snap["max_distance"]) if result.snap else -1.0
             mesh.MeshingPath = result.method
         if not stages_only:

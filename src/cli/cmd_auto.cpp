@@ -230,14 +230,14 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
 }
 
 // For an .inp, .msh or .k output (a .vtu one with `vtu_faces`), the boundary faces of `m` tagged with
-// the patch (CAD face) of `surface` each lies on, for the Face<k> sets; none for other formats or
-// without a surface.
+// the patch (CAD face) of `surface` each lies on, and the nodes of each (the snap's `node_faces`
+// when snapped: io::face_sets), for the Face<k> sets; none for other formats or without a surface.
 io::WriteOptions face_sets_for(const std::string& out, const mesh::Mesh& m, const mesh::SurfaceMesh& surface,
-                               bool vtu_faces = false) {
+                               bool vtu_faces = false, const std::vector<std::vector<int>>& node_faces = {}) {
   io::WriteOptions w;
   const io::Format f = io::format_of(out);
   if (f == io::Format::Inp || f == io::Format::Msh || f == io::Format::K || (vtu_faces && f == io::Format::Vtu))
-    w.face_sets = io::face_sets(m, surface);
+    w.face_sets = io::face_sets(m, surface, node_faces);
   return w;
 }
 
@@ -326,6 +326,7 @@ void add_mesh(CLI::App& app) {
     const char* reference = "surface";
     pipeline::MeshSurfaceRun run;
     bool snapped = false;
+    std::vector<std::vector<int>> node_faces;  // the CAD faces each boundary node was snapped onto
     cad::SnapReport snap;
     double snap_seconds = 0;
     auto write_intermediate = [&](bool all) {
@@ -387,6 +388,7 @@ void add_mesh(CLI::App& app) {
       surface = std::move(cr.surface);
       run = std::move(cr.run);
       snapped = cr.snapped;
+      if (snapped) node_faces = std::move(cr.snap.faces);
       snap = cr.snap.report;
       snap_seconds = cr.snap_seconds;
       reference_volume = cr.stats.brep_volume;
@@ -411,7 +413,7 @@ void add_mesh(CLI::App& app) {
     print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
     if (snapped) print_snap(snap, snap_seconds);
     if (a->keep) write_intermediate(true);
-    io::write_mesh(a->out, run.mesh, face_sets_for(a->out, run.mesh, surface, a->boundary_faces));
+    io::write_mesh(a->out, run.mesh, face_sets_for(a->out, run.mesh, surface, a->boundary_faces, node_faces));
     if (!a->report.empty())
       io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(run.quality) << "\n"; });
     std::cerr << "hexdom: wrote " << a->out << "\n";

@@ -71,6 +71,7 @@ py::dict snap_dict(const cad::SnapResult& r) {
   for (size_t i = 0; i < r.kind.size(); ++i) kind(i) = static_cast<int>(r.kind[i]), entity(i) = r.entity[i];
   d["kind"] = kind;
   d["entity"] = entity;
+  d["faces"] = padded_lists(r.faces);
   return d;
 }
 

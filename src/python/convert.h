@@ -145,4 +145,24 @@ inline py::dict frame_dict(const segmentation::CubeFrame& f) {
   return d;
 }
 
+/// Lists of ids per row (the CAD faces of each node, SnapResult::faces) as a #rows x k int array,
+/// -1 padded (k at least 1), and back (rows of -1 only: empty lists).
+inline CellArray padded_lists(const std::vector<std::vector<int>>& lists) {
+  size_t k = 1;
+  for (const auto& l : lists) k = std::max(k, l.size());
+  CellArray out = CellArray::Constant(static_cast<Eigen::Index>(lists.size()), static_cast<Eigen::Index>(k), -1);
+  for (size_t i = 0; i < lists.size(); ++i)
+    for (size_t j = 0; j < lists[i].size(); ++j) out(i, j) = lists[i][j];
+  return out;
+}
+inline std::vector<std::vector<int>> lists_of(const CellArray& a) {
+  std::vector<std::vector<int>> out(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    for (Eigen::Index j = 0; j < a.cols(); ++j)
+      if (a(i, j) >= 0) out[i].push_back(a(i, j));
+    std::sort(out[i].begin(), out[i].end());
+  }
+  return out;
+}
+
 }  // namespace hexdom::python

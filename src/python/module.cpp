@@ -96,12 +96,13 @@ void bind_interrupt(py::module_& m) {
 // face_sets: the boundary faces of a volume mesh tagged with their CAD faces (io::face_sets).
 static void bind_face_sets(py::module_& m) {
   m.def("face_sets", [](const Eigen::MatrixXd& V, const CellArray& cells, const Eigen::VectorXi& types,
-                        const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch) {
+                        const Eigen::MatrixXd& SV, const Eigen::MatrixXi& SF, const Eigen::VectorXi& patch,
+                        const std::optional<CellArray>& node_faces) {
     mesh::Mesh msh = make_mesh(V, cells, types, std::nullopt);
     io::FaceSets f;
     {
       py::gil_scoped_release nogil;
-      f = io::face_sets(msh, mesh::SurfaceMesh{SV, SF, patch});
+      f = io::face_sets(msh, mesh::SurfaceMesh{SV, SF, patch}, node_faces ? lists_of(*node_faces) : std::vector<std::vector<int>>{});
     }
     const Eigen::Index n = static_cast<Eigen::Index>(f.faces.size());
     CellArray nodes = CellArray::Constant(n, msh.second_order() ? 8 : 4, -1);
@@ -112,12 +113,17 @@ static void bind_face_sets(py::module_& m) {
       for (size_t j = 0; j < own.size(); ++j) nodes(i, j < static_cast<size_t>(b.n) ? j : 4 + j - b.n) = own[j];
       cell(i) = b.cell, local(i) = b.local, tag(i) = f.tag[i];
     }
-    return py::make_tuple(nodes, cell, local, tag);
+    py::dict sets;
+    for (const auto& [k, v] : f.nodes) sets[py::int_(k)] = Eigen::VectorXi(Eigen::Map<const Eigen::VectorXi>(v.data(), v.size()));
+    return py::make_tuple(nodes, cell, local, tag, sets);
   }, py::arg("V"), py::arg("cells"), py::arg("types"), py::arg("surface_V"), py::arg("surface_F"), py::arg("face_id"),
-  "The boundary faces of a volume mesh, each with the CAD face id (face_id of the surface triangle\n"
-  "nearest its centre: the tessellation the mesh was made from). Returns (nodes #B x 4, corners outward,\n"
-  "-1 padded for a triangle; #B x 8 for a second-order mesh, the mid-edge nodes of edges k..k+1 in columns\n"
-  "4..; cell #B; local face #B in VTK's numbering; face id #B, 0 where none).");
+  py::arg("node_faces") = py::none(),
+  "The boundary faces of a volume mesh, each with the CAD face id it lies on, and the nodes of each CAD\n"
+  "face (io::face_sets). node_faces: #V x k, -1 padded, the CAD faces each boundary node lies on (the\n"
+  "snap's 'faces'), or None: each face then takes the face_id of the surface triangle nearest its centre\n"
+  "(the tessellation the mesh was made from). Returns (nodes #B x 4, corners outward, -1 padded for a\n"
+  "triangle; #B x 8 for a second-order mesh, the mid-edge nodes of edges k..k+1 in columns 4..; cell #B;\n"
+  "local face #B in VTK's numbering; face id #B, 0 where none; {face id: its nodes, increasing}).");
 }
 
 PYBIND11_MODULE(_hexdom, m) {

@@ -522,6 +522,13 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
   place_on_vertices(s, m, b, vertex_faces, opt, target);
   place_on_edges(shape, m, b, pair_edges, opt, target);
   place_on_faces(m, b, projectors, target);
+  r.faces.assign(nn, {});
+  for (int v : boundary) {
+    const int e = r.entity[v];
+    if (r.kind[v] == SnapKind::Face) r.faces[v] = {e};
+    else if (r.kind[v] == SnapKind::Edge && e > 0 && e < static_cast<int>(edge_faces.size())) r.faces[v] = edge_faces[e];
+    else if (r.kind[v] == SnapKind::Vertex && e > 0 && e < static_cast<int>(vertex_faces.size())) r.faces[v] = vertex_faces[e];
+  }
   for (int v : boundary) {
     const double move = (target.point.row(v) - m.V.row(v)).norm();
     rep.max_move = std::max(rep.max_move, move);

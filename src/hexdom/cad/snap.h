@@ -82,6 +82,9 @@ struct SnapResult {
   quality::QualityReport quality;   ///< of `mesh`
   std::vector<SnapKind> kind;       ///< #V: what each node was put on
   std::vector<int> entity;          ///< #V: 1-based face, edge or vertex id (FreeCAD numbering); 0 inside
+  /// #V: the CAD faces (1-based, increasing) each node lies on: its face's; an edge's or a vertex's
+  /// faces for a node put on one; empty inside. The FEM face sets take a node into Face<k> by it.
+  std::vector<std::vector<int>> faces;
 };
 
 /// Projects the boundary nodes of `mesh` (hex / prism / tet, conforming) onto the B-rep of `shape`,

@@ -1,5 +1,8 @@
 #include "hexdom/io/face_sets.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "hexdom/mesh/closest_point.h"
 
 namespace hexdom::io {
@@ -11,14 +14,82 @@ std::map<int, std::vector<size_t>> FaceSets::by_tag() const {
   return out;
 }
 
-FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface) {
+namespace {
+
+const std::vector<int>* known(const std::vector<std::vector<int>>& node_faces, int v) {
+  return v >= 0 && v < static_cast<int>(node_faces.size()) && !node_faces[v].empty() ? &node_faces[v] : nullptr;
+}
+
+std::vector<int> common(const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<int> out;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+  return out;
+}
+
+bool holds(const std::vector<int>& faces, int k) { return std::binary_search(faces.begin(), faces.end(), k); }
+
+// The CAD faces all corners of f lie on (empty when a corner is not known or they share none).
+std::vector<int> shared_faces(const mesh::BoundaryFace& f, const std::vector<std::vector<int>>& node_faces) {
+  const std::vector<int>* first = known(node_faces, f.v[0]);
+  if (!first) return {};
+  std::vector<int> out = *first;
+  for (int i = 1; i < f.n && !out.empty(); ++i) {
+    const std::vector<int>* other = known(node_faces, f.v[i]);
+    out = other ? common(out, *other) : std::vector<int>{};
+  }
+  return out;
+}
+
+}  // namespace
+
+FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface, const std::vector<std::vector<int>>& node_faces) {
   FaceSets sets;
   if (surface.F.rows() == 0) return sets;
   sets.faces = mesh::boundary_faces(mesh);
   const std::vector<int> tris = mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), mesh.V, sets.faces);
   sets.tag.reserve(tris.size());
-  for (int t : tris) sets.tag.push_back(t >= 0 && t < surface.patch.size() ? surface.patch(t) : 0);
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const int t = tris[i];
+    const int nearest = t >= 0 && t < surface.patch.size() ? surface.patch(t) : 0;
+    const std::vector<int> shared = shared_faces(sets.faces[i], node_faces);
+    sets.tag.push_back(shared.empty() || holds(shared, nearest) ? nearest : shared.front());
+  }
+  for (const auto& [tag, faces] : sets.by_tag()) {
+    std::vector<int>& nodes = sets.nodes[tag];
+    for (size_t i : faces) {
+      const mesh::BoundaryFace& f = sets.faces[i];
+      const std::vector<int> own = mesh::face_nodes(mesh, f);
+      for (size_t j = 0; j < own.size(); ++j) {
+        bool on = true;
+        if (j < static_cast<size_t>(f.n)) {
+          const std::vector<int>* k = known(node_faces, own[j]);
+          on = !k || holds(*k, tag);
+        } else {  // the mid-edge node of the edge from corner j - n to the next
+          const int a = f.v[j - f.n], b = f.v[(j - f.n + 1) % f.n];
+          const std::vector<int>*ka = known(node_faces, a), *kb = known(node_faces, b);
+          on = !ka || !kb || holds(common(*ka, *kb), tag);
+        }
+        if (on) nodes.push_back(own[j]);
+      }
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  }
   return sets;
+}
+
+std::vector<int> set_nodes(const mesh::Mesh& mesh, const FaceSets& sets, int tag) {
+  const auto it = sets.nodes.find(tag);
+  if (it != sets.nodes.end()) return it->second;
+  std::vector<int> nodes;
+  for (size_t i = 0; i < sets.faces.size() && i < sets.tag.size(); ++i) {
+    if (sets.tag[i] != tag) continue;
+    const std::vector<int> own = mesh::face_nodes(mesh, sets.faces[i]);
+    nodes.insert(nodes.end(), own.begin(), own.end());
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
 }
 
 }  // namespace hexdom::io

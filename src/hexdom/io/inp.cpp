@@ -59,13 +59,7 @@ int abaqus_face(const mesh::Mesh& m, const mesh::BoundaryFace& f) {
 // *NSET and *SURFACE per tag of `sets` (see write_inp).
 void write_face_sets(std::ostream& out, const mesh::Mesh& m, const FaceSets& sets) {
   for (const auto& [tag, faces] : sets.by_tag()) {
-    std::vector<int> nodes;
-    for (size_t i : faces) {
-      const std::vector<int> own = mesh::face_nodes(m, sets.faces[i]);
-      nodes.insert(nodes.end(), own.begin(), own.end());
-    }
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    const std::vector<int> nodes = set_nodes(m, sets, tag);
     out << "*NSET, NSET=Face" << tag << "\n";
     for (size_t i = 0; i < nodes.size(); ++i)
       out << nodes[i] + 1 << ((i + 1) % 16 == 0 || i + 1 == nodes.size() ? "\n" : ", ");

@@ -43,7 +43,7 @@ void check_size_numbers(const std::vector<cad::Shape>& solids, const MeshCadOpti
                        std::to_string(edges.size()) + " edges");
 }
 
-// The solids' snaps as one: node kinds and entities in the merged mesh's node order, counts summed,
+// The solids' snaps as one: node kinds, entities and faces in the merged mesh's node order, counts summed,
 // the largest distances and moves, the worst cells, means over all boundary nodes. Its mesh and
 // quality are left empty (they are the part's run.mesh and quality).
 cad::SnapResult snaps_together(const std::vector<MeshCadRun>& runs) {
@@ -60,6 +60,8 @@ cad::SnapResult snaps_together(const std::vector<MeshCadRun>& runs) {
     out.kind.resize(out.kind.size() + std::max<Eigen::Index>(0, runs[k].run.mesh.V.rows() - static_cast<Eigen::Index>(s.kind.size())),
                     cad::SnapKind::Interior);
     out.entity.resize(out.kind.size(), 0);
+    out.faces.insert(out.faces.end(), s.faces.begin(), s.faces.end());
+    out.faces.resize(out.kind.size());
     const double before = t.boundary_nodes + q.boundary_nodes;
     if (before > 0) {
       t.mean_before = (t.mean_before * t.boundary_nodes + q.mean_before * q.boundary_nodes) / before;

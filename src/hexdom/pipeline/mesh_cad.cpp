@@ -139,7 +139,7 @@ MeshCadOptions in_own_numbers(const MeshCadOptions& opt, const std::vector<int>&
   return o;
 }
 
-// r's tessellation patches and snapped entities in the source's numbers.
+// r's tessellation patches, snapped entities and node faces in the source's numbers.
 void to_source_numbers(const cad::Shape& shape, MeshCadRun& r) {
   const std::vector<int> numbers[4] = {{}, cad::source_numbers(shape, 2), cad::source_numbers(shape, 1),
                                        cad::source_numbers(shape, 0)};
@@ -147,6 +147,10 @@ void to_source_numbers(const cad::Shape& shape, MeshCadRun& r) {
   for (Eigen::Index t = 0; t < r.surface.patch.size(); ++t) r.surface.patch(t) = map(numbers[1], r.surface.patch(t));
   for (size_t v = 0; v < r.snap.entity.size() && v < r.snap.kind.size(); ++v)
     r.snap.entity[v] = map(numbers[static_cast<int>(r.snap.kind[v])], r.snap.entity[v]);
+  for (std::vector<int>& faces : r.snap.faces) {
+    for (int& f : faces) f = map(numbers[1], f);
+    std::sort(faces.begin(), faces.end());
+  }
 }
 
 }  // namespace

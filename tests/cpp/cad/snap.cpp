@@ -63,6 +63,10 @@ TEST(SnapToBrep, BoxNodesGoOntoFacesEdgesAndCorners) {
     const Eigen::Vector3d p = r.mesh.V.row(v);
     int on = 0;  // coordinates on a face plane
     for (int a = 0; a < 3; ++a) on += std::abs(p(a)) < 1e-12 || std::abs(p(a) - size(a)) < 1e-12;
+    // The CAD faces it lies on (the box's Face1..Face6: x = 0, x = 10, y = 0, ..., z = 6): one per
+    // plane it is on.
+    ASSERT_EQ(static_cast<int>(r.faces[v].size()), on) << v;
+    for (int f : r.faces[v]) EXPECT_LT(std::abs(p((f - 1) / 2) - ((f - 1) % 2) * size((f - 1) / 2)), 1e-12) << v << " Face" << f;
     switch (r.kind[v]) {
       case cad::SnapKind::Interior: EXPECT_EQ(on, 0) << v; break;
       case cad::SnapKind::Face: EXPECT_EQ(on, 1) << v; break;

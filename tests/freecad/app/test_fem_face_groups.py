@@ -41,16 +41,26 @@ def _faces(shape):
     return out["bottom"], out["top"], out["side"]
 
 
-def _cylinder_mesh(doc):
+def _cylinder_mesh(doc, method="polycube"):
     cyl = doc.addObject("Part::Cylinder", "Cylinder")
     cyl.Radius, cyl.Height = R, L
     doc.recompute()
-    objs = hexdom.mesh_part(doc, cyl, size=2.5, method="polycube")
+    objs = hexdom.mesh_part(doc, cyl, size=2.5, method=method)
     return cyl, objs["mesh"]
 
 
-def test_face_groups_are_the_nodes_freecad_finds_on_each_face(doc, tmp_path):
-    cyl, mesh_obj = _cylinder_mesh(doc)
+@pytest.mark.parametrize("method", ["polycube", "overlay"])
+def test_face_groups_are_the_nodes_freecad_finds_on_each_face(doc, tmp_path, method):
+    """Also on the overlay's mesh, whose boundary quads may straddle the rims: each group holds the
+    nodes the snap put on that face (before, a straddling quad's cap node joined the side's group)."""
+    cyl, mesh_obj = _cylinder_mesh(doc, method)
+    if method == "overlay":
+        assert mesh_obj.MeshingPath == "overlay"
+        # The Mesh's own recompute (the pipeline's stages again) gives the same groups.
+        before = femmesh.node_groups(mesh_obj.FemMesh, "Face")
+        mesh_obj.touch()
+        doc.recompute()
+        assert femmesh.node_groups(mesh_obj.FemMesh, "Face") == before
     fem = mesh_obj.FemMesh
     groups = femmesh.node_groups(fem, "Face")
     assert sorted(groups) == ["Face1", "Face2", "Face3"]
