@@ -13,7 +13,9 @@ Problems (steel, E 210000 MPa, nu 0.3):
 - thick_cylinder: a quarter of a ring (radii 10 and 20, height 10) on symmetry planes (x = 0, y = 0,
   and z = 0 held along z), 100 MPa inside; the mean radial displacement of the bore against Lame's
   open-ended (plane stress) solution.
-Not yet: the round bar in torsion (FreeCAD 0.20 has no torque load).
+- torsion: a round bar (radius 10, length 80) clamped at z = 0 and twisted through a square lug at
+  its far end by a force along each of its sides (FreeCAD 0.20 has no torque load; see Torsion);
+  the twist rate of the middle half against T / (G J), per torque FreeCAD's writer applied.
 
 Per run: nodes, DOFs (3 per node), solve seconds (CalculiX), the measured value and its error. Then,
 per problem and mesh kind, the DOFs at which the error reaches 1% (log-log interpolation between
@@ -21,7 +23,7 @@ sizes; "-" when no size does) and the ratio of Gmsh tet10's to our second-order 
 the curves (error against DOFs) go to that file.
 
 Run: /usr/bin/python3 bench/bench_fem_accuracy.py [--png docs/images/fem_accuracy.png]
-     [--problems cantilever,plate_hole,thick_cylinder]
+     [--problems cantilever,plate_hole,thick_cylinder,torsion]
 (HEXDOM_BUILD_DIR or build/ gives _hexdom.) Prints; never asserts.
 """
 
@@ -166,7 +168,86 @@ class ThickCylinder:
                               for n in nodes]))
 
 
-PROBLEMS = {p.name: p for p in (Cantilever, PlateHole, ThickCylinder)}
+class Torsion:
+    """A round bar clamped at z = 0 and twisted through a square lug at its far end. FreeCAD 0.20 has
+    no torque load: each of the lug's four sides carries a force F along it (x = +a: +y, y = +a: -x,
+    ...), uniform over the face as ccxtools spreads it: no net force, a torque 4 a F whatever the
+    spread over each face. The torque actually applied is read back from the *CLOAD lines FreeCAD
+    wrote (a mesh face that is not wholly on a CAD face gets no load from FreeCAD's writer, so a
+    mesh not following the lug's edges gets less); the twist rate is scaled to the nominal torque
+    (printed beside: the share of the force applied). Far from the ends (Saint-Venant) the bar
+    twists at T / (G J), J = pi R^4 / 2: measured as the slope of the twist angle of the bar's
+    outer surface nodes against z over the middle half of the bar (least squares)."""
+    name, sizes = "torsion", (10.0, 7.0, 5.0, 3.5)
+    R, L, a, lug, F = 10.0, 80.0, 12.0, 12.0, 1000.0
+
+    def shape(self):
+        bar = Part.makeCylinder(self.R, self.L)
+        lug = Part.makeBox(2 * self.a, 2 * self.a, self.lug, FreeCAD.Vector(-self.a, -self.a, self.L))
+        return bar.fuse(lug).removeSplitter().Solids[0]
+
+    def set_up(self, doc, part, analysis):
+        s = part.Shape
+        fixed = ObjectsFem.makeConstraintFixed(doc, "Clamp")
+        fixed.References = [(part, face_where(s, lambda f: near(f.BoundBox.ZMax, 0)))]
+        x_edge, y_edge = edge_along(s, 0), edge_along(s, 1)
+        loads = []
+        for axis, side in ((0, 1), (1, 1), (0, -1), (1, -1)):
+            name = face_where(s, lambda f, axis=axis, side=side: near(f.BoundBox.ZMin, self.L) and near(
+                f.BoundBox.ZMax, self.L + self.lug) and near(f.BoundBox.Center[axis], side * self.a))
+            # Counter-clockwise about +z: on x = +a along +y, on y = +a along -x, and so on.
+            along, sign = (1, side) if axis == 0 else (0, -side)
+            load = ObjectsFem.makeConstraintForce(doc, "Load" + "xy"[axis] + ("p" if side > 0 else "m"))
+            load.References = [(part, name)]
+            load.Force = self.F
+            load.Direction = (part, [y_edge if along == 1 else x_edge])
+            doc.recompute()
+            if load.DirectionVector[along] * sign < 0:
+                load.Reversed = not load.Reversed
+                doc.recompute()
+            loads.append(load)
+        self.side = part.Shape.getElement(face_where(s, lambda f: isinstance(f.Surface, Part.Cylinder)))
+        return [fixed] + loads
+
+    def torque(self):
+        return 4 * self.a * self.F
+
+    def exact(self):
+        return self.torque() / (G * math.pi * self.R ** 4 / 2)
+
+    def written(self, inp):
+        """The torque about z and the net force of the *CLOAD lines of the input file ``inp``."""
+        text = open(inp).read()
+        nodes, load, block = {}, np.zeros((2, 3)), None
+        for line in text.splitlines():
+            if line.startswith("**"):  # a comment
+                continue
+            if line.startswith("*"):
+                block = line.split(",")[0].strip().upper()
+                continue
+            cells = [c.strip() for c in line.split(",")]
+            if block == "*NODE" and len(cells) >= 4:
+                nodes[int(cells[0])] = np.array([float(c) for c in cells[1:4]])
+            elif block == "*CLOAD" and len(cells) == 3:
+                f = np.zeros(3)
+                f[int(cells[1]) - 1] = float(cells[2])
+                p = nodes[int(cells[0])]
+                load += [np.cross(p, f), f]
+        self.applied = load[0][2] / self.torque()
+        self.net = np.linalg.norm(load[1]) / self.F
+
+    def measure(self, part, fem, result):
+        u = dict(zip(result.NodeNumbers, result.DisplacementVectors))
+        z, angle = [], []
+        for n in fem.getNodesByFace(self.side):
+            p = fem.Nodes[n]
+            if self.L / 4 <= p.z <= 3 * self.L / 4:
+                z.append(p.z)
+                angle.append((p.x * u[n].y - p.y * u[n].x) / (p.x ** 2 + p.y ** 2))
+        return abs(float(np.polyfit(z, angle, 1)[0])) / self.applied
+
+
+PROBLEMS = {p.name: p for p in (Cantilever, PlateHole, ThickCylinder, Torsion)}
 KINDS = ("hexdom 1", "hexdom 2", "gmsh tet4", "gmsh tet10")
 
 
@@ -211,6 +292,8 @@ def solve(problem, kind, size, work):
             raise RuntimeError(message)
         with contextlib.redirect_stdout(io.StringIO()):  # FreeCAD's writer prints its material table
             fea.write_inp_file()
+        if hasattr(problem, "written"):
+            problem.written(fea.inp_file_name)
         fea.setup_ccx()
         t = time.perf_counter()
         if fea.ccx_run() != 0:
@@ -260,8 +343,10 @@ def main():
                         continue
                     error = abs(value / exact - 1)
                     curves.setdefault((name, kind), []).append((3 * nodes, error))
+                    note = (f"  (force applied {problem.applied:.1%}, net {problem.net:.1%} of F)"
+                            if hasattr(problem, "applied") else "")
                     print(f"{name:15s} {kind:10s} {size:6g} {nodes:7d} {3 * nodes:7d} {value:12.6g} {exact:12.6g} "
-                          f"{error:8.3%} {seconds:7.2f}", flush=True)
+                          f"{error:8.3%} {seconds:7.2f}{note}", flush=True)
     print("\nDOFs to reach 1% error (log-log between sizes; - : no size reached it)")
     for name in a.problems.split(","):
         reach = {kind: dofs_at(curves.get((name, kind), [])) for kind in KINDS}

@@ -131,6 +131,22 @@ void print_snap(const cad::SnapReport& q, double seconds) {
   print_log(0, line);
 }
 
+// The boundary faces that cross a CAD edge (io::FaceSets::across), with their share of the boundary's
+// area: FreeCAD's face loads leave them out.
+void print_crossing(const mesh::Mesh& m, const io::FaceSets& sets) {
+  double all = 0, across = 0;
+  int count = 0;
+  for (size_t i = 0; i < sets.faces.size() && i < sets.across.size(); ++i) {
+    const double a = mesh::face_area_vector(m, sets.faces[i]).norm();
+    all += a;
+    if (sets.across[i]) across += a, ++count;
+  }
+  if (count == 0) return;
+  print_log(0, fmt("faces: %.0f of %.0f boundary faces (%.2f%% of the area) cross a CAD edge; a face load in FreeCAD "
+                   "leaves them out",
+                   double(count), double(sets.faces.size()), all > 0 ? 100 * across / all : 0.0));
+}
+
 const char* const kMeshHelp =
       "Hex mesh of a closed surface or a CAD part with no manual step, by one of two paths (--method): the\n"
       "polycube (segment -> autopolycube -> generate -> improve; aligned with the part, the coarsest mesh) or\n"
@@ -412,8 +428,10 @@ void add_mesh(CLI::App& app) {
     if (reference_volume == 0) reference_volume = run.surface_volume;
     print_log(0, "kept: " + pipeline::method_name(run.method) + " path, " + pipeline::choice_text(run));
     if (snapped) print_snap(snap, snap_seconds);
+    const io::WriteOptions sets = face_sets_for(a->out, run.mesh, surface, a->boundary_faces, node_faces);
+    if (snapped) print_crossing(run.mesh, sets.face_sets.empty() ? io::face_sets(run.mesh, surface, node_faces) : sets.face_sets);
     if (a->keep) write_intermediate(true);
-    io::write_mesh(a->out, run.mesh, face_sets_for(a->out, run.mesh, surface, a->boundary_faces, node_faces));
+    io::write_mesh(a->out, run.mesh, sets);
     if (!a->report.empty())
       io::write_atomically(a->report, false, [&](std::ostream& o) { o << quality::to_json(run.quality) << "\n"; });
     std::cerr << "hexdom: wrote " << a->out << "\n";

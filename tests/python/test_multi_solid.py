@@ -3,6 +3,7 @@ solid k, every region filling its solid (volumes by VTK's vtkCellSizeFilter agai
 --solid N meshes one; solids that touch are meshed with a warning that the meshes do not conform
 where they meet. The parts are made here with FreeCAD (boxes and a cylinder)."""
 
+import re
 import subprocess
 
 import meshio
@@ -136,7 +137,25 @@ def test_face_sets_of_several_solids_are_numbered_as_freecad_numbers_the_compoun
     for path, extra in ((plain, []), (sized, ["--face-size", "7=0.5"])):
         r = _mesh(hexdom_bin, step, path, "--method", "overlay", *extra)
         assert r.returncode == 0, r.stderr
+        if path == plain:
+            said = re.search(r"faces: (\d+) of (\d+) boundary faces", r.stderr)
     check_sets(plain)  # the overlay's (38 of 3088 nodes off their face before)
+    # The boundary quads whose corners lie on no one face of the compound (FreeCAD's distToShape):
+    # the count the program says cross a CAD edge.
+    m = meshio.read(plain)
+    hexes = np.concatenate([c.data for c in m.cells if c.type == "hexahedron"])
+    local = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    count = {}
+    for q in hexes[:, local].reshape(-1, 4):
+        key = tuple(sorted(q))
+        count[key] = count.get(key, 0) + 1
+    quads = [k for k, c in count.items() if c == 1]
+    used = sorted({n for q in quads for n in q})
+    on = {n: {k for k, f in enumerate(compound.Faces)
+              if f.distToShape(Part.Vertex(FreeCAD.Vector(*map(float, m.points[n]))))[0] < 1e-6} for n in used}
+    crossing = sum(1 for q in quads if not set.intersection(*(on[n] for n in q)))
+    assert crossing > 0 and said and int(said.group(1)) == crossing and int(said.group(2)) == len(quads), (
+        crossing, len(quads), said and said.group(0))
     (box_before, face_before), (box_after, face_after) = figures(plain), figures(sized)
     assert box_after == box_before and face_after > 3 * face_before, (figures(plain), figures(sized))
     r = _mesh(hexdom_bin, step, tmp_path / "none.vtu", "--face-size", "10=1")

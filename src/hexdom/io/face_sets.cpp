@@ -28,15 +28,14 @@ std::vector<int> common(const std::vector<int>& a, const std::vector<int>& b) {
 
 bool holds(const std::vector<int>& faces, int k) { return std::binary_search(faces.begin(), faces.end(), k); }
 
-// The CAD faces all corners of f lie on (empty when a corner is not known or they share none).
-std::vector<int> shared_faces(const mesh::BoundaryFace& f, const std::vector<std::vector<int>>& node_faces) {
-  const std::vector<int>* first = known(node_faces, f.v[0]);
-  if (!first) return {};
-  std::vector<int> out = *first;
-  for (int i = 1; i < f.n && !out.empty(); ++i) {
-    const std::vector<int>* other = known(node_faces, f.v[i]);
-    out = other ? common(out, *other) : std::vector<int>{};
-  }
+// The CAD faces all corners of f lie on (empty when a corner is not known or they share none);
+// `all_known` whether every corner is known.
+std::vector<int> shared_faces(const mesh::BoundaryFace& f, const std::vector<std::vector<int>>& node_faces, bool& all_known) {
+  all_known = true;
+  for (int i = 0; i < f.n; ++i) all_known = all_known && known(node_faces, f.v[i]);
+  if (!all_known) return {};
+  std::vector<int> out = node_faces[f.v[0]];
+  for (int i = 1; i < f.n && !out.empty(); ++i) out = common(out, node_faces[f.v[i]]);
   return out;
 }
 
@@ -48,11 +47,14 @@ FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface, con
   sets.faces = mesh::boundary_faces(mesh);
   const std::vector<int> tris = mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), mesh.V, sets.faces);
   sets.tag.reserve(tris.size());
+  sets.across.reserve(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) {
     const int t = tris[i];
     const int nearest = t >= 0 && t < surface.patch.size() ? surface.patch(t) : 0;
-    const std::vector<int> shared = shared_faces(sets.faces[i], node_faces);
+    bool all_known = false;
+    const std::vector<int> shared = shared_faces(sets.faces[i], node_faces, all_known);
     sets.tag.push_back(shared.empty() || holds(shared, nearest) ? nearest : shared.front());
+    sets.across.push_back(all_known && shared.empty());
   }
   for (const auto& [tag, faces] : sets.by_tag()) {
     std::vector<int>& nodes = sets.nodes[tag];

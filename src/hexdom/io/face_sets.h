@@ -16,6 +16,10 @@ struct FaceSets {
   /// node groups): the nodes of its faces (mid-edge nodes included), less those known to lie on
   /// other CAD faces only (face_sets' node_faces).
   std::map<int, std::vector<int>> nodes;
+  /// Per face: 1 when its corners' CAD faces are all known (node_faces) and share none, so that it
+  /// crosses a CAD edge (FreeCAD's face loads, which take the mesh faces with every node on the
+  /// CAD face, leave it out); 0 otherwise.
+  std::vector<char> across;
   bool empty() const { return faces.empty(); }
   /// The faces (indices into `faces`) of each tag >= 1, by increasing tag.
   std::map<int, std::vector<size_t>> by_tag() const;

@@ -86,6 +86,7 @@ TEST(FaceSets, NearestTriangleOrSnappedFacesGiveEachSideItsFourCorners) {
     const io::FaceSets sets = io::face_sets(m, tessellation(), with_nodes ? all_sides() : std::vector<std::vector<int>>{});
     ASSERT_EQ(sets.faces.size(), 6u);
     for (size_t i = 0; i < 6; ++i) EXPECT_EQ(sets.tag[i], side(m, sets.faces[i])) << i;
+    EXPECT_EQ(std::count(sets.across.begin(), sets.across.end(), 1), 0);
     ASSERT_EQ(sets.nodes.size(), 6u);
     for (const auto& [tag, nodes] : sets.nodes) EXPECT_EQ(nodes, corners_on(tag)) << tag;
   }
@@ -115,6 +116,11 @@ TEST(FaceSets, NodesSnappedElsewhereLeaveTheSet) {
     EXPECT_EQ(back.size(), order == 1 ? 3u : 5u);
     EXPECT_EQ(sets.nodes.at(3).size(), order == 1 ? 4u : 8u);
     EXPECT_EQ(io::set_nodes(m, sets, 5), bottom);
+    // Sides 4, 5 and 6 have corners sharing no CAD face now: they cross a CAD edge.
+    for (size_t i = 0; i < sets.faces.size(); ++i) {
+      const int t = side(m, sets.faces[i]);
+      EXPECT_EQ(sets.across[i], t >= 4) << t;
+    }
   }
   // Corners that all share face 9 only: the face takes 9 whatever the nearest triangle.
   const mesh::Mesh m = cube();
