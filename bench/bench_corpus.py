@@ -183,6 +183,11 @@ def run_one(hexdom, part, method, use_method, timeout, extra_args=()):
             part["ref_volume"] = brep_volume_from_stdout(stdout)
         kept = re.search(r"kept: (\w+) path", stderr)
         r["path"] = kept.group(1) if kept else None
+        # Share of the boundary's area in faces that cross a CAD edge (CAD parts, after the snap;
+        # the program says nothing when there are none).
+        crossing = re.search(r"faces: \d+ of \d+ boundary faces \(([0-9.]+)% of the area\) cross", stderr)
+        snapped = re.search(r"snap: \d+ boundary nodes", stderr)
+        r["crossing"] = float(crossing.group(1)) / 100 if crossing else (0.0 if snapped else None)
         return finish(r, part, report)
 
 
@@ -297,6 +302,18 @@ def print_edge_ratios(runs, methods):
         print(f"{m:28s} " + " ".join(f"{c:7d}" for c in counts) + f"   ({len(ers)} parts)")
 
 
+def print_crossing(runs, methods):
+    """How much of the boundary crosses a CAD edge (faces FreeCAD's face loads leave out), per part."""
+    heads = ["0", "<=1%", "<=5%", "<=10%", ">10%"]
+    print("\nboundary area crossing a CAD edge per part: " + " ".join(f"{h:>6s}" for h in heads))
+    for m in methods:
+        xs = [r.get("crossing") for r in runs if r["method"] == m and r.get("crossing") is not None]
+        counts = [sum(x == 0 for x in xs), sum(0 < x <= 0.01 for x in xs), sum(0.01 < x <= 0.05 for x in xs),
+                  sum(0.05 < x <= 0.1 for x in xs), sum(x > 0.1 for x in xs)]
+        mean = sum(xs) / len(xs) if xs else 0.0
+        print(f"{m:28s} " + " ".join(f"{c:6d}" for c in counts) + f"   ({len(xs)} snapped parts, mean {mean:.2%})")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
@@ -377,6 +394,7 @@ def main(argv=None):
     save(all_totals)
     print_totals(all_totals, methods)
     print_edge_ratios(runs, methods)
+    print_crossing(runs, methods)
     misses = [r for r in runs if not r["targets"]["all"]]
     print(f"\n{len(misses)} of {len(runs)} runs miss a target:")
     for r in misses:

@@ -38,7 +38,7 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
       if (g <= f) continue;
       const bool same_patch = s.patch.size() == nf && s.patch(f) == s.patch(g);
       const double c = normal[f].dot(normal[g]);
-      if (given ? opt.regions[f] != opt.regions[g] : c < (same_patch ? cos_within : cos_across))
+      if (given ? opt.regions[f] != opt.regions[g] : same_patch ? c < cos_within : (opt.patch_edges || c < cos_across))
         sharp.push_back({s.F(f, k), s.F(f, (k + 1) % 3), f, g});
       else
         up[root(f)] = root(g);

@@ -15,8 +15,14 @@
 namespace hexdom::overlay {
 
 struct FeatureOptions {
-  /// An edge between triangles of different patches (CAD faces) is sharp when their normals differ
-  /// by more than this many degrees; tangent CAD faces (fillets) are joined into one region.
+  /// Every edge between triangles of different patches (CAD faces) is sharp, whatever the angle:
+  /// the mesh follows the CAD edges between tangent faces (a fillet and its plane) and coplanar ones
+  /// (a split face) too, so that no boundary face straddles them where the buffer captures the
+  /// curve (FreeCAD's face loads leave out a mesh face not wholly on the CAD face). false: only
+  /// edges sharper than angle_across, tangent CAD faces joined into one region.
+  bool patch_edges = true;
+  /// With patch_edges false, an edge between triangles of different patches is sharp when their
+  /// normals differ by more than this many degrees.
   double angle_across = 30;
   /// An edge inside one patch is sharp above this angle (triangle input without CAD faces).
   double angle_within = 50;

@@ -562,3 +562,40 @@ TEST(LocalSize, APolylineGetsItsSizeAlongIt) {
   dot.polyline = Eigen::MatrixXd::Zero(1, 3);
   EXPECT_THROW(overlay::check_local_sizes({dot}, s), InputError);
 }
+
+// A box whose top is two coplanar CAD faces (a split face, as FEM users make for a load patch):
+// the edge between them is a curve of the features (FeatureOptions::patch_edges), and no boundary
+// face of the overlay's mesh straddles it, so that a load on either face finds all of it. Without
+// patch_edges the two faces are one region.
+TEST(Overlay, TheEdgeOfASplitFaceIsFollowed) {
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);  // 30 x 20 x 10
+  const int split_patch = 100;
+  for (int t = 0; t < s.F.rows(); ++t) {
+    const Eigen::Vector3d c = (s.V.row(s.F(t, 0)) + s.V.row(s.F(t, 1)) + s.V.row(s.F(t, 2))) / 3;
+    if (std::abs(c.z() - 10) < 1e-9 && c.x() < 15) s.patch(t) = split_patch;
+  }
+  overlay::FeatureOptions joined;
+  joined.patch_edges = false;
+  EXPECT_EQ(overlay::SurfaceFeatures(s, joined).regions(), 6);
+  const overlay::SurfaceFeatures feat(s);
+  ASSERT_EQ(feat.regions(), 7);
+  overlay::OverlayOptions o;
+  o.size = 2.3;
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_NEAR(r.quality.total_volume, 6000.0, 1e-6);
+  int top = 0, straddling = 0;
+  for (const mesh::BoundaryFace& f : mesh::boundary_faces(r.mesh)) {
+    bool on_top = true, left = false, right = false;
+    for (int i = 0; i < f.n; ++i) {
+      const Eigen::Vector3d p = r.mesh.V.row(f.v[i]);
+      on_top = on_top && std::abs(p.z() - 10) < 1e-9;
+      left = left || p.x() < 15 - 1e-9;
+      right = right || p.x() > 15 + 1e-9;
+    }
+    top += on_top;
+    straddling += on_top && left && right;
+  }
+  EXPECT_GT(top, 50);
+  EXPECT_EQ(straddling, 0);
+}
