@@ -40,19 +40,14 @@ def meshed_part(mesh_obj):
     return getattr(getattr(seg, "Surface", None), "Source", None)
 
 
-def add_constraint_groups(analysis, mesh_obj, part=None):
-    """For each member of ``analysis`` whose References name faces of ``part`` (default: the Part the
-    HexDom Mesh ``mesh_obj`` meshes), a node group "<member Name>_Nodes" on the mesh: the nodes of its
-    faces' groups Face<k> (made when the mesh was stored). FreeCAD's CalculiX writer takes a
-    constraint's nodes from such a group instead of searching them by geometry, as it does for
-    FemMeshGmsh's groups. Members on other objects or on edges and vertices are left to the search.
-    Returns the names of the groups made."""
-    part = part if part is not None else meshed_part(mesh_obj)
-    fem = mesh_obj.FemMesh
-    faces = femmesh.node_groups(fem, "Face")
-    if part is None or not faces:
-        return []
+def constraint_groups(analysis, part, faces):
+    """{"<member Name>_Nodes": sorted 0-based nodes} for each member of ``analysis`` whose References
+    name faces of ``part``: the union of those faces' nodes, ``faces`` being {"Face<k>": 0-based
+    nodes} (core.face_sets' node sets, or a FemMesh's Face<k> groups less one). Members on other
+    objects or on edges and vertices are left out (FreeCAD's search finds their nodes)."""
     groups = {}
+    if part is None or not faces:
+        return groups
     for member in analysis.Group:
         nodes = set()
         for obj, subs in getattr(member, "References", []) or []:
@@ -61,7 +56,20 @@ def add_constraint_groups(analysis, mesh_obj, part=None):
             for sub in subs:
                 nodes.update(faces.get(sub, []) if sub.startswith("Face") else [])
         if nodes:
-            groups[member.Name + "_Nodes"] = sorted(n - 1 for n in nodes)
+            groups[member.Name + "_Nodes"] = sorted(int(n) for n in nodes)
+    return groups
+
+
+def add_constraint_groups(analysis, mesh_obj, part=None):
+    """For each member of ``analysis`` whose References name faces of ``part`` (default: the Part the
+    HexDom Mesh ``mesh_obj`` meshes), a node group "<member Name>_Nodes" on the mesh: the nodes of its
+    faces' groups Face<k> (made when the mesh was stored; constraint_groups). FreeCAD's CalculiX
+    writer takes a constraint's nodes from such a group instead of searching them by geometry, as it
+    does for FemMeshGmsh's groups. Returns the names of the groups made."""
+    part = part if part is not None else meshed_part(mesh_obj)
+    fem = mesh_obj.FemMesh
+    faces = {name: [n - 1 for n in nodes] for name, nodes in femmesh.node_groups(fem, "Face").items()}
+    groups = constraint_groups(analysis, part, faces)
     if groups:
         untouched = "Touched" not in mesh_obj.State
         mesh_obj.FemMesh = femmesh.set_node_groups(fem, groups)

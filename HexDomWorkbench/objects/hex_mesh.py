@@ -430,13 +430,15 @@ def store_mesh(obj, mesh, surface=None, node_faces=None):
     (fem_setup.add_constraint_groups)."""
     fem = femmesh.to_femmesh(mesh)
     if surface is not None:
-        femmesh.set_node_groups(fem, {fem_setup.FACE_GROUP.format(k): nodes
-                                      for k, nodes in core.face_sets(mesh, surface, node_faces).items()})
-    obj.FemMesh = fem
-    if surface is not None:
+        faces = {fem_setup.FACE_GROUP.format(k): nodes
+                 for k, nodes in core.face_sets(mesh, surface, node_faces).items()}
+        groups = dict(faces)
+        part = fem_setup.meshed_part(obj)
         for analysis in getattr(obj, "InList", []):
             if analysis.isDerivedFrom("Fem::FemAnalysis"):
-                fem_setup.add_constraint_groups(analysis, obj)
+                groups.update(fem_setup.constraint_groups(analysis, part, faces))
+        femmesh.set_node_groups(fem, groups)
+    obj.FemMesh = fem  # one assignment, the groups with it
     obj.Region = [int(r) for r in np.asarray(mesh.region).tolist()]
     update_quality(obj, mesh)
 

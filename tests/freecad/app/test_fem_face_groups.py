@@ -127,6 +127,11 @@ def test_face_groups_hold_the_curved_face_where_the_node_search_misses_it(doc, t
         (cyl, ["Face{}".format(top + 1)]))
     fem_setup.add_to_analysis(analysis, mesh_obj)
     doc.recompute()
+    # Recomputed inside the analysis, the mesh stores its face and constraint groups at once.
+    mesh_obj.touch()
+    doc.recompute()
+    groups = femmesh.node_groups(mesh_obj.FemMesh)
+    assert groups["ConstraintFixed_Nodes"] == groups["Face{}".format(side + 1)] == group
     work = tmp_path / "ccx"
     work.mkdir()
     text = open(fc_fem.write_inp(analysis, solver, work).inp_file_name).read()
