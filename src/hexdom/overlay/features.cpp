@@ -31,14 +31,29 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
   const bool given = !opt.regions.empty();
   if (given && static_cast<int>(opt.regions.size()) != nf)
     throw GeometryError("features: " + std::to_string(opt.regions.size()) + " regions given for " + std::to_string(nf) + " triangles");
+  const bool patches = s.patch.size() == nf;
+  // With patch_edges: the pairs of patches that meet along a sharp edge somewhere. Their smooth
+  // edges stay joined (a curve that turns tangent on its way, as where two crossing cylinders touch:
+  // capturing its tangent stretch flattens cells); the edges of the other pairs are curves.
+  std::set<std::pair<int, int>> sharp_pairs;
+  auto pair_of = [&](int f, int g) { return std::minmax(s.patch(f), s.patch(g)); };
+  if (!given && patches && opt.patch_edges)
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int g = TT(f, k);
+        if (g > f && s.patch(f) != s.patch(g) && normal[f].dot(normal[g]) < cos_across) sharp_pairs.insert(pair_of(f, g));
+      }
   std::vector<std::array<int, 4>> sharp;  // vertex a, vertex b, triangle f, triangle g
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const int g = TT(f, k);
       if (g <= f) continue;
-      const bool same_patch = s.patch.size() == nf && s.patch(f) == s.patch(g);
+      const bool same_patch = patches && s.patch(f) == s.patch(g);
       const double c = normal[f].dot(normal[g]);
-      if (given ? opt.regions[f] != opt.regions[g] : same_patch ? c < cos_within : (opt.patch_edges || c < cos_across))
+      const bool curve = given        ? opt.regions[f] != opt.regions[g]
+                         : same_patch ? c < cos_within
+                                      : c < cos_across || (opt.patch_edges && patches && !sharp_pairs.count(pair_of(f, g)));
+      if (curve)
         sharp.push_back({s.F(f, k), s.F(f, (k + 1) % 3), f, g});
       else
         up[root(f)] = root(g);

@@ -15,14 +15,15 @@
 namespace hexdom::overlay {
 
 struct FeatureOptions {
-  /// Every edge between triangles of different patches (CAD faces) is sharp, whatever the angle:
-  /// the mesh follows the CAD edges between tangent faces (a fillet and its plane) and coplanar ones
-  /// (a split face) too, so that no boundary face straddles them where the buffer captures the
-  /// curve (FreeCAD's face loads leave out a mesh face not wholly on the CAD face). false: only
-  /// edges sharper than angle_across, tangent CAD faces joined into one region.
+  /// An edge between triangles of different patches (CAD faces) is sharp when their normals differ
+  /// by more than angle_across degrees, and with patch_edges also, whatever the angle, when the two
+  /// patches meet along no sharp edge at all: the mesh then follows the CAD edges between tangent
+  /// faces (a fillet and its plane) and coplanar ones (a split face) too, so that no boundary face
+  /// straddles them where the buffer captures the curve (FreeCAD's face loads leave out a mesh face
+  /// not wholly on the CAD face). Two patches whose edge is sharp in places and turns tangent on its
+  /// way (crossing cylinders) keep its smooth stretch joined. patch_edges false: tangent CAD faces
+  /// are joined into one region.
   bool patch_edges = true;
-  /// With patch_edges false, an edge between triangles of different patches is sharp when their
-  /// normals differ by more than this many degrees.
   double angle_across = 30;
   /// An edge inside one patch is sharp above this angle (triangle input without CAD faces).
   double angle_within = 50;
