@@ -138,14 +138,7 @@ def face_sets(mesh, surface, node_faces=None):
         args["node_faces"] = np.asarray(node_faces, np.int32)
     out = _hexdom.face_sets(mesh.V, mesh.cells, mesh.types, surface.V, np.asarray(surface.F, np.int32),
                             np.asarray(surface.patch, np.int32), **args)
-    if len(out) > 4:  # the core gives each face's nodes
-        return {int(k): np.asarray(v) for k, v in out[4].items()}
-    nodes, tag = np.asarray(out[0]), np.asarray(out[3])
-    sets = {}
-    for k in np.unique(tag[tag > 0]).tolist():
-        rows = nodes[tag == k]
-        sets[int(k)] = np.unique(rows[rows >= 0])
-    return sets
+    return {int(k): np.asarray(v) for k, v in out[4].items()}
 
 
 def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, untangle=True, threads=0):

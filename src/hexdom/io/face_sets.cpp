@@ -39,6 +39,32 @@ std::vector<int> shared_faces(const mesh::BoundaryFace& f, const std::vector<std
   return out;
 }
 
+// The nodes (increasing) of `faces` (indices into sets.faces, tagged `tag`), mid-edge nodes
+// included, less those node_faces says lie on other CAD faces only (see face_sets).
+std::vector<int> nodes_on(const mesh::Mesh& mesh, const FaceSets& sets, int tag, const std::vector<size_t>& faces,
+                          const std::vector<std::vector<int>>& node_faces) {
+  std::vector<int> nodes;
+  for (size_t i : faces) {
+    const mesh::BoundaryFace& f = sets.faces[i];
+    const std::vector<int> own = mesh::face_nodes(mesh, f);
+    for (size_t j = 0; j < own.size(); ++j) {
+      bool on = true;
+      if (j < static_cast<size_t>(f.n)) {
+        const std::vector<int>* k = known(node_faces, own[j]);
+        on = !k || holds(*k, tag);
+      } else {  // the mid-edge node of the edge from corner j - n to the next
+        const int a = f.v[j - f.n], b = f.v[(j - f.n + 1) % f.n];
+        const std::vector<int>*ka = known(node_faces, a), *kb = known(node_faces, b);
+        on = !ka || !kb || holds(common(*ka, *kb), tag);
+      }
+      if (on) nodes.push_back(own[j]);
+    }
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 }  // namespace
 
 FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface, const std::vector<std::vector<int>>& node_faces) {
@@ -56,42 +82,16 @@ FaceSets face_sets(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface, con
     sets.tag.push_back(shared.empty() || holds(shared, nearest) ? nearest : shared.front());
     sets.across.push_back(all_known && shared.empty());
   }
-  for (const auto& [tag, faces] : sets.by_tag()) {
-    std::vector<int>& nodes = sets.nodes[tag];
-    for (size_t i : faces) {
-      const mesh::BoundaryFace& f = sets.faces[i];
-      const std::vector<int> own = mesh::face_nodes(mesh, f);
-      for (size_t j = 0; j < own.size(); ++j) {
-        bool on = true;
-        if (j < static_cast<size_t>(f.n)) {
-          const std::vector<int>* k = known(node_faces, own[j]);
-          on = !k || holds(*k, tag);
-        } else {  // the mid-edge node of the edge from corner j - n to the next
-          const int a = f.v[j - f.n], b = f.v[(j - f.n + 1) % f.n];
-          const std::vector<int>*ka = known(node_faces, a), *kb = known(node_faces, b);
-          on = !ka || !kb || holds(common(*ka, *kb), tag);
-        }
-        if (on) nodes.push_back(own[j]);
-      }
-    }
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  }
+  for (const auto& [tag, faces] : sets.by_tag()) sets.nodes[tag] = nodes_on(mesh, sets, tag, faces, node_faces);
   return sets;
 }
 
 std::vector<int> set_nodes(const mesh::Mesh& mesh, const FaceSets& sets, int tag) {
   const auto it = sets.nodes.find(tag);
   if (it != sets.nodes.end()) return it->second;
-  std::vector<int> nodes;
-  for (size_t i = 0; i < sets.faces.size() && i < sets.tag.size(); ++i) {
-    if (sets.tag[i] != tag) continue;
-    const std::vector<int> own = mesh::face_nodes(mesh, sets.faces[i]);
-    nodes.insert(nodes.end(), own.begin(), own.end());
-  }
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
+  const auto tagged = sets.by_tag();
+  const auto faces = tagged.find(tag);
+  return faces == tagged.end() ? std::vector<int>{} : nodes_on(mesh, sets, tag, faces->second, {});
 }
 
 }  // namespace hexdom::io
