@@ -329,9 +329,6 @@ void add_mesh(CLI::App& app) {
     a->opt.method = pipeline::method_from_name(a->method);
     a->opt.input_name = a->in;  // the input checks' messages name the file
     pipeline::check_size_bounds(a->opt);  // --min-size above --max-size: an error before any work
-    if (a->opt.order == 2 && io::format_of(a->out) == io::Format::K)
-      throw InputError(a->out, 0, "LS-DYNA .k files are written with first-order solids only: write .inp, .vtk or .vtu "
-                                  "for --order 2");
     // --method polycube honours the budget only when it is given; it starts now, before reading.
     if (a->opt.method == pipeline::Method::Polycube && cmd->count("--polycube-seconds") > 0)
       a->opt.deadline = Deadline::in(a->opt.polycube_seconds);

@@ -219,10 +219,65 @@ def test_quality_and_convert_read_the_second_order_file(bracket, hexdom_bin):
     assert out.read_text() == meshed[:meshed.index("*NSET, NSET=Face")]
 
 
-def test_order_2_into_a_k_file_or_order_3_is_refused_without_output(hexdom_bin, tmp_path):
+def _k_solids(path):
+    """(points by LS-DYNA node id, {keyword: [node id lists]}) of a .k file, read here by LS-DYNA's
+    card layout (8-character fields; a 20-node hex on three cards, a ten-node-format tet on two)."""
+    points, cells, key, pending = {}, {}, None, None
+    for line in Path(path).read_text().splitlines():
+        if not line.strip() or line.startswith("$"):
+            continue
+        if line.startswith("*"):
+            key, pending = line.strip(), None
+            continue
+        if key == "*NODE":
+            i, x, y, z = line.split(",")
+            points[int(i)] = (float(x), float(y), float(z))
+        elif key in ("*ELEMENT_SOLID_H20", "*ELEMENT_SOLID (ten nodes format)"):
+            fields = [int(line[k:k + 8]) for k in range(0, len(line), 8)]
+            if pending is None:
+                assert len(fields) == 2, line  # eid, pid
+                pending = []
+                continue
+            pending += fields
+            if len(pending) == (20 if key.endswith("H20") else 10):
+                cells.setdefault(key, []).append(pending)
+                pending = None
+    return points, cells
+
+
+def test_order_2_into_a_k_file_holds_twenty_node_solids(bracket, hexdom_bin, tmp_path):
+    import meshio
     out = tmp_path / "bracket.k"
     r = _run(hexdom_bin, "mesh", BRACKET, "-o", out, "--order", "2")
-    assert r.returncode == 1 and "first-order solids only" in r.stderr and str(out) in r.stderr, r.stderr
+    assert r.returncode == 0, r.stderr
+    points, cells = _k_solids(out)
+    m = meshio.read(bracket[(2, "vtu")])
+    h20 = m.cells_dict["hexahedron20"]
+    assert list(cells) == ["*ELEMENT_SOLID_H20"]
+    k = np.array(cells["*ELEMENT_SOLID_H20"]) - 1
+    # LS-DYNA's 20-node order is VTK's: the same cells on the same points as the .vtu.
+    assert np.array_equal(k, h20)
+    xyz = np.array([points[i + 1] for i in range(len(points))])
+    assert np.abs(xyz - m.points).max() <= 1e-12 * np.abs(m.points).max()
+    # hexdom reads it back: the same second-order quality as the .vtu's.
+    q = [_run(hexdom_bin, "quality", "-i", f) for f in (out, bracket[(2, "vtu")])]
+    assert q[0].returncode == 0, q[0].stderr
+    lines = [next(l for l in x.stdout.splitlines() if l.startswith("hex20")) for x in q]
+    assert lines[0] == lines[1]
+
+
+def test_order_2_wedges_into_a_k_file_or_order_3_are_refused_without_output(hexdom_bin, tmp_path):
+    # One 15-node wedge (VTK's type 26): LS-DYNA's keyword has no such element.
+    c = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1)]
+    edges = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]
+    pts = c + [tuple((np.add(c[a], c[b]) / 2).tolist()) for a, b in edges]
+    src = tmp_path / "wedge15.vtk"
+    src.write_text("# vtk DataFile Version 4.2\nwedge15\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 15 double\n"
+                   + "".join("{} {} {}\n".format(*p) for p in pts)
+                   + "CELLS 1 16\n15 " + " ".join(map(str, range(15))) + "\nCELL_TYPES 1\n26\n")
+    out = tmp_path / "wedge.k"
+    r = _run(hexdom_bin, "convert", "-i", src, "-o", out)
+    assert r.returncode == 1 and "no 15-node pentahedron" in r.stderr and str(out) in r.stderr, r.stderr
     assert not out.exists()
     r = _run(hexdom_bin, "mesh", BRACKET, "-o", tmp_path / "b.vtu", "--order", "3")
     assert r.returncode != 0 and not (tmp_path / "b.vtu").exists()

@@ -7,6 +7,8 @@
 #include <unordered_map>
 
 #include "hexdom/common/error.h"
+#include "hexdom/common/format.h"
+#include "hexdom/io/cell_assembly.h"
 #include "hexdom/io/text.h"
 
 namespace hexdom::io {
@@ -22,7 +24,7 @@ const char* const kSkippedFamilies[] = {
     "INCLUDE", "PARAMETER", "NODE_", "INTEGRATION", "RIGIDWALL", "TERMINATION", "DAMPING",
     "FREQUENCY", "INTERFACE", "AIRBAG", "USER"};
 
-enum class Section { None, Node, Shell, Solid, Skip };
+enum class Section { None, Node, Shell, Solid, SolidH20, Skip };
 
 // Fields of a data line: comma-separated, blank-separated, or fixed width when blanks give fewer
 // than `min_fields` (numbers that fill their columns run together).
@@ -50,8 +52,83 @@ struct PendingElement {
   long eid;
   long pid;
   bool solid;
-  long n[8];
+  long n[20];
+  int count = 8;  ///< nodes: 8 (a solid, maybe collapsed), 4 (a shell), 10 (a 10-node tet), 20 (a 20-node hex)
 };
+
+// Node ids of a card of an element whose first card was read: `want` integers, as many as the card has.
+void node_card(LineCursor& cur, std::string_view data, PendingElement& e, int from, int want) {
+  auto f = fields(data, want, std::vector<int>(want, 8));
+  if (static_cast<int>(f.size()) < want)
+    cur.fail("element " + std::to_string(e.eid) + ": a card of " + std::to_string(want) + " node ids expected, found " +
+             std::to_string(f.size()) + " fields");
+  for (int k = 0; k < want; ++k)
+    if (!parse_int(f[k], e.n[from + k]))
+      cur.fail("element " + std::to_string(e.eid) + ": node '" + std::string(f[k]) + "' is not an integer");
+}
+
+// One element of an *ELEMENT_SHELL, *ELEMENT_SOLID or *ELEMENT_SOLID_H20 section, from its first
+// card `data` (the cursor on it) and, for the 20-node hex and the ten-node format, the node cards
+// after it.
+PendingElement read_element(LineCursor& cur, std::string_view data, Section section) {
+  const bool solid = section != Section::Shell, h20 = section == Section::SolidH20;
+  const size_t need = h20 ? 2 : solid ? 10 : 5;
+  auto f = fields(data, need, std::vector<int>(10, 8));
+  // *ELEMENT_SOLID's ten-node format: "eid pid" on a card of its own, the nodes on the next.
+  const bool ten = section == Section::Solid && f.size() == 2;
+  if (f.size() < need && !ten)
+    cur.fail(std::string(h20     ? "*ELEMENT_SOLID_H20 expects an element id and a part id"
+                         : solid ? "*ELEMENT_SOLID expects 10 fields (or 2, for its ten-node format)"
+                                 : "*ELEMENT_SHELL expects at least 5 fields") +
+             ", found " + std::to_string(f.size()));
+  PendingElement e{cur.line(), 0, 0, solid, {}};
+  if (!parse_int(f[0], e.eid) || !parse_int(f[1], e.pid)) cur.fail("element id and part id must be integers");
+  if (!fits_int(e.eid) || !fits_int(e.pid)) cur.fail("element id and part id must be 32-bit integers");
+  if (h20 || ten) {
+    // The node cards: 10 ids each, two for the 20-node hex. A ten-node card whose last two ids are
+    // 0 holds an 8-node solid.
+    for (int card = 0; card < (h20 ? 2 : 1); ++card) {
+      std::string_view next;
+      do {
+        if (!cur.next(next)) cur.fail("element " + std::to_string(e.eid) + ": the file ends before its node card");
+      } while (next.empty() || next[0] == '$' || trim(next).empty());
+      if (trim(next)[0] == '*') cur.fail("element " + std::to_string(e.eid) + ": a keyword where its node card should be");
+      node_card(cur, next.substr(0, next.find_last_not_of(" \t\r") + 1), e, 10 * card, 10);
+    }
+    e.count = h20 ? 20 : (e.n[8] == 0 && e.n[9] == 0) ? 8 : 10;
+    return e;
+  }
+  const int nn = solid ? 8 : 4;
+  for (int k = 0; k < nn; ++k) {
+    if (2 + k >= static_cast<int>(f.size())) continue;  // a missing node id is 0
+    if (!parse_int(f[2 + k], e.n[k]))
+      cur.fail("element " + std::to_string(e.eid) + ": node '" + std::string(f[2 + k]) + "' is not an integer");
+  }
+  return e;
+}
+
+// The mesh of `elements` (some with 10 or 20 nodes) on `points` through io::CellAssembly; `eids`
+// receives their ids.
+mesh::Mesh second_order_mesh(const std::string& path, const std::vector<PendingElement>& elements,
+                             const std::unordered_map<long, int>& node_index, Eigen::MatrixXd points,
+                             std::vector<int>& eids) {
+  CellAssembly cells(path, "element");
+  for (const auto& e : elements) {
+    int64_t n[20];
+    const int count = e.solid ? e.count : 4;
+    for (int k = 0; k < count; ++k) {
+      auto it = node_index.find(e.n[k]);
+      if (it == node_index.end())
+        throw InputError(path, e.line, "element " + std::to_string(e.eid) + " refers to node " + std::to_string(e.n[k]) +
+                                           ", which no *NODE defines");
+      n[k] = it->second;
+    }
+    const int vtk = !e.solid ? 9 : e.count == 20 ? 25 : e.count == 10 ? 24 : 12;
+    cells.add(vtk, n, count, static_cast<int>(e.pid), e.eid, e.line);
+    eids.push_back(static_cast<int>(e.eid));
+  }
+  return cells.finish(std::move(points));
+}
 
 }  // namespace
 
@@ -82,6 +159,7 @@ KFile read_k(const std::string& path) {
       else if (kw == "node") section = Section::Node;
       else if (kw == "element_shell") section = Section::Shell;
       else if (kw == "element_solid") section = Section::Solid;
+      else if (kw == "element_solid_h20") section = Section::SolidH20;
       else if (kw == "end") { section = Section::None; saw_end = true; }
       else {
         bool known = false;
@@ -118,28 +196,8 @@ KFile read_k(const std::string& path) {
         break;
       }
       case Section::Shell:
-      case Section::Solid: {
-        const bool solid = section == Section::Solid;
-        const size_t need = solid ? 10 : 5;
-        auto f = fields(data, need, std::vector<int>(solid ? 10 : 10, 8));
-        if (f.size() < need)
-          cur.fail(std::string(solid ? "*ELEMENT_SOLID expects 10 fields" :
-                                       "*ELEMENT_SHELL expects at least 5 fields") +
-                   ", found " + std::to_string(f.size()));
-        PendingElement e{cur.line(), 0, 0, solid, {0, 0, 0, 0, 0, 0, 0, 0}};
-        if (!parse_int(f[0], e.eid) || !parse_int(f[1], e.pid))
-          cur.fail("element id and part id must be integers");
-        if (!fits_int(e.eid) || !fits_int(e.pid)) cur.fail("element id and part id must be 32-bit integers");
-        const int nn = solid ? 8 : 4;
-        for (int k = 0; k < nn; ++k) {
-          if (2 + k >= static_cast<int>(f.size())) { e.n[k] = 0; continue; }
-          if (!parse_int(f[2 + k], e.n[k]))
-            cur.fail("element " + std::to_string(e.eid) + ": node '" + std::string(f[2 + k]) +
-                     "' is not an integer");
-        }
-        elements.push_back(e);
-        break;
-      }
+      case Section::Solid:
+      case Section::SolidH20: elements.push_back(read_element(cur, data, section)); break;
     }
   }
   if (node_ids.empty()) throw InputError(path, cur.line(), "no *NODE data: the file holds no nodes");
@@ -152,8 +210,17 @@ KFile read_k(const std::string& path) {
   out.node_ids.resize(nv);
   for (int i = 0; i < nv; ++i) out.node_ids(i) = static_cast<int>(node_ids[i]);
 
-  mesh::MeshBuilder b;
   std::vector<int> eids;
+  // Second-order solids (20-node hexes, 10-node tets) make a second-order mesh, with the checks of
+  // the other readers (io::CellAssembly: one order for the whole mesh, shared mid-edge nodes).
+  bool second = false;
+  for (const auto& e : elements) second = second || e.count >= 10;
+  if (second) {
+    out.mesh = second_order_mesh(path, elements, node_index, std::move(out.mesh.V), eids);
+    out.element_ids = Eigen::Map<Eigen::VectorXi>(eids.data(), static_cast<int>(eids.size()));
+    return out;
+  }
+  mesh::MeshBuilder b;
   for (const auto& e : elements) {
     auto index = [&](long id) {
       auto it = node_index.find(id);
@@ -196,6 +263,15 @@ KFile read_k(const std::string& path) {
 }
 
 void write_k(const std::string& path, const mesh::Mesh& m, const FaceSets* faces) {
+  if (m.second_order()) {
+    int wedges = 0, first = -1;
+    for (int c = 0; c < m.num_cells(); ++c)
+      if (m.type(c) == CellType::Wedge && wedges++ == 0) first = c;
+    if (wedges > 0)
+      throw InputError(path, 0, fmt("LS-DYNA's keyword has no 15-node pentahedron, and %.0f of the cells are ", double(wedges)) +
+                                    fmt("15-node wedges (the first: cell %.0f); write .inp, .vtu, .vtk or .msh, or mesh with order 1",
+                                        double(first + 1)));
+  }
   write_atomically(path, false, [&](std::ostream& out) {
     char buf[160];
     out << "$# LS-DYNA keyword file written by HexDom " HEXDOM_VERSION "\n*KEYWORD\n";
@@ -213,7 +289,25 @@ void write_k(const std::string& path, const mesh::Mesh& m, const FaceSets* faces
         out << buf;
       }
     }
-    if (has_solid) {
+    if (has_solid && m.second_order()) {
+      // 20-node hexes (*ELEMENT_SOLID_H20) and 10-node tets (*ELEMENT_SOLID's ten-node format):
+      // LS-DYNA's node orders are VTK's quadratic ones; a keyword per run of one type keeps the
+      // cells' order. write_k refused 15-node wedges before.
+      int nodes[20];
+      for (int c = 0, previous = -1; c < m.num_cells(); ++c) {
+        const CellType t = m.type(c);
+        if (static_cast<int>(t) != previous)
+          out << (t == CellType::Hex ? "*ELEMENT_SOLID_H20\n" : "*ELEMENT_SOLID (ten nodes format)\n");
+        previous = static_cast<int>(t);
+        const int n = mesh::cell_nodes(m, c, nodes);
+        std::snprintf(buf, sizeof buf, "%8d%8d\n", ++eid, m.region(c));
+        out << buf;
+        for (int k = 0; k < n; ++k) {
+          std::snprintf(buf, sizeof buf, "%8d", nodes[k] + 1);
+          out << buf << (k % 10 == 9 || k == n - 1 ? "\n" : "");
+        }
+      }
+    } else if (has_solid) {
       out << "*ELEMENT_SOLID\n";
       for (int c = 0; c < m.num_cells(); ++c) {
         if (!mesh::is_volume(m.type(c))) continue;

@@ -18,7 +18,11 @@ struct KFile {
 };
 
 /// Reads *NODE, *ELEMENT_SHELL (triangle when n4 = n3 or n4 = 0) and *ELEMENT_SOLID (8 nodes;
-/// collapsed edges give prisms and tetrahedra, see mesh::classify_hex_nodes). Fields may be
+/// collapsed edges give prisms and tetrahedra, see mesh::classify_hex_nodes; in its ten-node format,
+/// "eid pid" and then a card of 10 node ids, a 10-node tetrahedron, or an 8-node solid when the last
+/// two are 0), and *ELEMENT_SOLID_H20 (20-node hexahedra: "eid pid", then two cards of 10 node ids).
+/// A file with 10- or 20-node solids gives a second-order mesh (LS-DYNA's node orders are VTK's);
+/// it may not mix them with 8-node solids or shells (io::CellAssembly's checks). Fields may be
 /// comma-separated, blank-separated or fixed width (8-character integers, 16-character reals);
 /// lines starting with '$' are comments; *PART and the other LS-DYNA keywords are skipped. Node ids
 /// are mapped, not assumed to be 1..N, and nodes no element uses are kept.
@@ -28,7 +32,9 @@ KFile read_k(const std::string& path);
 
 /// Writes nodes (ids 1..N), 2D cells as *ELEMENT_SHELL (triangles repeat n3) and 3D cells as
 /// *ELEMENT_SOLID (prism a c b b d f e e, tet a b c d d d d d), part id = region;
-/// elements in fixed width, nodes comma-separated with full double precision. With `faces` (not
+/// elements in fixed width, nodes comma-separated with full double precision. A second-order mesh:
+/// 20-node hexes as *ELEMENT_SOLID_H20, 10-node tets in *ELEMENT_SOLID's ten-node format; LS-DYNA
+/// has no 15-node pentahedron, so a mesh with wedges is refused (InputError naming the first, no file). With `faces` (not
 /// empty), a *SET_SEGMENT_TITLE per tag k >= 1 titled Face<k> (set id k): its boundary faces as
 /// segments, outward (triangles repeat n3).
 void write_k(const std::string& path, const mesh::Mesh& mesh, const FaceSets* faces = nullptr);

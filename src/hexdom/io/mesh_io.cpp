@@ -68,9 +68,6 @@ mesh::SurfaceMesh read_surface(const std::string& path) {
 void write_mesh(const std::string& path, const mesh::Mesh& m, const WriteOptions& options) {
   switch (output_format_of(path)) {
     case Format::K:
-      if (m.second_order())
-        throw InputError(path, 0, "LS-DYNA .k files are written with first-order solids only: the mesh is second order "
-                                  "(write .inp, .vtk or .vtu, or mesh with order 1)");
       write_k(path, m, options.face_sets.empty() ? nullptr : &options.face_sets);
       break;
     case Format::Vtk: write_vtk(path, m, options.binary); break;

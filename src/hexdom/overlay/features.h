@@ -21,10 +21,10 @@ struct FeatureOptions {
   /// faces (a fillet and its plane) and coplanar ones (a split face) too, so that no boundary face
   /// straddles them where the buffer captures the curve (FreeCAD's face loads leave out a mesh face
   /// not wholly on the CAD face). Two patches whose edge is sharp in places and turns tangent on its
-  /// way (crossing cylinders) keep its smooth stretch joined. Off by default (docs/overlay.md,
-  /// "Every CAD edge a curve": it leaves inverted cells on some parts): tangent CAD faces are
-  /// joined into one region.
-  bool patch_edges = false;
+  /// way (crossing cylinders) keep its smooth stretch joined. Off: tangent and coplanar CAD faces
+  /// are joined into one region. overlay_mesh meshes a grid without these curves too where cells
+  /// stay inverted with a node held on one of them, and keeps the better mesh.
+  bool patch_edges = true;
   double angle_across = 30;
   /// An edge inside one patch is sharp above this angle (triangle input without CAD faces).
   double angle_within = 50;

@@ -1,5 +1,6 @@
 #include "hexdom/overlay/overlay.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "hexdom/overlay/grid.h"
 #include "hexdom/overlay/octree.h"
 #include "hexdom/mesh/closest_point.h"
+#include "hexdom/mesh/triangle_adjacency.h"
 #include "hexdom/quality/metrics.h"
 
 namespace hexdom::overlay {
@@ -256,6 +258,65 @@ double walls_factor(const mesh::SurfaceMesh& s, const Eigen::Vector3d& h0, const
   return f;
 }
 
+// `s` scaled per axis by `factor`.
+mesh::SurfaceMesh scaled(mesh::SurfaceMesh s, const Eigen::Vector3d& factor) {
+  s.V = s.V * factor.asDiagonal();
+  return s;
+}
+
+// The surface's features and, with FeatureOptions::patch_edges, the same without the curves it
+// adds (`plain`; none when it adds none); each also on the stretched copy of the surface when the
+// grid is stretched (sfeat, splain, with the same regions).
+struct FeatureSets {
+  std::unique_ptr<SurfaceFeatures> feat, sfeat, plain, splain;
+  mesh::TriangleProjector added;  // the curves patch_edges adds, as segments (a, b, b)
+
+  FeatureSets(const mesh::SurfaceMesh& s, const mesh::SurfaceMesh* stretched, const FeatureOptions& options) {
+    feat = std::make_unique<SurfaceFeatures>(s, options);
+    if (options.patch_edges) {
+      FeatureOptions fo = options;
+      fo.patch_edges = false;
+      plain = std::make_unique<SurfaceFeatures>(s, fo);
+      if (plain->region() == feat->region()) plain.reset();
+    }
+    if (stretched) {
+      FeatureOptions fo = options;
+      fo.regions = feat->region();
+      sfeat = std::make_unique<SurfaceFeatures>(*stretched, fo);
+      if (plain) {
+        fo.regions = plain->region();
+        splain = std::make_unique<SurfaceFeatures>(*stretched, fo);
+      }
+    }
+    if (!plain) return;
+    const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
+    std::vector<Eigen::Vector3i> segments;
+    for (int f = 0; f < s.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int g = TT(f, k);
+        if (g > f && feat->region()[f] != feat->region()[g] && plain->region()[f] == plain->region()[g])
+          segments.emplace_back(s.F(f, k), s.F(f, (k + 1) % 3), s.F(f, (k + 1) % 3));
+      }
+    Eigen::MatrixXi S(static_cast<int>(segments.size()), 3);
+    for (size_t i = 0; i < segments.size(); ++i) S.row(static_cast<int>(i)) = segments[i].transpose();
+    added = mesh::TriangleProjector(s.V, S);
+  }
+
+  // Whether a cell of r (a mesh of s) is inverted within a spacing of the curves patch_edges adds.
+  bool inverted_near_added(const OverlayResult& r) const {
+    if (added.empty() || inverted(r.quality) == 0) return false;
+    const quality::CellMetrics metrics = quality::compute_metrics(r.mesh);
+    for (int c = 0; c < r.mesh.num_cells(); ++c) {
+      if (metrics.scaled_jacobian(c) > 0) continue;
+      for (int i = 0; i < mesh::node_count(r.mesh.type(c)); ++i) {
+        const Eigen::Vector3d x = r.mesh.V.row(r.mesh.cells(c, i)).transpose();
+        if ((added.project(x) - x).norm() <= r.spacing) return true;
+      }
+    }
+    return false;
+  }
+};
+
 }  // namespace
 
 OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOptions& opt) {
@@ -271,42 +332,50 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   Eigen::Vector3d h0 = grid_spacing(extent, size, opt.across, opt.max_cell_ratio, opt.min_size);
   const double reference = mesh::enclosed_volume(s.V, s.F);
   const Ranking rank{reference, opt};
-  const SurfaceFeatures feat(s, opt.features);
   // A grid of unequal spacings (a plate, a rod) is laid as cubes over the surface stretched per
   // axis by hmax / h: closest points, the buffer's depth and the optimiser then see the cells as
   // cubes, and the mesh, stretched back, stays valid (the map is affine with a positive determinant).
   const Eigen::Vector3d stretch = Eigen::Vector3d::Constant(h0.maxCoeff()).cwiseQuotient(h0);
   const bool stretched = (stretch.array() != 1.0).any();
-  mesh::SurfaceMesh ss;
-  std::unique_ptr<SurfaceFeatures> sfeat;
-  if (stretched) {
-    ss = s;
-    ss.V = s.V * stretch.asDiagonal();
-  }
+  const mesh::SurfaceMesh ss = stretched ? scaled(s, stretch) : mesh::SurfaceMesh{};
   auto wall_factor = [&](double across) { return walls_factor(stretched ? ss : s, h0, extent, across, opt); };
   if (opt.wall_across > 0) h0 *= wall_factor(opt.wall_across);
-  if (stretched) {
-    FeatureOptions fo = opt.features;
-    fo.regions = feat.region();
-    sfeat = std::make_unique<SurfaceFeatures>(ss, fo);
-  }
+  const FeatureSets fs(s, stretched ? &ss : nullptr, opt.features);
   // The polylines of local sizes on edges go where the surface went: into the frame, stretched.
   const Eigen::Matrix3d to_grid = (frame.turned() ? Eigen::Matrix3d(frame.rotation.transpose()) : Eigen::Matrix3d::Identity()) *
                                   Eigen::Matrix3d(stretch.asDiagonal());
   const LocalSizeField field = opt.local_sizes.empty() ? LocalSizeField()
                                                        : LocalSizeField(stretched ? ss : s, opt.local_sizes, opt.growth_rate, to_grid);
   int grids = 0;
-  // One grid of spacing h with the core rule `o` asks for (stretched when the spacings differ); h
-  // is first made to meet the local sizes.
-  auto one_grid = [&](Eigen::Vector3d& h, const OverlayOptions& o) {
+  // One grid of spacing h with the core rule `o` asks for and the features `f` (`sf`: theirs on the
+  // stretched surface), stretched when the spacings differ; h is first made to meet the local sizes.
+  auto features_grid = [&](Eigen::Vector3d& h, const OverlayOptions& o, const SurfaceFeatures& f, const SurfaceFeatures* sf) {
     ++grids;
     const Local local = local_refinement(h, o, field);
-    if (!stretched) return mesh_with_grid(s, feat, h, o, nullptr, local);
-    const Stretch st{stretch, &s, &feat};
-    OverlayResult r = mesh_with_grid(ss, *sfeat, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local);
+    if (!stretched) return mesh_with_grid(s, f, h, o, nullptr, local);
+    const Stretch st{stretch, &s, &f};
+    OverlayResult r = mesh_with_grid(ss, *sf, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local);
     const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch);
     r.spacing = spacing.maxCoeff();
     r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
+    return r;
+  };
+  // The grid with the surface's features; where cells stay inverted within a spacing of a curve
+  // patch_edges added, the same grid without those curves too (an extra mesh: up to
+  // max_cells_for_extra cells), the better kept (fewer CAD edges followed, rather than inversions).
+  auto one_grid = [&](Eigen::Vector3d& h, const OverlayOptions& o) {
+    const Eigen::Vector3d asked = h;
+    OverlayResult r = features_grid(h, o, *fs.feat, fs.sfeat.get());
+    r.patch_edges = fs.plain != nullptr;
+    if (r.core_cells + r.buffer_cells > o.max_cells_for_extra || !fs.inverted_near_added(r)) return r;
+    Eigen::Vector3d h2 = asked;
+    try {
+      OverlayResult r2 = features_grid(h2, o, *fs.plain, fs.splain.get());
+      say(fmt("overlay: spacing %g without the edges between tangent or coplanar faces: ", h2.maxCoeff()) + rank.summary(r2));
+      if (rank.better(r2, r)) r = std::move(r2);
+    } catch (const GeometryError& e) {
+      say(std::string("overlay: without the edges between tangent or coplanar faces: ") + e.what());
+    }
     return r;
   };
   OverlayResult best;

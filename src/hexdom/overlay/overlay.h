@@ -8,7 +8,9 @@
 // surface, its outer nodes put on the surface's smooth regions, sharp curves and corners (buffer.h);
 // then the shared optimiser untangles and smooths every node, the outer ones kept on what they were
 // put on. Where the core falls apart (a part thinner than the grid's cells) or cells stay inverted,
-// the grid is made again with half the spacing, a bounded number of times.
+// the grid is made again with half the spacing, a bounded number of times; where the curves of
+// FeatureOptions::patch_edges have cells left inverted within a spacing of them, a grid of up to
+// max_cells_for_extra cells is meshed without them too.
 #pragma once
 
 #include <string>
@@ -98,8 +100,9 @@ struct OverlayOptions {
   /// made only when it would have at most about this many cells (8 times the current mesh's).
   double max_cells_for_quality = 2e5;
   /// Extra meshes for quality are made only up to this many cells: a finer grid for a worst SJ
-  /// below refine_below_sj alone, and the core by corners on a grid whose core by centres left
-  /// inverted cells.
+  /// below refine_below_sj alone, the core by corners on a grid whose core by centres left
+  /// inverted cells, and a grid without the curves of FeatureOptions::patch_edges where cells stay
+  /// inverted within a spacing of them.
   double max_cells_for_extra = 5e4;
   double target_volume = 0.01;
   double refine_below_sj = 0.3;
@@ -131,6 +134,10 @@ struct OverlayResult {
   /// (a staircase node, a loosened one).
   std::vector<optimize::NodeKind> node_kind;
   int grids = 0;                     ///< grids made
+  /// Whether the mesh follows the edges FeatureOptions::patch_edges makes curves (false when it
+  /// adds none, or when they left cells inverted on the grid kept and the mesh without them was
+  /// better).
+  bool patch_edges = false;
   int octree_levels = 0;             ///< levels of octree refinement in the result's grid (0: none)
   segmentation::CubeFrame frame;
   double seconds = 0;

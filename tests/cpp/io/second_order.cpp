@@ -1,9 +1,11 @@
 // Second-order meshes through the writers and the VTK reader.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "hexdom/io/inp.h"
+#include "hexdom/io/k_file.h"
 #include "hexdom/io/mesh_io.h"
 #include "hexdom/io/vtk.h"
 #include "hexdom/mesh/second_order.h"
@@ -70,11 +72,59 @@ TEST(SecondOrderIo, InpWritesC3D20C3D15C3D10WithContinuationLines) {
   EXPECT_NE(text.find(wedge + "\n"), std::string::npos) << text;
 }
 
-TEST(SecondOrderIo, LsDynaRefusesSecondOrderAndWritesNothing) {
+TEST(SecondOrderIo, LsDynaRefusesFifteenNodeWedgesAndWritesNothing) {
   const std::string path = test::temp_path("quadratic.k");
   std::filesystem::remove(path);
-  EXPECT_TRUE(test::ThrowsInputError([&] { io::write_mesh(path, quadratic_mesh()); }, path, 0, "first-order solids only"));
+  EXPECT_TRUE(test::ThrowsInputError([&] { io::write_mesh(path, quadratic_mesh()); }, path, 0,
+                                     "no 15-node pentahedron, and 1 of the cells are 15-node wedges (the first: cell 3)"));
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+// 20-node hexes and 10-node tets: *ELEMENT_SOLID_H20 and the ten-node format, in the cells' order,
+// read back as the same second-order mesh.
+TEST(SecondOrderIo, LsDynaWritesAndReadsTwentyNodeHexesAndTenNodeTets) {
+  const mesh::Mesh mixed = test::volume_part(test::mixed_mesh());
+  mesh::MeshBuilder b;
+  for (int c : {0, 3, 1})  // hex, tet, hex: three keyword blocks
+    b.add(mixed.type(c), mixed.cells.row(c).data(), mixed.region(c));
+  mesh::Mesh m = mesh::add_mid_edge_nodes(b.finish(mixed.V));
+  m.V(m.mid(0, 0), 1) -= 0.125;
+  const std::string path = test::temp_path("quadratic_hex_tet.k");
+  io::write_mesh(path, m);
+  const std::string text = slurp(path);
+  EXPECT_NE(text.find("*ELEMENT_SOLID_H20\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("*ELEMENT_SOLID (ten nodes format)\n"), std::string::npos) << text;
+  // Element 2 (the tet): "eid pid", then its 10 nodes on one card.
+  int nodes[20];
+  mesh::cell_nodes(m, 1, nodes);
+  std::string card;
+  for (int j = 0; j < 10; ++j) {
+    char field[16];
+    std::snprintf(field, sizeof field, "%8d", nodes[j] + 1);
+    card += field;
+  }
+  EXPECT_NE(text.find("       2       3\n" + card + "\n"), std::string::npos) << text;
+  const io::KFile k = io::read_k(path);
+  EXPECT_TRUE(test::SameMesh(k.mesh, m));
+  ASSERT_TRUE(k.mesh.second_order());
+  EXPECT_TRUE(k.mesh.mid == m.mid);
+  EXPECT_EQ(k.element_ids, (Eigen::VectorXi(3) << 1, 2, 3).finished());
+}
+
+TEST(SecondOrderIo, LsDynaReaderNamesTheLineOfAShortNodeCard) {
+  const std::string path = test::temp_path("short_h20.k");
+  test::write_text(path,
+                   "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_SOLID_H20\n       7       1\n"
+                   "       1       2       3       4       5       6       7       8       9      10\n"
+                   "      11      12\n*END\n");
+  EXPECT_TRUE(test::ThrowsInputError([&] { io::read_k(path); }, path, 8, "element 7: a card of 10 node ids expected, found 2"));
+  const std::string mixed = test::temp_path("mixed_order.k");
+  test::write_text(mixed,
+                   "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n5,.5,0,0\n6,.5,.5,0\n7,0,.5,0\n8,0,0,.5\n"
+                   "9,.5,0,.5\n10,0,.5,.5\n11,1,1,1\n*ELEMENT_SOLID\n       1       1\n"
+                   "       1       2       3       4       5       6       7       8       9      10\n"
+                   "       2       1       1       2       3      11      11      11      11      11\n*END\n");
+  EXPECT_TRUE(test::ThrowsInputError([&] { io::read_k(mixed); }, mixed, 17, "order"));
 }
 
 TEST(SecondOrderIo, VtkReaderRefusesMixedOrdersAndShortCells) {

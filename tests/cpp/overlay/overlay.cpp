@@ -564,9 +564,9 @@ TEST(LocalSize, APolylineGetsItsSizeAlongIt) {
 }
 
 // A box whose top is two coplanar CAD faces (a split face, as FEM users make for a load patch):
-// with FeatureOptions::patch_edges the edge between them is a curve of the features, and no
-// boundary face of the overlay's mesh straddles it, so that a load on either face finds all of it
-// (12 straddle without). Without it (the default) the two faces are one region.
+// with FeatureOptions::patch_edges (the default) the edge between them is a curve of the features,
+// and no boundary face of the overlay's mesh straddles it, so that a load on either face finds all
+// of it (12 straddle without). Without it the two faces are one region.
 TEST(Overlay, TheEdgeOfASplitFaceIsFollowed) {
   auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, 2, 10.0);  // 30 x 20 x 10
   const int split_patch = 100;
@@ -574,14 +574,14 @@ TEST(Overlay, TheEdgeOfASplitFaceIsFollowed) {
     const Eigen::Vector3d c = (s.V.row(s.F(t, 0)) + s.V.row(s.F(t, 1)) + s.V.row(s.F(t, 2))) / 3;
     if (std::abs(c.z() - 10) < 1e-9 && c.x() < 15) s.patch(t) = split_patch;
   }
-  EXPECT_EQ(overlay::SurfaceFeatures(s).regions(), 6);
-  overlay::FeatureOptions split;
-  split.patch_edges = true;
-  ASSERT_EQ(overlay::SurfaceFeatures(s, split).regions(), 7);
+  overlay::FeatureOptions joined;
+  joined.patch_edges = false;
+  EXPECT_EQ(overlay::SurfaceFeatures(s, joined).regions(), 6);
+  ASSERT_EQ(overlay::SurfaceFeatures(s).regions(), 7);
   overlay::OverlayOptions o;
   o.size = 2.3;
-  o.features = split;
   const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_TRUE(r.patch_edges);
   EXPECT_EQ(inverted(r.quality), 0);
   EXPECT_NEAR(r.quality.total_volume, 6000.0, 1e-6);
   int top = 0, straddling = 0;
