@@ -104,6 +104,19 @@ CELL_TYPES 1
 24
 VTK
 "$HEXDOM" convert -i "$C/vtk/tet10.vtk" -o "$C/inp/tet10.inp" 2>/dev/null
+# LS-DYNA's second-order solids: the tet10 (ten-node format) and the unit cube as a 20-node hex
+# (*ELEMENT_SOLID_H20).
+"$HEXDOM" convert -i "$C/vtk/tet10.vtk" -o "$C/k/tet10.k" 2>/dev/null
+python3 - "$T/hex20.vtk" <<'PY'
+import sys
+c = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+e = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+p = c + [tuple((c[a][k] + c[b][k]) / 2 for k in range(3)) for a, b in e]
+with open(sys.argv[1], "w") as f:
+    f.write("# vtk DataFile Version 4.2\nhex20\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 20 double\n")
+    f.write("".join("%g %g %g\n" % q for q in p) + "CELLS 1 21\n20 " + " ".join(map(str, range(20))) + "\nCELL_TYPES 1\n25\n")
+PY
+"$HEXDOM" convert -i "$T/hex20.vtk" -o "$C/k/hex20.k" 2>/dev/null
 # Gmsh .msh: the hex and the prism of two.vtk (the prism in Gmsh's order) in MSH 4.1 and 2.2,
 # ASCII and binary, and a second-order tetrahedron (Gmsh type 11).
 mkdir -p "$C/msh"
