@@ -107,6 +107,17 @@ PendingElement read_element(LineCursor& cur, std::string_view data, Section sect
   return e;
 }
 
+// The index in the *NODE order of node `id`, which element `e` refers to; an InputError at the
+// element's line when no *NODE defines it.
+int node_of(const std::string& path, const std::unordered_map<long, int>& node_index,
+            const PendingElement& e, long id) {
+  auto it = node_index.find(id);
+  if (it == node_index.end())
+    throw InputError(path, e.line, "element " + std::to_string(e.eid) + " refers to node " + std::to_string(id) +
+                                       ", which no *NODE defines");
+  return it->second;
+}
+
 // The mesh of `elements` (some with 10 or 20 nodes) on `points` through io::CellAssembly; `eids`
 // receives their ids.
 mesh::Mesh second_order_mesh(const std::string& path, const std::vector<PendingElement>& elements,
@@ -116,13 +127,7 @@ mesh::Mesh second_order_mesh(const std::string& path, const std::vector<PendingE
   for (const auto& e : elements) {
     int64_t n[20];
     const int count = e.solid ? e.count : 4;
-    for (int k = 0; k < count; ++k) {
-      auto it = node_index.find(e.n[k]);
-      if (it == node_index.end())
-        throw InputError(path, e.line, "element " + std::to_string(e.eid) + " refers to node " + std::to_string(e.n[k]) +
-                                           ", which no *NODE defines");
-      n[k] = it->second;
-    }
+    for (int k = 0; k < count; ++k) n[k] = node_of(path, node_index, e, e.n[k]);
     const int vtk = !e.solid ? 9 : e.count == 20 ? 25 : e.count == 10 ? 24 : 12;
     cells.add(vtk, n, count, static_cast<int>(e.pid), e.eid, e.line);
     eids.push_back(static_cast<int>(e.eid));
@@ -222,13 +227,7 @@ KFile read_k(const std::string& path) {
   }
   mesh::MeshBuilder b;
   for (const auto& e : elements) {
-    auto index = [&](long id) {
-      auto it = node_index.find(id);
-      if (it == node_index.end())
-        throw InputError(path, e.line, "element " + std::to_string(e.eid) + " refers to node " +
-                                           std::to_string(id) + ", which no *NODE defines");
-      return it->second;
-    };
+    auto index = [&](long id) { return node_of(path, node_index, e, id); };
     if (e.solid) {
       std::array<int, 8> h;
       for (int k = 0; k < 8; ++k) h[k] = index(e.n[k]);

@@ -201,4 +201,11 @@ std::vector<int> nearest_triangles(const TriangleProjector& projector, const Eig
   return out;
 }
 
+TriangleProjector segment_projector(const Eigen::MatrixXd& V, const std::vector<std::array<int, 2>>& segments) {
+  Eigen::MatrixXi S(static_cast<int>(segments.size()), 3);
+  for (size_t i = 0; i < segments.size(); ++i)
+    S.row(static_cast<int>(i)) << segments[i][0], segments[i][1], segments[i][1];
+  return TriangleProjector(V, S);
+}
+
 }  // namespace hexdom::mesh

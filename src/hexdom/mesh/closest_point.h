@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "hexdom/mesh/cell_faces.h"
@@ -45,6 +46,10 @@ class TriangleProjector {
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<Node> nodes_;
 };
+
+/// A projector onto the segments (a, b) of points of V (rows), each held as the degenerate triangle
+/// (a, b, b): the closest point on a set of curves.
+TriangleProjector segment_projector(const Eigen::MatrixXd& V, const std::vector<std::array<int, 2>>& segments);
 
 /// For each face of `faces` (corners in rows of V), the triangle of `projector`'s surface nearest to
 /// its centre (the mean of its corners), -1 for an empty surface. With a tessellation whose patch

@@ -95,13 +95,11 @@ BoundaryConstraints boundary_constraints(const mesh::Mesh& m, const NodeKinds& t
       for (int i = 1; i + 1 < f.n; ++i) F.row(r++) << f.v[0], f.v[i], f.v[i + 1];
     c.surface = mesh::TriangleProjector(m.V, F);
   }
-  std::vector<std::array<int, 3>> segs;
+  std::vector<std::array<int, 2>> segs;
   for (int v = 0; v < static_cast<int>(t.curve_nbrs.size()); ++v)
     for (int u : t.curve_nbrs[v])
-      if (u > v) segs.push_back({v, u, u});
-  Eigen::MatrixXi S(static_cast<int>(segs.size()), 3);
-  for (size_t i = 0; i < segs.size(); ++i) S.row(i) << segs[i][0], segs[i][1], segs[i][2];
-  if (S.rows()) c.curves = mesh::TriangleProjector(m.V, S);
+      if (u > v) segs.push_back({v, u});
+  if (!segs.empty()) c.curves = mesh::segment_projector(m.V, segs);
   return c;
 }
 

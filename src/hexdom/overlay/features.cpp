@@ -70,14 +70,14 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) around[s.F(f, k)].insert(region_[f]);
   std::vector<int> degree(nv, 0);
-  std::map<std::pair<int, int>, std::vector<std::array<int, 3>>> segments;
+  std::map<std::pair<int, int>, std::vector<std::array<int, 2>>> segments;
   for (const auto& e : sharp) {
     int a = region_[e[2]], b = region_[e[3]];
     if (a == b) continue;  // a crease inside a region, not captured
     if (a > b) std::swap(a, b);
     ++degree[e[0]];
     ++degree[e[1]];
-    segments[{a, b}].push_back({e[0], e[1], e[1]});
+    segments[{a, b}].push_back({e[0], e[1]});
   }
   for (int v = 0; v < nv; ++v)
     if (around[v].size() >= 3 || (degree[v] != 0 && degree[v] != 2)) {
@@ -85,11 +85,8 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
       corner_regions_.emplace_back(around[v].begin(), around[v].end());
       corner_position_.push_back(s.V.row(v).transpose());
     }
-  for (auto& [key, segs] : segments) {
-    Eigen::MatrixXi S(static_cast<int>(segs.size()), 3);
-    for (size_t i = 0; i < segs.size(); ++i) S.row(static_cast<int>(i)) << segs[i][0], segs[i][1], segs[i][2];
-    curves_[key] = std::make_unique<mesh::TriangleProjector>(s.V, S);
-  }
+  for (auto& [key, segs] : segments)
+    curves_[key] = std::make_unique<mesh::TriangleProjector>(mesh::segment_projector(s.V, segs));
   std::vector<std::vector<int>> tris(regions_);
   for (int f = 0; f < nf; ++f) tris[region_[f]].push_back(f);
   for (int r = 0; r < regions_; ++r) {

@@ -290,16 +290,14 @@ struct FeatureSets {
     }
     if (!plain) return;
     const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
-    std::vector<Eigen::Vector3i> segments;
+    std::vector<std::array<int, 2>> segments;
     for (int f = 0; f < s.F.rows(); ++f)
       for (int k = 0; k < 3; ++k) {
         const int g = TT(f, k);
         if (g > f && feat->region()[f] != feat->region()[g] && plain->region()[f] == plain->region()[g])
-          segments.emplace_back(s.F(f, k), s.F(f, (k + 1) % 3), s.F(f, (k + 1) % 3));
+          segments.push_back({s.F(f, k), s.F(f, (k + 1) % 3)});
       }
-    Eigen::MatrixXi S(static_cast<int>(segments.size()), 3);
-    for (size_t i = 0; i < segments.size(); ++i) S.row(static_cast<int>(i)) = segments[i].transpose();
-    added = mesh::TriangleProjector(s.V, S);
+    added = mesh::segment_projector(s.V, segments);
   }
 
   // Whether a cell of r (a mesh of s) is inverted within a spacing of the curves patch_edges adds.
