@@ -132,6 +132,9 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["frame"] = frame_dict(r.frame);
   d["stage"] = r.stage;
   d["solids"] = std::max<size_t>(1, r.solids.size());
+  py::list touching;
+  for (const auto& [a, b] : r.touching) touching.append(py::make_tuple(a, b));
+  d["touching"] = touching;
   d["second_order"] = r.mesh.second_order() ? py::object(second_order_dict(r.second_order)) : py::object(py::none());
   return d;
 }
@@ -205,10 +208,12 @@ void bind_auto(py::module_& m) {
         py::arg("frame") = py::none(), kAutopolycubeDoc);
 
   m.def("check_surface",
-        [](const RefV& V, const RefF& F, const RefI& patch, const std::string& name, bool self_intersection) {
+        [](const RefV& V, const RefF& F, const RefI& patch, const std::string& name, bool self_intersection,
+           bool several_solids) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           mesh::SurfaceCheckOptions opt;
           opt.self_intersection = self_intersection;
+          opt.several_solids = several_solids;
           mesh::SurfaceCheck r;
           {
             py::gil_scoped_release nogil;
@@ -220,15 +225,22 @@ void bind_auto(py::module_& m) {
           d["cavities"] = r.cavities;
           d["flipped_shells"] = r.flipped_shells;
           d["warnings"] = r.warnings;
+          d["solids"] = r.solids;
+          py::list touching;
+          for (const auto& [a, b] : r.touching) touching.append(py::make_tuple(a, b));
+          d["touching"] = touching;
           return d;
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("name") = "the surface", py::arg("self_intersection") = true,
+        py::arg("several_solids") = false,
         "The checks every meshing path makes on its input surface first (mesh::check_solid_surface): closed and\n"
-        "2-manifold, consistently oriented, no two triangles crossing, one solid (its cavities nested one deep).\n"
-        "A shell facing the wrong way (an inside-out export, a cavity facing out of it) is turned around. Returns\n"
-        "a dict: surface (V, F, patch with those shells turned), shells, cavities, flipped_shells, warnings (one\n"
-        "line per shell turned). Raises GeometryError naming an edge, or two crossing triangles and a point\n"
-        "(1-based), or the separate solids; `name` prefixes the messages.");
+        "2-manifold, consistently oriented, no two triangles crossing or lying on each other, one solid (its\n"
+        "cavities nested one deep), or with several_solids any number of solids. A shell facing the wrong way (an\n"
+        "inside-out export, a cavity facing out of it) is turned around. Returns a dict: surface (V, F, patch with\n"
+        "those shells turned), shells, cavities, flipped_shells, solids, touching (pairs of solids, 1-based, whose\n"
+        "surfaces lie on each other), warnings (one line per shell turned, per pair touching, for slight folds).\n"
+        "Raises GeometryError naming an edge, or two crossing triangles and a point (1-based), or the separate\n"
+        "solids; `name` prefixes the messages.");
 
   const py::handle module = m;
   using pipeline::method_name;

@@ -3,7 +3,9 @@ checks its input before any stage. An inside-out box (every triangle reversed) m
 warning and the same cells as the box; two overlapping boxes written as one triangle soup exit 1
 naming two crossing triangles and a point, and write nothing; a cube with a cubic cavity (two
 nested shells) meshes with the cavity empty; an inconsistently oriented surface is refused naming
-an edge; separate solids in one file (and a solid inside another's cavity) mesh as one region each. The STL files are written here; meshio reads them back as an independent check that they
+an edge; separate solids in one file (and a solid inside another's cavity) mesh as one region each;
+solids touching along a face mesh with a warning; bodies whose faces lie on each other are
+refused. The STL files are written here; meshio reads them back as an independent check that they
 say what the test means, VTK's Verdict measures the meshes."""
 
 import subprocess
@@ -156,3 +158,31 @@ def test_a_solid_inside_another_s_cavity_is_its_own_region(hexdom_bin, tmp_path)
     assert sorted(set(region.tolist())) == [1, 2]
     assert volume[region == 1].sum() == pytest.approx(12.0 ** 3 - 8.0 ** 3, rel=1e-3)
     assert volume[region == 2].sum() == pytest.approx(64.0, rel=1e-6)
+
+
+def test_solids_touching_along_a_face_mesh_as_two_regions_with_a_warning(hexdom_bin, tmp_path):
+    # A smaller box against the face x = 10 of a larger one: the two surfaces lie on each other
+    # there, facing opposite ways (the larger face's diagonal meets the smaller box's edges: a
+    # contact, not a crossing).
+    src = _write_stl(tmp_path / "touching.stl", _box((0, 0, 0), (10, 10, 10)) + _box((10, 2, 2), (20, 8, 8)))
+    out = tmp_path / "touching.vtu"
+    run = _mesh(hexdom_bin, src, out)
+    assert run.returncode == 0, run.stderr
+    assert "solids 1 and 2 touch" in run.stderr and "do not conform" in run.stderr, run.stderr
+    region, volume, _ = _regions(out)
+    assert sorted(set(region.tolist())) == [1, 2]
+    assert volume[region == 1].sum() == pytest.approx(1000.0, rel=1e-6)
+    assert volume[region == 2].sum() == pytest.approx(360.0, rel=1e-6)
+    _, _, sj, _ = _cells(out)
+    assert np.all(sj > 0)
+
+
+def test_boxes_overlapping_along_coplanar_faces_are_refused_naming_two_triangles(hexdom_bin, tmp_path):
+    # Two boxes overlapping whose faces y = 0, 10 and z = 0, 10 lie on each other (where an edge of
+    # one meets a face of the other, the two surfaces touch: no edge passes through a face).
+    src = _write_stl(tmp_path / "overlap.stl", _box((0, 0, 0), (10, 10, 10)) + _box((5, 0, 0), (15, 10, 10)))
+    out = tmp_path / "overlap.vtu"
+    run = _mesh(hexdom_bin, src, out)
+    assert run.returncode == 1, run.stderr
+    assert "lies on itself: triangles" in run.stderr and "facing the same way at (" in run.stderr, run.stderr
+    assert not out.exists()

@@ -40,6 +40,39 @@ std::optional<Vec> segment_crosses(const Vec& p, const Vec& q, const Vec& a, con
   return x;
 }
 
+// Where triangles A and B, sharing no vertex, lie on each other: every corner of each within `tol`
+// of the other's plane and the two overlapping over an area of at least 1e-3 of the smaller one
+// (not only along an edge or at a point). Returns the overlap's centre (B clipped by the three
+// half-spaces through A's edges, square to A's plane) and its area over the smaller triangle's.
+std::optional<Vec> coplanar_overlap(const Vec A[3], const Vec B[3], double tol) {
+  const Vec na = (A[1] - A[0]).cross(A[2] - A[0]), nb = (B[1] - B[0]).cross(B[2] - B[0]);
+  const double la = na.norm(), lb = nb.norm();
+  if (!(la > 0) || !(lb > 0)) return std::nullopt;
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(na.dot(B[k] - A[0])) > tol * la || std::abs(nb.dot(A[k] - B[0])) > tol * lb) return std::nullopt;
+  std::vector<Vec> poly(B, B + 3), next;
+  for (int k = 0; k < 3 && !poly.empty(); ++k) {
+    const Vec inward = na.cross(A[(k + 1) % 3] - A[k]);  // points into A from its edge k
+    auto side = [&](const Vec& x) { return inward.dot(x - A[k]); };
+    next.clear();
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const Vec &p = poly[i], &q = poly[(i + 1) % poly.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0) next.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) next.push_back(p + (q - p) * (sp / (sp - sq)));
+    }
+    poly.swap(next);
+  }
+  if (poly.size() < 3) return std::nullopt;
+  Vec twice_area = Vec::Zero(), centre = Vec::Zero();
+  for (size_t i = 0; i < poly.size(); ++i) {
+    twice_area += poly[i].cross(poly[(i + 1) % poly.size()]);
+    centre += poly[i];
+  }
+  if (twice_area.norm() < 1e-3 * std::min(la, lb)) return std::nullopt;
+  return centre / static_cast<double>(poly.size());
+}
+
 struct Box {
   Vec lo = Vec::Constant(INFINITY), hi = Vec::Constant(-INFINITY);
   void add(const Vec& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
@@ -55,7 +88,7 @@ constexpr double kDeep = 0.1;
 // A bounding-box tree over the triangles, searched against itself for crossing pairs.
 class CrossingSearch {
  public:
-  CrossingSearch(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) : V_(V), F_(F) {
+  CrossingSearch(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) : V_(V), F_(F), TT_(triangle_adjacency(F)) {
     const int n = static_cast<int>(F.rows());
     box_.resize(n);
     order_.resize(n);
@@ -66,15 +99,25 @@ class CrossingSearch {
       all.add(box_[f]);
     }
     tol_ = 1e-6 * (n > 0 ? (all.hi - all.lo).norm() : 0.0);
+    ring_start_.assign(V.rows() + 1, 0);  // the triangles around each vertex, packed
+    for (int f = 0; f < n; ++f)
+      for (int k = 0; k < 3; ++k) ++ring_start_[F(f, k) + 1];
+    for (Eigen::Index v = 0; v < V.rows(); ++v) ring_start_[v + 1] += ring_start_[v];
+    ring_.resize(3 * static_cast<size_t>(n));
+    std::vector<int> fill(ring_start_.begin(), ring_start_.end() - 1);
+    for (int f = 0; f < n; ++f)
+      for (int k = 0; k < 3; ++k) ring_[fill[F(f, k)]++] = f;
     if (n > 0) build(0, n);
   }
 
-  // The first deep crossing, else the deepest shallow one (see Crossing::deep).
+  // The first deep crossing or same-facing overlap, else the deepest shallow crossing (see
+  // Crossing::deep).
   std::optional<Crossing> find() {
     if (!nodes_.empty()) pairs(0, 0);
     return found_ ? found_ : shallow_;
   }
   int shallow_pairs() const { return shallow_count_; }
+  const std::vector<Crossing>& facing() const { return facing_; }
 
  private:
   struct Node {
@@ -124,6 +167,40 @@ class CrossingSearch {
     }
   }
 
+  // Whether the crossing at x of an edge of triangle `seg` through triangle `crossed` is a contact:
+  // x on the border of `crossed` (within tol_ of a corner or an edge) where a triangle around that
+  // corner, or the one across that edge, holds `seg` in its plane: the surfaces touch there, as
+  // solids meeting along a face or overlapping along coplanar faces do (coplanar_overlap judges
+  // those), rather than pass through each other.
+  bool contact_at_border(int crossed, const Vec& x, int seg) const {
+    const Vec corner[3] = {vertex(V_, F_(crossed, 0)), vertex(V_, F_(crossed, 1)), vertex(V_, F_(crossed, 2))};
+    const Vec n = (corner[1] - corner[0]).cross(corner[2] - corner[0]).normalized();
+    for (int k = 0; k < 3; ++k)
+      if ((x - corner[k]).norm() <= tol_) {
+        const int v = F_(crossed, k);
+        for (int i = ring_start_[v]; i < ring_start_[v + 1]; ++i)
+          if (holds_in_plane(ring_[i], seg)) return true;
+      }
+    for (int k = 0; k < 3; ++k) {
+      const Vec e = corner[(k + 1) % 3] - corner[k];
+      if (std::abs(e.cross(x - corner[k]).dot(n)) <= tol_ * e.norm() && TT_(crossed, k) >= 0 &&
+          holds_in_plane(TT_(crossed, k), seg))
+        return true;
+    }
+    return false;
+  }
+
+  // Whether every corner of triangle `seg` lies within tol_ of the plane of triangle g.
+  bool holds_in_plane(int g, int seg) const {
+    const Vec g0 = vertex(V_, F_(g, 0));
+    const Vec m = (vertex(V_, F_(g, 1)) - g0).cross(vertex(V_, F_(g, 2)) - g0);
+    const double mn = m.norm();
+    if (!(mn > 0)) return false;
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(m.dot(vertex(V_, F_(seg, i)) - g0)) > tol_ * mn) return false;
+    return true;
+  }
+
   void test(int s, int t) {
     if (!box_[s].meets(box_[t])) return;
     for (int i = 0; i < 3; ++i)
@@ -135,12 +212,25 @@ class CrossingSearch {
     Vec at;
     for (int k = 0; k < 3; ++k) {
       double depth = 0;
-      if (auto p = segment_crosses(A[k], A[(k + 1) % 3], B[0], B[1], B[2], tol_, &depth); p && depth > deepest)
+      if (auto p = segment_crosses(A[k], A[(k + 1) % 3], B[0], B[1], B[2], tol_, &depth);
+          p && depth > deepest && !contact_at_border(t, *p, s))
         deepest = depth, at = *p;
-      if (auto p = segment_crosses(B[k], B[(k + 1) % 3], A[0], A[1], A[2], tol_, &depth); p && depth > deepest)
+      if (auto p = segment_crosses(B[k], B[(k + 1) % 3], A[0], A[1], A[2], tol_, &depth);
+          p && depth > deepest && !contact_at_border(s, *p, t))
         deepest = depth, at = *p;
     }
-    if (deepest < 0) return;
+    if (deepest < 0) {
+      if (auto p = coplanar_overlap(A, B, tol_)) {
+        const bool same = (A[1] - A[0]).cross(A[2] - A[0]).dot((B[1] - B[0]).cross(B[2] - B[0])) > 0;
+        Crossing c{std::min(s, t), std::max(s, t), *p, 0.0, same};
+        c.coplanar = same ? Crossing::kSameWay : Crossing::kOpposite;
+        if (same)
+          found_ = c;
+        else
+          facing_.push_back(c);
+      }
+      return;
+    }
     Crossing c{std::min(s, t), std::max(s, t), at, deepest, deepest >= kDeep};
     if (c.deep) {
       found_ = c;
@@ -152,12 +242,15 @@ class CrossingSearch {
 
   const Eigen::MatrixXd& V_;
   const Eigen::MatrixXi& F_;
+  const Eigen::MatrixXi TT_;  // edge neighbours (triangle_adjacency)
+  std::vector<int> ring_start_, ring_;  // vertex v's triangles: ring_[ring_start_[v] .. ring_start_[v + 1])
   std::vector<Box> box_;
   std::vector<int> order_;
   std::vector<Node> nodes_;
   double tol_ = 0;  // a touch: within 1e-6 of the diagonal
   std::optional<Crossing> found_, shallow_;
   int shallow_count_ = 0;
+  std::vector<Crossing> facing_;  // pairs lying on each other facing opposite ways
 };
 
 // Whether point p is inside the closed shell made of `tris`: crossings of a ray in a direction
@@ -179,6 +272,45 @@ bool inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vecto
     if (e2.dot(q) / det > 0) ++crossings;
   }
   return crossings % 2 == 1;
+}
+
+// Whether shell `tris_i` lies inside shell `tris_j`: the vote of the ray test (inside) from its
+// first vertex and its extreme vertices along each axis. A shell inside another has every vertex
+// inside; one that touches another from outside may have a vertex on it, where the ray's parity
+// is either, but not all of them.
+bool shell_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris_i,
+                  const std::vector<int>& tris_j) {
+  int pick[7] = {F(tris_i[0], 0), -1, -1, -1, -1, -1, -1};
+  for (int f : tris_i)
+    for (int c = 0; c < 3; ++c) {
+      const int v = F(f, c);
+      for (int k = 0; k < 3; ++k) {
+        if (pick[1 + 2 * k] < 0 || V(v, k) < V(pick[1 + 2 * k], k)) pick[1 + 2 * k] = v;
+        if (pick[2 + 2 * k] < 0 || V(v, k) > V(pick[2 + 2 * k], k)) pick[2 + 2 * k] = v;
+      }
+    }
+  int votes = 0;
+  for (int v : pick) votes += inside(V, F, tris_j, vertex(V, v)) ? 1 : 0;
+  return votes >= 4;
+}
+
+// The pairs of solids (1-based) that `opposite` (pairs of triangles lying on each other facing
+// opposite ways) puts together; throws when both triangles of a pair bound one solid.
+std::vector<std::array<int, 2>> touching_solids(const std::vector<Crossing>& opposite, const std::vector<int>& solid,
+                                                const std::string& what) {
+  std::vector<std::array<int, 2>> pairs;
+  for (const Crossing& c : opposite) {
+    const int a = solid[c.a], b = solid[c.b];
+    if (a == b)
+      throw GeometryError(what + fmt(" touches itself: triangles %.0f and %.0f lie on each other facing opposite ways",
+                                     c.a + 1.0, c.b + 1.0) +
+                          fmt(" at (%.6g, %.6g, %.6g), a wall of no thickness; a solid's surface must not", c.point.x(),
+                              c.point.y(), c.point.z()));
+    pairs.push_back({std::min(a, b) + 1, std::max(a, b) + 1});
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
 }
 
 }  // namespace
@@ -219,10 +351,12 @@ void check_closed_manifold(const SurfaceMesh& s) {
   }
 }
 
-std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int* shallow_pairs) {
+std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int* shallow_pairs,
+                                               std::vector<Crossing>* opposite) {
   CrossingSearch search(V, F);
   std::optional<Crossing> c = search.find();
   if (shallow_pairs) *shallow_pairs = search.shallow_pairs();
+  if (opposite) *opposite = search.facing();
   return c;
 }
 
@@ -234,9 +368,16 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
   }
   check_interrupt("check the surface");
   SurfaceCheck r;
+  std::vector<Crossing> opposite;
   if (opt.self_intersection) {
     int shallow = 0;
-    const auto c = find_self_intersection(s.V, s.F, &shallow);
+    const auto c = find_self_intersection(s.V, s.F, &shallow, &opposite);
+    if (c && c->coplanar == Crossing::kSameWay)
+      throw GeometryError(what + fmt(" lies on itself: triangles %.0f and %.0f lie on each other facing the same way",
+                                     c->a + 1.0, c->b + 1.0) +
+                          fmt(" at (%.6g, %.6g, %.6g); a solid's surface must not (overlapping bodies, or one written "
+                              "twice, must be united first)",
+                              c->point.x(), c->point.y(), c->point.z()));
     if (c && !c->deep)
       r.warnings.push_back(what + fmt(" folds over itself slightly: %.0f pairs of triangles cross by less than a tenth "
                                       "of their edges (the deepest: triangles %.0f and %.0f",
@@ -262,9 +403,8 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
   std::vector<std::vector<char>> holds(r.shells, std::vector<char>(r.shells, 0));  // holds[j][i]: i inside j
   if (r.shells > 1) {
     for (int i = 0; i < r.shells; ++i) {
-      const Vec p = vertex(s.V, s.F(tris[i][0], 0));
       for (int j = 0; j < r.shells; ++j)
-        if (j != i && inside(s.V, s.F, tris[j], p)) {
+        if (j != i && shell_inside(s.V, s.F, tris[i], tris[j])) {
           holds[j][i] = 1;
           ++depth[i];
         }
@@ -284,6 +424,10 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
         if (holds[j][i] && depth[j] == depth[i] - 1) solid_of_shell[i] = solid_of_shell[j];
   r.solid.resize(s.F.rows());
   for (int f = 0; f < s.F.rows(); ++f) r.solid[f] = solid_of_shell[shell[f]];
+  r.touching = touching_solids(opposite, r.solid, what);
+  for (const auto& [a, b] : r.touching)
+    r.warnings.push_back(what + fmt(": solids %.0f and %.0f touch", a + 0.0, b + 0.0) +
+                         ": their meshes are made one by one and do not conform where they meet");
   for (int i = 0; i < r.shells; ++i) {
     const bool cavity = depth[i] % 2 == 1;
     if (cavity) ++r.cavities;

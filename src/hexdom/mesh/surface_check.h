@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,23 +21,30 @@ void check_closed_manifold(const SurfaceMesh& surface);
 
 /// Two triangles (0-based) that cross each other, and a point where they do. `depth`: how far the
 /// crossing edge reaches past the other's plane on its shorter side, over its length; `deep` when
-/// that is a tenth or more (bodies overlapping), not for a local fold.
+/// that is a tenth or more (bodies overlapping), not for a local fold. Two triangles lying on each
+/// other (coplanar, overlapping over an area) are `coplanar`: facing the same way, bodies overlap
+/// or one is written twice (deep); facing opposite ways, two solids touch (depth 0, not deep).
 struct Crossing {
+  enum Coplanar { kNone, kSameWay, kOpposite };
   int a = -1, b = -1;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   double depth = 0;
   bool deep = false;
+  Coplanar coplanar = kNone;
 };
 
 /// The first pair of triangles of (V, F) sharing no vertex where an edge of one crosses the plane of
 /// the other (its ends on either side, farther than 1e-6 of the bounding-box diagonal) at a point
-/// of that triangle, edges included (found over a bounding-box tree: n log n for a surface without
-/// crossings); none when the surface does not cross itself. Touching (an end within that distance
-/// of the plane, coplanar overlaps) and neighbouring triangles are not counted. Returns the first
-/// deep crossing found, else the deepest shallow one; `shallow_pairs` receives how many shallow
-/// crossings there are (all of them when none is deep).
+/// of that triangle, edges included, or where the two lie on each other facing the same way (every
+/// corner within that distance of the other's plane, an overlap of at least 1e-3 of the smaller's
+/// area); found over a bounding-box tree: n log n for a surface without crossings. None when the
+/// surface does not cross itself. Touching at an edge or a point and neighbouring triangles are not
+/// counted. Returns the first deep crossing or same-way overlap found, else the deepest shallow
+/// crossing; `shallow_pairs` receives how many shallow crossings there are (all of them when none is
+/// deep), `opposite` the pairs lying on each other facing opposite ways (touching solids). (V, F)
+/// must pass check_closed_manifold.
 std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                               int* shallow_pairs = nullptr);
+                                               int* shallow_pairs = nullptr, std::vector<Crossing>* opposite = nullptr);
 
 struct SurfaceCheck {
   int shells = 0;          ///< closed shells (triangles connected through edges)
@@ -47,6 +55,9 @@ struct SurfaceCheck {
   /// triangles.
   int solids = 0;
   std::vector<int> solid;  ///< #F: the solid (0-based) each triangle bounds
+  /// Pairs of solids (1-based, first < second) whose surfaces lie on each other facing opposite
+  /// ways over some area: solids that touch (their meshes, made one by one, do not conform there).
+  std::vector<std::array<int, 2>> touching;
   std::vector<std::string> warnings;  ///< one line per shell turned around, one for slight folds
 };
 
@@ -61,10 +72,12 @@ struct SurfaceCheckOptions {
 /// around every shell that faces the wrong way: an outer shell (inside no other) must enclose a
 /// positive volume, a cavity (a shell inside an odd number of others) a negative one. Throws
 /// GeometryError naming the cause: an open or non-manifold edge, an edge whose two triangles
-/// disagree on orientation, two triangles crossing deeply (Crossing::deep: overlapping bodies) with
-/// a point, and unless options.several_solids shells that are separate solids ("2 separate closed
-/// shells (solids)...") or nested more than one deep; a surface that only folds over itself
-/// slightly is taken with a warning. `what` prefixes the messages (a file name, "the tessellation").
+/// disagree on orientation, two triangles crossing deeply (Crossing::deep: overlapping bodies) or
+/// lying on each other facing the same way, with a point; one solid's triangles lying on each other
+/// facing opposite ways (a wall of no thickness); and unless options.several_solids shells that are
+/// separate solids ("2 separate closed shells (solids)...") or nested more than one deep. A surface
+/// that only folds over itself slightly is taken with a warning, and so are solids that touch
+/// (SurfaceCheck::touching). `what` prefixes the messages (a file name, "the tessellation").
 SurfaceCheck check_solid_surface(SurfaceMesh& surface, const std::string& what = "the surface",
                                  const SurfaceCheckOptions& options = {});
 

@@ -372,6 +372,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
         }
       }
       merge_solid_runs(std::move(runs), r);
+      r.touching = check.touching;
       return r;
     }
   }

@@ -2,6 +2,7 @@
 // polycube, generation and quality improvement, one call.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -197,6 +198,9 @@ struct MeshSurfaceRun {
   /// every solid's mesh is an overlay mesh, else Polycube; level, edge_weight, frame and the
   /// polycube options are the first solid's; `polycube` is empty. Empty for one solid.
   std::vector<MeshSurfaceRun> solids;
+  /// Of those, the pairs (1-based, first < second) that touch (mesh::SurfaceCheck::touching): their
+  /// meshes do not conform where they meet.
+  std::vector<std::array<int, 2>> touching;
   /// Order 2: how the mid-edge nodes were placed (`mesh` and `quality` are the second-order mesh's).
   optimize::SecondOrderReport second_order;
 };

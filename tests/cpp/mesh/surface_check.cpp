@@ -174,3 +174,62 @@ TEST(SurfaceCheck, SeveralSolidsWhenAskedForEachWithItsCavities) {
                 .find("a shell inside a cavity"),
             std::string::npos);
 }
+
+TEST(SurfaceCheck, BoxesOverlappingAlongCoplanarFacesAreRefused) {
+  // B's faces at y = 0, y = 10, z = 0 and z = 10 lie on A's over x in [5, 10]; the edges that
+  // meet the other box's faces do so where the two surfaces lie on each other (contacts, not
+  // crossings), so the coplanar test finds the overlap.
+  const SurfaceMesh s = join(box({0, 0, 0}, {10, 10, 10}), box({5, 0, 0}, {15, 10, 10}));
+  const auto c = find_self_intersection(s.V, s.F);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->coplanar, hexdom::mesh::Crossing::kSameWay);
+  EXPECT_TRUE(c->deep);
+  EXPECT_LT(c->a, 12);
+  EXPECT_GE(c->b, 12);
+  EXPECT_GE(c->point.x(), 5 - 1e-9);  // in the overlap, on a face plane of both
+  EXPECT_LE(c->point.x(), 10 + 1e-9);
+  const Eigen::Vector3d p = c->point;
+  EXPECT_TRUE(std::abs(p.y()) < 1e-9 || std::abs(p.y() - 10) < 1e-9 || std::abs(p.z()) < 1e-9 ||
+              std::abs(p.z() - 10) < 1e-9)
+      << p.transpose();
+  const std::string e = error_of(s);
+  EXPECT_NE(e.find("part.stl lies on itself: triangles "), std::string::npos) << e;
+  EXPECT_NE(e.find("facing the same way at ("), std::string::npos) << e;
+  // A body written twice: the same box twice.
+  EXPECT_NE(error_of(join(box({0, 0, 0}, {1, 1, 1}), box({0, 0, 0}, {1, 1, 1}))).find("lies on itself"),
+            std::string::npos);
+}
+
+TEST(SurfaceCheck, SolidsTouchingAlongAFaceAreWarned) {
+  // Two boxes meeting at x = 10 (each face triangulated its own way), as two solids: accepted, the
+  // pair named as touching with a warning; boxes meeting at an edge only do not touch over an area.
+  SurfaceMesh b = box({10, 0, 0}, {20, 10, 10});
+  b.F.row(8) << 0, 4, 6;  // the x = 10 face split along its other diagonal
+  b.F.row(9) << 0, 6, 2;
+  hexdom::mesh::SurfaceCheckOptions opt;
+  opt.several_solids = true;
+  SurfaceMesh s = join(box({0, 0, 0}, {10, 10, 10}), b);
+  std::vector<hexdom::mesh::Crossing> opposite;
+  EXPECT_FALSE(find_self_intersection(s.V, s.F, nullptr, &opposite).has_value());
+  EXPECT_EQ(opposite.size(), 4u);  // each of A's two triangles on x = 10 overlaps both of B's
+  const auto r = check_solid_surface(s, "parts.stl", opt);
+  EXPECT_EQ(r.solids, 2);
+  EXPECT_EQ(r.cavities, 0);  // a vertex of B on A's face does not make B a cavity
+  EXPECT_EQ(r.flipped_shells, 0);
+  ASSERT_EQ(r.touching.size(), 1u);
+  EXPECT_EQ(r.touching[0], (std::array<int, 2>{1, 2}));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("parts.stl: solids 1 and 2 touch"), std::string::npos) << r.warnings[0];
+  SurfaceMesh edge = join(box({0, 0, 0}, {10, 10, 10}), box({10, 10, 0}, {20, 20, 10}));
+  EXPECT_TRUE(check_solid_surface(edge, "parts.stl", opt).touching.empty());
+}
+
+TEST(SurfaceCheck, AWallOfNoThicknessIsRefused) {
+  // A cavity whose wall touches the outer shell's face x = 10 from inside: one solid's surface lying
+  // on itself facing opposite ways.
+  SurfaceMesh cavity = box({4, 4, 4}, {10, 6, 6});
+  reverse(cavity);
+  const std::string e = error_of(join(box({0, 0, 0}, {10, 10, 10}), cavity));
+  EXPECT_NE(e.find("part.stl touches itself: triangles "), std::string::npos) << e;
+  EXPECT_NE(e.find("a wall of no thickness"), std::string::npos) << e;
+}
