@@ -152,10 +152,10 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
 
 def check_surface(surface, name="the surface", self_intersection=True):
     """The checks every meshing path makes on its input first: closed and 2-manifold, consistently
-    oriented, no two triangles crossing, one solid (cavities nested one deep). Returns (Surface with
-    every shell facing out of the solid, list of warnings: one per shell turned around, e.g. an
-    inside-out export); raises GeometryError naming an edge, two crossing triangles and a point, or
-    the separate solids (``name`` prefixes the messages)."""
+    oriented, no two triangles crossing or lying on each other, one solid (cavities nested one
+    deep). Returns (Surface with every shell facing out of the solid, list of warnings: one per
+    shell turned around, e.g. an inside-out export); raises GeometryError naming an edge, two
+    crossing triangles and a point, or the separate solids (``name`` prefixes the messages)."""
     r = _hexdom.check_surface(surface.V, surface.F, surface.patch, str(name), bool(self_intersection))
     return Surface(*r["surface"]), list(r["warnings"])
 
@@ -544,7 +544,8 @@ class MeshRun:
     polycube_note: str = ""   # auto mode: why the overlay was tried (the polycube failed or missed a target)
     face_only: list = None    # overlay mesh: per node, 1 when it goes onto a CAD face only (snap_to_brep's face_only)
     solids: int = 1           # solids meshed (each its own region when more than one)
-    touching: list = None     # mesh_part, several solids: the pairs (1-based) that touch (meshes not conforming there)
+    touching: list = None     # several solids: the pairs (1-based) that touch (meshes not conforming there)
+    warnings: list = None     # what the run warned of (`hexdom mesh`'s warning lines: shells turned, solids touching)
     second_order: dict = None  # order 2: how the mid-edge nodes were placed (_hexdom.mesh_surface's)
 
     @property
@@ -563,6 +564,8 @@ def _mesh_run(r):
                    choice=str(r["choice"]), frame=dict(r["frame"]),
                    method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")),
                    face_only=list(r.get("face_only", [])), solids=int(r.get("solids", 1)),
+                   touching=[tuple(int(k) for k in pair) for pair in r.get("touching", [])],
+                   warnings=[str(w) for w in r.get("warnings", [])],
                    second_order=None if r.get("second_order") is None else dict(r["second_order"]))
 
 
@@ -575,6 +578,7 @@ def _cad_run(r):
     run.tessellation_factor = float(r["tessellation_factor"])
     run.tessellation_size = float(r.get("tessellation_size", 0.0))
     run.touching = [tuple(int(k) for k in pair) for pair in r.get("touching", [])]
+    run.warnings = [str(w) for w in r.get("warnings", [])]
     if r.get("snap") is not None:
         run.snap = dict(r["snap"])
         run.snap["max_distance"] = run.snap["max_after"]

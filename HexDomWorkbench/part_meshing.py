@@ -1,5 +1,8 @@
 """Mesh Part: a Part solid meshed with no manual step, as `hexdom mesh` meshes it, every stage kept
-as an editable document object (Surface -> Segmentation -> Polycube -> Mesh).
+as an editable document object (Surface -> Segmentation -> Polycube -> Mesh). A FreeCAD mesh
+object (an STL or OBJ opened in FreeCAD) is meshed as `hexdom mesh FILE` meshes the file: its
+triangles checked (a shell turned around, several solids each meshed as a region, solids touching
+warned), no snap; the Segmentation and the Polycube hold the run's stages for one solid.
 
 One pipeline: the Mesh (Pipeline true) recomputes by running `hexdom mesh`'s pipeline once
 (core.mesh_part on the Part the Surface tessellates, with the Mesh's Size, Level, Method, Improve
@@ -22,7 +25,7 @@ FreeCAD is imported only inside the functions that need it."""
 
 from . import core, make
 from .document import RecomputeError
-from .objects import hex_mesh
+from .objects import hex_mesh, tessellation
 from .objects.chain import chain_of, objects_of, stage_edited  # noqa: F401 (the api's)
 from .objects.pipeline import (  # noqa: F401 (the api's)
     STAGE_OF_CORE, enter_pipeline, held_by_pipeline, leave_pipeline, part_size, pipeline_options)
@@ -52,7 +55,9 @@ def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improv
     ``improve``, Method ``method``, PolycubeSeconds ``polycube_seconds`` (None: the default),
     MaxSize ``max_size`` and MinSize ``min_size`` (0: no bound) and CellsAcross ``cells_across``
     (None: the default), ElementOrder "1st" or "2nd" for ``order`` 1 or 2; the three others wait
-    to be filled by it (FromPipeline). Raises ValueError for a ``part`` without a solid, a
+    to be filled by it (FromPipeline). ``part`` is a Part object with a solid or a FreeCAD mesh
+    object (its triangles taken as they are). Raises ValueError for a ``part`` without a solid
+    or triangles, a
     negative level, size, bound or budget, a min size above the max size, an unknown method or an
     order other than 1 and 2."""
     if method not in hex_mesh.METHODS:
@@ -60,8 +65,12 @@ def make_mesh_part(doc, part, size=0.0, level=core.MESH_OPTIONS["level"], improv
     if order not in (1, 2):
         raise ValueError("order must be 1 or 2, not {!r}".format(order))
     shape = getattr(part, "Shape", None)
-    if shape is None or shape.isNull() or not shape.Solids:
-        raise ValueError("{}: select a Part solid to mesh".format(getattr(part, "Label", part)))
+    if tessellation.is_mesh_feature(part):
+        if not part.Mesh.CountFacets:
+            raise ValueError("{}: the mesh has no triangles".format(part.Label))
+    elif shape is None or shape.isNull() or not shape.Solids:
+        raise ValueError("{}: select a Part solid or a mesh to mesh".format(
+            getattr(part, "Label", part)))
     if int(level) < 0:
         raise ValueError("level must be 0 or more")
     if size and size < 0:

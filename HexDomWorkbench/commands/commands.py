@@ -347,7 +347,8 @@ class _ImproveQuality(CommandManager):
 
 class _MeshPart(CommandManager):
     menutext = "Mesh part"
-    tooltip = ("Meshes the selected Part solid with no manual step, as `hexdom mesh` does: the "
+    tooltip = ("Meshes the selected Part solid (or mesh object: an STL or OBJ opened in FreeCAD, "
+               "each closed shell a solid) with no manual step, as `hexdom mesh` does: the "
                "HexDom Mesh runs its pipeline once (element size = bounding-box diagonal / 30, "
                "the polycube or, where it fails or misses a target, the overlay grid) and fills "
                "a Surface, a Segmentation and a Polycube with the stages it made, all kept and "
@@ -359,7 +360,7 @@ class _MeshPart(CommandManager):
     def Activated(self):
         parts = manager.selected_parts()
         if len(parts) != 1:
-            manager.show_error("Mesh part", "select one Part solid")
+            manager.show_error("Mesh part", "select one Part solid or mesh object")
             return
         self.mesh_part(parts[0])
 

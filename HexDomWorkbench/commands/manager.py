@@ -90,7 +90,9 @@ def selected_of_type(type_name):
 
 
 def selected_parts():
-    """Selected objects with a shape that has faces (Part solids and the like), not HexDom's."""
+    """Selected objects with a shape that has faces (Part solids and the like) or with triangles
+    (FreeCAD mesh objects: an STL or OBJ opened in FreeCAD), not HexDom's."""
+    from ..objects.tessellation import is_mesh_feature
     parts = []
     for obj in FreeCADGui.Selection.getSelection():
         shape = getattr(obj, "Shape", None)
@@ -98,6 +100,8 @@ def selected_parts():
                 str(getattr(obj.Proxy, "Type", "")).startswith("HexDom::"):
             continue
         if shape is not None and hasattr(shape, "Faces") and not shape.isNull() and shape.Faces:
+            parts.append(obj)
+        elif is_mesh_feature(obj) and obj.Mesh.CountFacets:
             parts.append(obj)
     return parts
 

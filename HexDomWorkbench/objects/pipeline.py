@@ -33,11 +33,13 @@ def part_size(shape):
 
 def held_by_pipeline(objs):
     """True when the Mesh's Surface, Segmentation and Polycube all hold what the pipeline put
-    there (FromPipeline) and the Surface tessellates a Part: the Mesh may run the pipeline."""
+    there (FromPipeline) and the Surface tessellates a Part or takes the triangles of a mesh
+    object or a file: the Mesh may run the pipeline."""
     surface = objs.get("surface")
     part = getattr(surface, "Source", None)
     return (surface is not None and objs.get("segmentation") is not None
-            and getattr(part, "Shape", None) is not None
+            and (getattr(part, "Shape", None) is not None
+                 or tessellation.triangle_input(surface) is not None)
             and all(getattr(o, "FromPipeline", False) for o in stages(objs)))
 
 
@@ -149,6 +151,9 @@ def run_pipeline(objs, store_mesh=None, run=None):
     the GUI; Cancel raises progress.Cancelled), or in ``run``. Inverted cells left are kept and
     counted (the Mesh's InvertedCount). Returns the core.MeshRun."""
     mesh, surface_obj = objs["mesh"], objs["surface"]
+    triangles = tessellation.triangle_input(surface_obj)
+    if triangles is not None:
+        return run_surface_pipeline(objs, triangles, store_mesh, run)
     part = surface_obj.Source
     shape = part.Shape
     if shape is None or shape.isNull() or not shape.Solids:
@@ -192,9 +197,56 @@ def run_pipeline(objs, store_mesh=None, run=None):
         raise type(e)("{}: {}".format(stage, e)) from e
     if surface is not None:
         result.surface, result.tessellation_size = surface, size
+    say_warnings(mesh, result)
     fill_mesh_part(objs, result, store_mesh=store_mesh)
     return result
 
+
+def run_surface_pipeline(objs, triangles, store_mesh=None, run=None):
+    """run_pipeline for a Surface that takes triangles as they are (``triangles``: what
+    tessellation.triangle_input gives): `hexdom mesh FILE`'s pipeline, core.mesh_surface with the
+    Mesh's options (its input checks: a shell turned around, several solids each meshed as a region,
+    solids touching; no snap: there is no B-rep). The Surface gets the triangles; the Segmentation
+    and the Polycube the run's when it meshed one solid, nothing for several (they hold one solid).
+    Mesh regions need a Part's faces: ValueError."""
+    mesh = objs["mesh"]
+    surface, name, _ = triangles
+    if getattr(mesh, "MeshRegionList", None):
+        raise ValueError("{}: mesh regions name a Part's faces or edges; {} is triangles".format(
+            mesh.Label, name))
+    options = pipeline_options(mesh)
+    options.pop("snap")
+    mesh.Proxy.failed_stage = None
+    try:
+        with Progress("Meshing " + name, 1) as bar:
+            result = (run or bar.run)("hexdom mesh", core.mesh_surface, surface, allow_inverted=True,
+                                      **options)
+            bar.step(result.method + ": " + result.choice)
+    except Cancelled:
+        raise
+    except core.Error as e:
+        partial = getattr(e, "run", None)
+        stage = STAGE_OF_CORE.get(getattr(e, "stage", ""), "generate and improve")
+        if partial is not None and getattr(e, "stage", "") not in ("", "check"):
+            partial.surface = surface
+            fill_mesh_part(objs, partial, stages_only=True)
+        else:
+            stage = "check the input"  # the input checks refused the triangles
+        mesh.Proxy.failed_stage = stage
+        raise type(e)("{}: {}".format(stage, e)) from e
+    result.surface = surface
+    if result.solids > 1:
+        result.labels = None  # (the solids' labels, solid by solid: not the Surface's order)
+    say_warnings(mesh, result)
+    fill_mesh_part(objs, result, store_mesh=store_mesh)
+    return result
+
+
+def say_warnings(mesh, result):
+    """Prints the pipeline's warnings (core.MeshRun.warnings) in the report view."""
+    import FreeCAD
+    for w in result.warnings or []:
+        FreeCAD.Console.PrintWarning("HexDom: {}: {}\n".format(mesh.Label, w))
 
 # The stage of mesh_part's objects where each stage of the core's pipeline (MeshRun.stage) runs.
 STAGE_OF_CORE = {"": "tessellate", "segment": "segment", "autopolycube": "automatic polycube",

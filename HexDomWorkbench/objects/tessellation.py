@@ -3,9 +3,11 @@
 Holds the triangles in properties (Points, Triangles as a flat list of point indices, FaceId per
 triangle: 1-based, triangle t lies on Face<FaceId[t]> of the source shape), so the document keeps
 them and the segmentation reads them back as a core.Surface. The source is a Part object
-(Source, tessellated with Size / Deflection / Angle by shape_tessellation.tessellate) or, when Source is
-empty, a triangle file (SourceFile: .k shells with part id per triangle, .stl, .obj, .vtk; the
-part ids become FaceId). With neither, the object keeps the triangles it was given; so does a
+(Source, tessellated with Size / Deflection / Angle by shape_tessellation.tessellate), a FreeCAD
+mesh object (Source: an STL or OBJ opened in FreeCAD, its triangles taken as they are, FaceId 1)
+or, when Source is empty, a triangle file (SourceFile: .k shells with part id per triangle, .stl,
+.obj, .vtk; the part ids become FaceId). Triangles from a mesh or a file are checked as every
+meshing path checks its input (core.check_surface). With neither, the object keeps the triangles it was given; so does a
 Surface Mesh Part's pipeline filled (FromPipeline, see base_object.BaseHexDomObject).
 """
 
@@ -38,7 +40,8 @@ class Surface(BaseHexDomObject):
         self.add_pipeline_flag(obj)
         if not hasattr(obj, "Source"):
             obj.addProperty("App::PropertyLink", "Source", "Input",
-                            "Part object (a solid) whose faces are tessellated")
+                            "Part object (a solid) whose faces are tessellated, or a mesh object "
+                            "(an STL or OBJ opened in FreeCAD) whose triangles are taken")
         if not hasattr(obj, "SourceFile"):
             obj.addProperty("App::PropertyFile", "SourceFile", "Input",
                             "Triangle surface file (.k, .stl, .obj, .vtk) read when Source is "
@@ -87,6 +90,18 @@ class Surface(BaseHexDomObject):
 def compute_surface(obj):
     """core.Surface from the object's input (Source, else SourceFile), or None when it has
     neither (the stored triangles stay)."""
+    found = triangle_input(obj)
+    if found is not None:
+        surface, name, method = found
+        if hasattr(getattr(core, "_hexdom", None), "check_surface"):
+            # Checked as every meshing path checks its input: an inside-out shell turned around
+            # (with a warning), a surface that crosses itself refused naming two triangles.
+            import FreeCAD
+            surface, warnings = core.check_surface(surface, name)
+            for w in warnings:
+                FreeCAD.Console.PrintWarning("HexDom: {}: {}\n".format(obj.Label, w))
+        obj.Method = method
+        return surface
     if obj.Source is not None:
         shape = getattr(obj.Source, "Shape", None)
         if shape is None or shape.isNull() or not shape.Faces:
@@ -97,19 +112,38 @@ def compute_surface(obj):
             bar.step("tessellated")
         obj.Method = tessellate.last_method or ""
         return surface
-    if obj.SourceFile:
-        surface = core.read_surface(obj.SourceFile)
-        if hasattr(getattr(core, "_hexdom", None), "check_surface"):
-            # Checked as every meshing path checks its input: an inside-out shell turned around
-            # (with a warning), a surface that crosses itself refused naming two triangles.
-            import FreeCAD
-            surface, warnings = core.check_surface(surface, os.path.basename(obj.SourceFile))
-            for w in warnings:
-                FreeCAD.Console.PrintWarning("HexDom: {}: {}\n".format(obj.Label, w))
-        obj.Method = "file"
-        return surface
     if not obj.Method:
         obj.Method = "stored"
+    return None
+
+
+def is_mesh_feature(obj):
+    """True for a FreeCAD mesh object (Mesh::Feature and the like: an STL or OBJ opened in FreeCAD)."""
+    return (obj is not None and str(getattr(obj, "TypeId", "")).startswith("Mesh::")
+            and hasattr(obj, "Mesh"))
+
+
+def mesh_feature_surface(obj):
+    """core.Surface of the FreeCAD mesh object ``obj``'s triangles as they are (patch 1 each, as a
+    file read gives an STL's); ValueError when it has none."""
+    points, facets = obj.Mesh.Topology
+    if not facets:
+        raise ValueError("{}: the mesh has no triangles".format(obj.Label))
+    V = np.array([[p.x, p.y, p.z] for p in points], float).reshape(-1, 3)
+    F = np.array(facets, np.int32).reshape(-1, 3)
+    return core.Surface(V, F, np.ones(len(F), np.int32))
+
+
+def triangle_input(obj):
+    """(core.Surface, name for messages, Method) of the triangles the HexDom Surface ``obj`` takes
+    as they are, before any check: its Source's when that is a mesh object, else its SourceFile's;
+    None when it tessellates a Part or has neither."""
+    if obj.Source is not None:
+        if not is_mesh_feature(obj.Source):
+            return None
+        return mesh_feature_surface(obj.Source), obj.Source.Label, "mesh"
+    if obj.SourceFile:
+        return core.read_surface(obj.SourceFile), os.path.basename(obj.SourceFile), "file"
     return None
 
 

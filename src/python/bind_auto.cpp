@@ -61,8 +61,10 @@ const char* kMeshSurfaceDoc =
     "(the polycube, and the overlay too when the polycube fails or misses a target; the better kept). The\n"
     "dict's method names the path that made the mesh, polycube_note why the overlay was tried (empty when it\n"
     "was not), budget_passed whether the polycube path's time budget cut it short, stage the stage that ran\n"
-    "last. Inverted cells left are reported, not raised; an error raised carries what the finished stages\n"
-    "made as its attribute partial (this dict).\n";
+    "last, solids the solids meshed (each its own region when more than one), touching the pairs of them\n"
+    "(1-based) that touch, warnings what the run warned of (the lines `hexdom mesh` prints as warnings: a\n"
+    "shell turned around, solids touching). Inverted cells left are reported, not raised; an error raised\n"
+    "carries what the finished stages made as its attribute partial (this dict).\n";
 
 }  // namespace
 
@@ -251,18 +253,24 @@ void bind_auto(py::module_& m) {
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
            const std::map<int, double>& face_sizes, double growth_rate, int order, double time_limit) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
-          const pipeline::MeshSurfaceOptions opt =
+          pipeline::MeshSurfaceOptions opt =
               mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
                                    polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order,
                                    time_limit);
+          Warnings warnings;
+          opt.log = warnings.callback();
           pipeline::MeshSurfaceRun r;
           try {
             py::gil_scoped_release nogil;
             pipeline::mesh_surface(s, opt, &r);
           } catch (const Error& e) {
-            raise_with(module, e, "partial", run_dict(r));  // what the finished stages made
+            py::dict partial = run_dict(r);  // what the finished stages made
+            partial["warnings"] = warnings.lines();
+            raise_with(module, e, "partial", partial);
           }
-          return run_dict(r);
+          py::dict d = run_dict(r);
+          d["warnings"] = warnings.lines();
+          return d;
         },
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("size") = defaults.size, py::arg("level") = defaults.level,
         py::arg("edge_weight") = defaults.segment.edge_weight, py::arg("max_relabels") = defaults.polycube.max_relabels,

@@ -109,7 +109,7 @@ std::string mesh_cad_doc() {
       "and the better mesh kept. Returns a dict: surface (V, F, face_id of the tessellation kept), run (as\n"
       "mesh_surface returns it; mesh and quality after the snap), snap (as snap_to_brep's report, None without\n"
       "snap), tessellate_seconds, snap_seconds, tessellations, tessellation_factor, tessellation_size (its target triangle size),\n"
-      "solids and touching. A source with several solids (solid=0) has each meshed, solid k's cells in region k:\n"
+      "solids, touching and warnings (the lines `hexdom mesh` prints as warnings). A source with several solids (solid=0) has each meshed, solid k's cells in region k:\n"
       "surface, run and snap are then the whole part's, numbered as FreeCAD numbers the source's faces, edges\n"
       "and vertices (face_sizes and edge_sizes too), solids a dict per solid (the same numbers), touching the\n"
       "pairs (1-based) of solids that touch (their meshes do not conform there); with one solid, solids and\n"
@@ -190,10 +190,13 @@ void bind_mesh_cad(py::module_& m) {
                                           polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order,
                                           time_limit);
           opt.snap = snap;
+          Warnings warnings;
+          opt.log = opt.mesh.log = warnings.callback();
           pipeline::MeshSolidsRun r;
           try {
             py::gil_scoped_release nogil;
             cad::ReadOptions ro;
+            ro.log = opt.log;
             ro.solid = solid;
             const std::vector<cad::Shape> solids = cad::read_solids(source, ro);
             if (solids.size() > 1) {
@@ -207,7 +210,9 @@ void bind_mesh_cad(py::module_& m) {
           } catch (const Error& e) {
             // Raised with what the finished stages made (error.partial: this dict, its run's
             // stage the one that failed), for the front ends that show the stages.
-            raise_with(module, e, "partial", cad_run_dict(r.solids.empty() ? r.part : r.solids.back()));
+            py::dict partial = cad_run_dict(r.solids.empty() ? r.part : r.solids.back());
+            partial["warnings"] = warnings.lines();
+            raise_with(module, e, "partial", partial);
           }
           py::dict d = cad_run_dict(r.part);
           py::list solids, touching;
@@ -215,6 +220,7 @@ void bind_mesh_cad(py::module_& m) {
           for (const auto& [a, b] : r.touching) touching.append(py::make_tuple(a, b));
           d["solids"] = solids;
           d["touching"] = touching;
+          d["warnings"] = warnings.lines();
           return d;
         },
         py::arg("source"), py::arg("size") = defaults.mesh.size, py::arg("solid") = 0, py::arg("snap") = defaults.snap,

@@ -5,7 +5,10 @@
 
 #include <Eigen/Core>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "hexdom/common/error.h"
 #include "hexdom/pipeline/mesh_surface.h"
@@ -30,6 +33,17 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);
+/// The warnings (log level 1 and above) a core call says, in the order said; the log callback
+/// may be called from several threads.
+class Warnings {
+ public:
+  LogCallback callback();
+  std::vector<std::string> lines() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::string> lines_;
+};
 /// The text of the polycube_seconds= keyword's documentation, shared by mesh_surface and mesh_cad.
 extern const char* const kPolycubeSecondsDoc;
 extern const char* const kSizeBoundsDoc;

@@ -69,6 +69,19 @@ void register_errors(py::module_& m) {
   throw py::error_already_set();
 }
 
+LogCallback python::Warnings::callback() {
+  return [this](int level, const std::string& message) {
+    if (level < 1) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    lines_.push_back(message);
+  };
+}
+
+std::vector<std::string> python::Warnings::lines() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return lines_;
+}
+
 namespace {
 // The scopes opened by `with interrupt:` on each thread, innermost last.
 thread_local std::vector<std::unique_ptr<InterruptScope>> open_scopes;

@@ -110,14 +110,14 @@ class CrossingSearch {
     if (n > 0) build(0, n);
   }
 
-  // The first deep crossing or same-facing overlap, else the deepest shallow crossing (see
-  // Crossing::deep).
+  // The first deep crossing, else the deepest shallow one (see Crossing::deep); coplanar() then
+  // holds every pair lying on each other.
   std::optional<Crossing> find() {
     if (!nodes_.empty()) pairs(0, 0);
     return found_ ? found_ : shallow_;
   }
   int shallow_pairs() const { return shallow_count_; }
-  const std::vector<Crossing>& facing() const { return facing_; }
+  const std::vector<Crossing>& coplanar() const { return coplanar_; }
 
  private:
   struct Node {
@@ -224,10 +224,7 @@ class CrossingSearch {
         const bool same = (A[1] - A[0]).cross(A[2] - A[0]).dot((B[1] - B[0]).cross(B[2] - B[0])) > 0;
         Crossing c{std::min(s, t), std::max(s, t), *p, 0.0, same};
         c.coplanar = same ? Crossing::kSameWay : Crossing::kOpposite;
-        if (same)
-          found_ = c;
-        else
-          facing_.push_back(c);
+        coplanar_.push_back(c);
       }
       return;
     }
@@ -250,12 +247,13 @@ class CrossingSearch {
   double tol_ = 0;  // a touch: within 1e-6 of the diagonal
   std::optional<Crossing> found_, shallow_;
   int shallow_count_ = 0;
-  std::vector<Crossing> facing_;  // pairs lying on each other facing opposite ways
+  std::vector<Crossing> coplanar_;  // pairs lying on each other, in the order found
 };
 
-// Whether point p is inside the closed shell made of `tris`: crossings of a ray in a direction
-// no axis-aligned part lines up with, counted by parity.
-bool inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const Vec& p) {
+// Whether point p is inside the closed shell made of `tris` (1) or outside it (0): crossings of a
+// ray in a direction no axis-aligned part lines up with, counted by parity; -1 when the ray meets
+// the shell within `tol` of p (p lies on it: the parity says nothing).
+int inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const Vec& p, double tol) {
   const Vec d = Vec(0.8731, 0.3917, 0.2903).normalized();
   int crossings = 0;
   for (int f : tris) {
@@ -269,17 +267,19 @@ bool inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vecto
     const Vec q = s.cross(e1);
     const double v = d.dot(q) / det;
     if (v < 0 || u + v > 1) continue;
-    if (e2.dot(q) / det > 0) ++crossings;
+    const double t = e2.dot(q) / det;
+    if (std::abs(t) <= tol) return -1;
+    if (t > 0) ++crossings;
   }
-  return crossings % 2 == 1;
+  return crossings % 2;
 }
 
 // Whether shell `tris_i` lies inside shell `tris_j`: the vote of the ray test (inside) from its
-// first vertex and its extreme vertices along each axis. A shell inside another has every vertex
-// inside; one that touches another from outside may have a vertex on it, where the ray's parity
-// is either, but not all of them.
+// first vertex and its extreme vertices along each axis, those lying on `tris_j` (within `tol`)
+// abstaining. A shell inside another has every vertex inside; one touching another from outside,
+// or lying on it, has its vertices on it or outside.
 bool shell_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris_i,
-                  const std::vector<int>& tris_j) {
+                  const std::vector<int>& tris_j, double tol) {
   int pick[7] = {F(tris_i[0], 0), -1, -1, -1, -1, -1, -1};
   for (int f : tris_i)
     for (int c = 0; c < 3; ++c) {
@@ -290,8 +290,11 @@ bool shell_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std:
       }
     }
   int votes = 0;
-  for (int v : pick) votes += inside(V, F, tris_j, vertex(V, v)) ? 1 : 0;
-  return votes >= 4;
+  for (int v : pick) {
+    const int in = inside(V, F, tris_j, vertex(V, v), tol);
+    votes += in == 1 ? 1 : in == 0 ? -1 : 0;
+  }
+  return votes > 0;
 }
 
 // The pairs of solids (1-based) that `opposite` (pairs of triangles lying on each other facing
@@ -352,11 +355,14 @@ void check_closed_manifold(const SurfaceMesh& s) {
 }
 
 std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int* shallow_pairs,
-                                               std::vector<Crossing>* opposite) {
+                                               std::vector<Crossing>* coplanar) {
   CrossingSearch search(V, F);
   std::optional<Crossing> c = search.find();
   if (shallow_pairs) *shallow_pairs = search.shallow_pairs();
-  if (opposite) *opposite = search.facing();
+  if (coplanar) *coplanar = search.coplanar();
+  if (c && c->deep) return c;
+  for (const Crossing& k : search.coplanar())
+    if (k.coplanar == Crossing::kSameWay) return k;
   return c;
 }
 
@@ -368,26 +374,21 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
   }
   check_interrupt("check the surface");
   SurfaceCheck r;
-  std::vector<Crossing> opposite;
+  std::vector<Crossing> coplanar;
   if (opt.self_intersection) {
-    int shallow = 0;
-    const auto c = find_self_intersection(s.V, s.F, &shallow, &opposite);
-    if (c && c->coplanar == Crossing::kSameWay)
-      throw GeometryError(what + fmt(" lies on itself: triangles %.0f and %.0f lie on each other facing the same way",
-                                     c->a + 1.0, c->b + 1.0) +
-                          fmt(" at (%.6g, %.6g, %.6g); a solid's surface must not (overlapping bodies, or one written "
-                              "twice, must be united first)",
-                              c->point.x(), c->point.y(), c->point.z()));
-    if (c && !c->deep)
-      r.warnings.push_back(what + fmt(" folds over itself slightly: %.0f pairs of triangles cross by less than a tenth "
-                                      "of their edges (the deepest: triangles %.0f and %.0f",
-                                      static_cast<double>(shallow), c->a + 1.0, c->b + 1.0) +
-                           fmt(" at (%.6g, %.6g, %.6g)); meshed as it is", c->point.x(), c->point.y(), c->point.z()));
+    CrossingSearch search(s.V, s.F);
+    const auto c = search.find();
+    coplanar = search.coplanar();
     if (c && c->deep)
       throw GeometryError(what + fmt(" crosses itself: triangles %.0f and %.0f cross", c->a + 1.0, c->b + 1.0) +
                           fmt(" at (%.6g, %.6g, %.6g); a solid's surface must not (overlapping bodies written as one "
                               "surface must be united first)",
                               c->point.x(), c->point.y(), c->point.z()));
+    if (c)
+      r.warnings.push_back(what + fmt(" folds over itself slightly: %.0f pairs of triangles cross by less than a tenth "
+                                      "of their edges (the deepest: triangles %.0f and %.0f",
+                                      static_cast<double>(search.shallow_pairs()), c->a + 1.0, c->b + 1.0) +
+                           fmt(" at (%.6g, %.6g, %.6g)); meshed as it is", c->point.x(), c->point.y(), c->point.z()));
   }
   std::vector<int> shell;
   r.shells = triangle_components(triangle_adjacency(s.F), [](int, int) { return true; }, shell);
@@ -400,20 +401,34 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
   // Nesting: shells inside an even number of others bound a solid, the others are the cavities of
   // the shell one level further out that holds them.
   std::vector<int> depth(r.shells, 0), solid_of_shell(r.shells, -1);
+  const double tol = 1e-6 * (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm();
   std::vector<std::vector<char>> holds(r.shells, std::vector<char>(r.shells, 0));  // holds[j][i]: i inside j
-  if (r.shells > 1) {
-    for (int i = 0; i < r.shells; ++i) {
-      for (int j = 0; j < r.shells; ++j)
-        if (j != i && shell_inside(s.V, s.F, tris[i], tris[j])) {
-          holds[j][i] = 1;
-          ++depth[i];
-        }
-    }
+  for (int i = 0; r.shells > 1 && i < r.shells; ++i)
+    for (int j = 0; j < r.shells; ++j)
+      if (j != i && shell_inside(s.V, s.F, tris[i], tris[j], tol)) {
+        holds[j][i] = 1;
+        ++depth[i];
+      }
+  std::vector<char> wrong(r.shells);  // facing the wrong way: turned around below
+  for (int i = 0; i < r.shells; ++i) wrong[i] = depth[i] % 2 == 1 ? volume[i] > 0 : volume[i] < 0;
+  // Triangles lying on each other, judged with every shell facing as it will: the same way is a
+  // volume covered twice; opposite ways, solids that touch (or a wall of no thickness).
+  std::vector<Crossing> opposite;
+  for (const Crossing& c : coplanar) {
+    if ((c.coplanar == Crossing::kSameWay) == (wrong[shell[c.a]] == wrong[shell[c.b]]))
+      throw GeometryError(what + fmt(" lies on itself: triangles %.0f and %.0f lie on each other facing the same way",
+                                     c.a + 1.0, c.b + 1.0) +
+                          fmt(" at (%.6g, %.6g, %.6g); a solid's surface must not (overlapping bodies, or one written "
+                              "twice, must be united first)",
+                              c.point.x(), c.point.y(), c.point.z()));
+    opposite.push_back(c);
+  }
+  if (r.shells > 1 && !opt.several_solids) {
     const int outer = static_cast<int>(std::count(depth.begin(), depth.end(), 0));
-    if (outer > 1 && !opt.several_solids)
+    if (outer > 1)
       throw GeometryError(what + fmt(" has %.0f separate closed shells (solids), none inside another: mesh each solid on "
                                      "its own", static_cast<double>(outer)));
-    if (*std::max_element(depth.begin(), depth.end()) > 1 && !opt.several_solids)
+    if (*std::max_element(depth.begin(), depth.end()) > 1)
       throw GeometryError(what + " has a shell inside a cavity (a solid inside another's hole): mesh each solid on its own");
   }
   for (int i = 0; i < r.shells; ++i)
@@ -431,8 +446,7 @@ SurfaceCheck check_solid_surface(SurfaceMesh& s, const std::string& what, const 
   for (int i = 0; i < r.shells; ++i) {
     const bool cavity = depth[i] % 2 == 1;
     if (cavity) ++r.cavities;
-    const bool wrong = cavity ? volume[i] > 0 : volume[i] < 0;
-    if (!wrong) continue;
+    if (!wrong[i]) continue;
     for (int f : tris[i]) std::swap(s.F(f, 1), s.F(f, 2));
     ++r.flipped_shells;
     r.warnings.push_back(what + ": " +

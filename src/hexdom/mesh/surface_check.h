@@ -39,12 +39,13 @@ struct Crossing {
 /// corner within that distance of the other's plane, an overlap of at least 1e-3 of the smaller's
 /// area); found over a bounding-box tree: n log n for a surface without crossings. None when the
 /// surface does not cross itself. Touching at an edge or a point and neighbouring triangles are not
-/// counted. Returns the first deep crossing or same-way overlap found, else the deepest shallow
-/// crossing; `shallow_pairs` receives how many shallow crossings there are (all of them when none is
-/// deep), `opposite` the pairs lying on each other facing opposite ways (touching solids). (V, F)
-/// must pass check_closed_manifold.
+/// counted. Returns the first deep crossing found, else the first pair lying on each other facing
+/// the same way (as the triangles are written), else the deepest shallow crossing; `shallow_pairs`
+/// receives how many shallow crossings there are (all of them when none is deep), `coplanar` every
+/// pair lying on each other (Crossing::coplanar: facing the same way or opposite ways). (V, F) must
+/// pass check_closed_manifold.
 std::optional<Crossing> find_self_intersection(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                               int* shallow_pairs = nullptr, std::vector<Crossing>* opposite = nullptr);
+                                               int* shallow_pairs = nullptr, std::vector<Crossing>* coplanar = nullptr);
 
 struct SurfaceCheck {
   int shells = 0;          ///< closed shells (triangles connected through edges)
@@ -74,7 +75,8 @@ struct SurfaceCheckOptions {
 /// GeometryError naming the cause: an open or non-manifold edge, an edge whose two triangles
 /// disagree on orientation, two triangles crossing deeply (Crossing::deep: overlapping bodies) or
 /// lying on each other facing the same way, with a point; one solid's triangles lying on each other
-/// facing opposite ways (a wall of no thickness); and unless options.several_solids shells that are
+/// facing opposite ways (a wall of no thickness), each judged with every shell facing as it will
+/// once turned around; and unless options.several_solids shells that are
 /// separate solids ("2 separate closed shells (solids)...") or nested more than one deep. A surface
 /// that only folds over itself slightly is taken with a warning, and so are solids that touch
 /// (SurfaceCheck::touching). `what` prefixes the messages (a file name, "the tessellation").

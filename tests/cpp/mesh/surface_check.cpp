@@ -222,6 +222,14 @@ TEST(SurfaceCheck, SolidsTouchingAlongAFaceAreWarned) {
   EXPECT_NE(r.warnings[0].find("parts.stl: solids 1 and 2 touch"), std::string::npos) << r.warnings[0];
   SurfaceMesh edge = join(box({0, 0, 0}, {10, 10, 10}), box({10, 10, 0}, {20, 20, 10}));
   EXPECT_TRUE(check_solid_surface(edge, "parts.stl", opt).touching.empty());
+  // The second box inside out: its face on x = 10 faces the first's way as written, the opposite
+  // way once turned around, as the check judges it.
+  reverse(b);
+  SurfaceMesh inside_out = join(box({0, 0, 0}, {10, 10, 10}), b);
+  const auto t = check_solid_surface(inside_out, "parts.stl", opt);
+  EXPECT_EQ(t.flipped_shells, 1);
+  ASSERT_EQ(t.touching.size(), 1u);
+  EXPECT_EQ(t.warnings.size(), 2u);
 }
 
 TEST(SurfaceCheck, AWallOfNoThicknessIsRefused) {
