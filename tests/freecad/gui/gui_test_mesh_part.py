@@ -25,6 +25,10 @@
 6. Cancel inside a long core call: Mesh Part on a sphere at a fine size, Cancel clicked 1.5 s into
    the pipeline (the core then meshes on two threads): Mesh Part returns within 3 s of the click
    (the latency is printed), with no message box, and the Surface stays valid.
+7. Mesh Part on an STL opened in FreeCAD (Mesh.insert: a mesh object) holding two boxes that touch
+   along a face, one of them inside out: the toolbar action is enabled with the mesh object
+   selected, no message box, four objects, the Mesh's cells in two regions (one per box) with no
+   inverted cell (mesh_part_stl.png).
 Prints "GUI TEST PASSED" and exits 0, or lists the failures and exits 1; a watchdog exits 2.
 """
 
@@ -438,6 +442,58 @@ def run():
     surfaces = [o for o in doc.Objects if getattr(getattr(o, "Proxy", None), "Type", "") == "HexDom::Surface"]
     check(len(surfaces) == 1 and "Invalid" not in surfaces[0].State,
           "the Surface stays valid (empty: the pipeline was stopped before it filled it)")
+    FreeCAD.closeDocument(doc.Name)
+    mesh_object(action, errors)
+
+
+def box_facets(lo, hi, reverse=False):
+    """A box's 12 triangles, facing out (or in), as STL facets."""
+    tris = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
+            (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
+    corners = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2])
+               for i in range(8)]
+    return [[corners[k] for k in ((a, c, b) if reverse else (a, b, c))] for a, b, c in tris]
+
+
+def mesh_object(action, errors):
+    """7. Mesh Part on an STL opened in FreeCAD."""
+    import FreeCAD
+    import FreeCADGui
+    import Mesh
+    path = os.path.join(g.ARTIFACTS, "two_boxes.stl")
+    lines = ["solid boxes"]
+    for tri in box_facets((0, 0, 0), (20, 20, 20)) + box_facets((20, 5, 5), (30, 15, 15), reverse=True):
+        lines += ["facet normal 0 0 0", "outer loop"] + ["vertex {} {} {}".format(*p) for p in tri]
+        lines += ["endloop", "endfacet"]
+    with open(path, "w") as f:
+        f.write("\n".join(lines + ["endsolid boxes"]) + "\n")
+    doc = FreeCAD.newDocument("MeshPartStl")
+    Mesh.insert(path, doc.Name)
+    doc.recompute()
+    opened = [o for o in doc.Objects if o.TypeId.startswith("Mesh::")]
+    check(len(opened) == 1, "the STL opens as one mesh object")
+    if not opened:
+        return
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(opened[0])
+    g.process_events()
+    check(action.isEnabled(), "Mesh part is enabled with a mesh object selected")
+    errors.clear()
+    action.trigger()
+    g.process_events()
+    check(not errors, "no message box on the STL: {}".format(errors))
+    meshes = [o for o in doc.Objects if getattr(getattr(o, "Proxy", None), "Type", "") == "HexDom::Mesh"]
+    check(len(meshes) == 1 and len([o for o in doc.Objects if hasattr(getattr(o, "Proxy", None), "Type")]) == 4,
+          "Mesh part on the mesh object adds four objects")
+    if len(meshes) == 1:
+        mesh = meshes[0]
+        print("  STL: {} hex, {} prism, {} tet, regions {}".format(
+            mesh.HexCount, mesh.PrismCount, mesh.TetCount, sorted(set(mesh.Region))))
+        check(mesh.HexCount > 0 and mesh.InvertedCount == 0 and sorted(set(mesh.Region)) == [1, 2],
+              "the mesh has both boxes, each its own region, no inverted cell")
+        path = screenshot("mesh_part_stl.png", [mesh])
+        drawn, _ = colour_shares(path, {})
+        check(drawn > 0.05, "the STL's mesh shows")
     FreeCAD.closeDocument(doc.Name)
 
 
