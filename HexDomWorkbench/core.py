@@ -150,6 +150,18 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
                                   structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
+def mesh_structure(surface, structure, level=None, improve=True, threads=0):
+    """The polycube path's generation and improvement on a polycube ``structure`` (a Mesh of hex,
+    prism and tet blocks) over its patch Surface ``surface`` at ``level`` (None: `hexdom mesh`'s),
+    as `hexdom mesh` runs them after building the polycube (pipeline::generate_and_improve): the
+    same options, one call. Returns a MeshRun (mesh, generated, quality, generated_quality,
+    seconds, level; no labels nor polycube)."""
+    extra = {} if level is None else {"level": int(level)}
+    return _mesh_run(_hexdom.mesh_structure(surface.V, surface.F, surface.patch, structure.V,
+                                            structure.cells, structure.types, improve=bool(improve),
+                                            threads=int(threads), **extra))
+
+
 def check_surface(surface, name="the surface", self_intersection=True):
     """The checks every meshing path makes on its input first: closed and 2-manifold, consistently
     oriented, no two triangles crossing or lying on each other, one solid (cavities nested one

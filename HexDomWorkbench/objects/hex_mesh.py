@@ -5,10 +5,11 @@ ids in the Region integer list; quality figures are read-only properties refresh
 recompute. Meshing stages plug in through ``HexMesh.generate``, which returns a new core.Mesh
 that ``execute`` stores:
 
-- with Segmentation and Polycube linked: core.generate at Level (2^Level cells per block edge),
-  then core.improve (boundary nodes kept on the segmented surface) when Improve is true; an
-  automatic Polycube brings its own patch surface (the segmentation cut along its grid), which
-  both stages then use instead of the Segmentation's patches;
+- with Segmentation and Polycube linked: the pipeline's generation at Level (2^Level cells per
+  block edge) and, when Improve is true, its improvement (boundary nodes kept on the segmented
+  surface), one core call with `hexdom mesh`'s options (core.mesh_structure); an automatic
+  Polycube brings its own patch surface (the segmentation cut along its grid), which both stages
+  then use instead of the Segmentation's patches;
 - when the Segmentation's Surface tessellates a Part and the core has snap_to_brep (SnapToCAD
   true), the final boundary nodes are moved onto the CAD faces, so that FEM constraints on those
   faces find them (BrepDistance reports the largest distance left);
@@ -20,7 +21,7 @@ that ``execute`` stores:
   for the missing link). MeshingPath says which path made the mesh, PolycubeNote why the core's
   automatic choice tried the overlay (set by Mesh Part);
 - Pipeline (Mesh Part): recompute runs `hexdom mesh`'s pipeline once (core.mesh_part on the
-  Part the Surface tessellates, with Size, Level, Method, Improve, SnapToCAD and PolycubeSeconds:
+  Part the Surface tessellates, core.mesh_surface on the triangles of a mesh object or a file it reads, with Size, Level, Method, Improve, SnapToCAD and PolycubeSeconds:
   the options of `hexdom mesh --size --level --method --no-improve --no-snap --polycube-seconds`) and fills the Surface, the
   Segmentation and the Polycube with what it made (part_meshing.fill_mesh_part; they hold it,
   FromPipeline). Once one of them is edited (an input property, a patch or block edit) the Mesh
@@ -254,13 +255,12 @@ class HexMesh(BaseHexDomObject):
             raise ValueError("{}: Level must be 0 or more".format(obj.Label))
         snap = snap_source(obj)
         second = element_order(obj) == 2
-        with Progress("Meshing " + obj.Label,
-                          1 + bool(obj.Improve) + bool(snap) + second) as bar:
-            mesh = bar.run("generate", core.generate, surface, structure, level=obj.Level)
-            bar.step("generated {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
-            if obj.Improve:
-                mesh = bar.run("improve", core.improve, mesh, surface, max_edge_ratio=core.TARGET_EDGE_RATIO)
-                bar.step("improved")
+        with Progress("Meshing " + obj.Label, 1 + bool(snap) + second) as bar:
+            # The pipeline's own stage (generate, then improve), with its options.
+            run = bar.run("generate and improve" if obj.Improve else "generate", core.mesh_structure,
+                          surface, structure, level=obj.Level, improve=bool(obj.Improve))
+            mesh = run.mesh
+            bar.step("{hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             info = None
             if snap:
                 brep, cad_surface = snap

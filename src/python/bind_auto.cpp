@@ -244,6 +244,36 @@ void bind_auto(py::module_& m) {
         "Raises GeometryError naming an edge, or two crossing triangles and a point (1-based), or the separate\n"
         "solids; `name` prefixes the messages.");
 
+  m.def("mesh_structure",
+        [](const RefV& V, const RefF& F, const RefI& patch, const Eigen::MatrixXd& structure_V, const CellArray& structure_cells,
+           const Eigen::VectorXi& structure_types, int level, bool improve, int relax_sweeps, int threads) {
+          const mesh::SurfaceMesh patches = surface_of(V, F, patch);
+          const mesh::Mesh structure = make_mesh(structure_V, structure_cells, structure_types, std::nullopt);
+          pipeline::MeshSurfaceOptions opt;
+          opt.level = level;
+          opt.improve = improve;
+          opt.relax_sweeps = relax_sweeps;
+          opt.threads = threads;
+          Warnings warnings;
+          opt.log = warnings.callback();
+          pipeline::MeshSurfaceRun r;
+          {
+            py::gil_scoped_release nogil;
+            pipeline::generate_and_improve(patches, structure, opt, r);
+          }
+          py::dict d = run_dict(r);
+          d["warnings"] = warnings.lines();
+          return d;
+        },
+        py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("structure_V"), py::arg("structure_cells"),
+        py::arg("structure_types"), py::arg("level") = pipeline::MeshSurfaceOptions{}.level,
+        py::arg("improve") = pipeline::MeshSurfaceOptions{}.improve,
+        py::arg("relax_sweeps") = pipeline::MeshSurfaceOptions{}.relax_sweeps, py::arg("threads") = 0,
+        "The polycube path's generation and improvement stages (pipeline::generate_and_improve) on a polycube\n"
+        "structure (V, cells, types of its blocks) over its patch surface (V, F, patch), with `hexdom mesh`'s\n"
+        "options: what mesh_surface runs after autopolycube. Returns mesh_surface's dict (mesh, generated,\n"
+        "quality, generated_quality, seconds, level; no labels nor polycube) and warnings.");
+
   const py::handle module = m;
   using pipeline::method_name;
   const pipeline::MeshSurfaceOptions defaults;  // the keywords' defaults: `hexdom mesh`'s

@@ -417,6 +417,24 @@ def test_core_mesh_surface_runs_every_stage(core):
     assert sj.min() == pytest.approx(run.quality["hex"]["sj_min"], abs=1e-9)
 
 
+def test_core_mesh_structure_is_the_pipeline_s_generation_and_improvement(core):
+    """core.mesh_structure on the polycube mesh_surface kept (its structure, patch surface and
+    level) gives the pipeline's generated and improved meshes exactly: the stage the HexDom Mesh
+    calls when it is built from its stages."""
+    s = core.read_surface(os.path.join(support.REPO, "examples", "data", "lbracket_patches.k"))
+    run = core.mesh_surface(s, method="polycube", polycube_seconds=0)
+    assert run.method == "polycube" and run.polycube.structure.count(core.HEX) > 0
+    again = core.mesh_structure(run.polycube.patches, run.polycube.structure, level=run.level)
+    for a, b in ((run.generated, again.generated), (run.mesh, again.mesh)):
+        assert np.array_equal(a.cells, b.cells) and np.array_equal(a.types, b.types)
+        assert np.array_equal(a.V, b.V)
+    assert again.quality["hex"]["sj_min"] == run.quality["hex"]["sj_min"]
+    assert again.level == run.level
+    # Without the improvement: the generated mesh as it is.
+    plain = core.mesh_structure(run.polycube.patches, run.polycube.structure, level=run.level, improve=False)
+    assert np.array_equal(plain.mesh.V, run.generated.V)
+
+
 def test_core_mesh_surface_takes_the_method(core):
     """HexDomWorkbench.core passes method= through and reports the path: the rockerarm with no label
     repair defeats the polycube ("polycube" raises), "auto" gives the overlay grid's mesh with the

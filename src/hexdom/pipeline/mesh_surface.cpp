@@ -564,6 +564,18 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
            : std::string()) +
       fmt(", worst block SJ %.3f, in %.2f s", r.polycube.min_block_quality, r.seconds[1]));
 
+  generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
+  r.keep_widths = opt.polycube.keep_widths;
+  r.collapse_apexes = opt.polycube.collapse_apexes;
+  r.stage = "done";
+}
+
+}  // namespace
+
+void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const MeshSurfaceOptions& opt,
+                          MeshSurfaceRun& r) {
+  auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  const LogCallback inner = opt.verbose ? opt.log : LogCallback();
   r.stage = "generate";
   opt.deadline.check("generate");
   auto t = Clock::now();
@@ -572,7 +584,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   go.relax_sweeps = opt.relax_sweeps;
   go.threads = opt.threads;
   go.log = inner;
-  r.generated = generation::generate(r.polycube.patches, r.polycube.structure, go);
+  r.generated = generation::generate(patches, structure, go);
   r.generated_quality = quality::quality_report(r.generated);
   r.seconds[2] = since(t);
   say(fmt("generate: %.0f cells, ", r.generated.num_cells()) + worst_by_type(r.generated_quality) +
@@ -584,7 +596,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   if (opt.improve) {
     optimize::ImproveOptions io = opt.improvement;
     io.max_edge_ratio = opt.target_edge_ratio;
-    io.surface = r.polycube.patches;
+    io.surface = patches;
     io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
     io.threads = opt.threads;
     io.log = inner;
@@ -602,12 +614,8 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
       (r.quality.hex.count > 0 ? fmt(", mean hex %.3f", r.quality.hex.sj_mean) : std::string()) +
       fmt(", in %.2f s", r.seconds[3]) + (stopped ? " (stopped early: time budget)" : ""));
   r.level = opt.level;
-  r.keep_widths = opt.polycube.keep_widths;
-  r.collapse_apexes = opt.polycube.collapse_apexes;
   r.stage = "done";
 }
-
-}  // namespace
 
 std::string to_text(const MeshSurfaceRun& r) {
   if (!r.solids.empty()) {

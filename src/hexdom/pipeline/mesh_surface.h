@@ -241,6 +241,16 @@ double element_size(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& 
 MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& options = {},
                             MeshSurfaceRun* progress = nullptr);
 
+/// The polycube path's last stages on a polycube structure (its blocks `structure` on the patch
+/// surface `patches`, made by autopolycube or built by hand), as mesh_surface runs them on the
+/// structure it made: generate (opt.level, relax_sweeps, threads), then with opt.improve the
+/// improvement (opt.improvement with `patches` as the surface, target_edge_ratio, deadline: it
+/// stops early with its best so far). Sets r.generated, generated_quality, mesh, quality,
+/// seconds[2..3], level, budget_passed and stage ("done"; "generate" or "improve" when it throws).
+/// Logs one line per stage to opt.log.
+void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const MeshSurfaceOptions& opt,
+                          MeshSurfaceRun& r);
+
 /// The solids' runs `runs` (each made by mesh_surface on one solid) as one run (see
 /// MeshSurfaceRun::solids), moved into `r`.
 void merge_solid_runs(std::vector<MeshSurfaceRun> runs, MeshSurfaceRun& r);
