@@ -184,17 +184,7 @@ def run_pipeline(objs, store_mesh=None, run=None):
     except Cancelled:
         raise
     except core.Error as e:
-        # The stages that finished are filled; the Mesh fails naming the stage that did not.
-        partial = getattr(e, "run", None)
-        stage = STAGE_OF_CORE.get(getattr(e, "stage", ""), "generate and improve")
-        if partial is not None and surface is not None:
-            partial.surface, partial.tessellation_size = surface, size
-        if partial is not None and partial.surface is not None and len(partial.surface.F):
-            fill_mesh_part(objs, partial, stages_only=True)
-        else:
-            stage = "tessellate"
-        mesh.Proxy.failed_stage = stage
-        raise type(e)("{}: {}".format(stage, e)) from e
+        raise failed(objs, e, surface, size, "tessellate") from e
     if surface is not None:
         result.surface, result.tessellation_size = surface, size
     say_warnings(mesh, result)
@@ -225,21 +215,35 @@ def run_surface_pipeline(objs, triangles, store_mesh=None, run=None):
     except Cancelled:
         raise
     except core.Error as e:
-        partial = getattr(e, "run", None)
-        stage = STAGE_OF_CORE.get(getattr(e, "stage", ""), "generate and improve")
-        if partial is not None and getattr(e, "stage", "") not in ("", "check"):
-            partial.surface = surface
-            fill_mesh_part(objs, partial, stages_only=True)
-        else:
-            stage = "check the input"  # the input checks refused the triangles
-        mesh.Proxy.failed_stage = stage
-        raise type(e)("{}: {}".format(stage, e)) from e
+        raise failed(objs, e, surface, 0.0, "check the input") from e
     result.surface = surface
     if result.solids > 1:
         result.labels = None  # (the solids' labels, solid by solid: not the Surface's order)
     say_warnings(mesh, result)
     fill_mesh_part(objs, result, store_mesh=store_mesh)
     return result
+
+
+def failed(objs, error, surface, size, first_stage):
+    """The core.Error ``error`` of a pipeline run, prefixed with the stage it stopped at, for the
+    Mesh to raise: the stages that finished are filled (fill_mesh_part, the Mesh left alone) and
+    the Mesh marked failed at that stage (Proxy.failed_stage); ``first_stage`` names it when no
+    stage finished or the input checks refused the triangles (shown in the Surface then).
+    ``surface`` (and its ``size``): the triangles meshed, when the run does not carry them
+    (FreeCAD's tessellation, a mesh object's triangles)."""
+    partial = getattr(error, "run", None)
+    core_stage = getattr(error, "stage", "")
+    stage = STAGE_OF_CORE.get(core_stage, "generate and improve")
+    if partial is not None and surface is not None:
+        partial.surface, partial.tessellation_size = surface, size
+    if partial is not None and partial.surface is not None and len(partial.surface.F):
+        fill_mesh_part(objs, partial, stages_only=True)  # (refused by the checks: the triangles shown)
+    else:
+        stage = first_stage
+    if core_stage == "check":
+        stage = first_stage
+    objs["mesh"].Proxy.failed_stage = stage
+    return type(error)("{}: {}".format(stage, error))
 
 
 def say_warnings(mesh, result):

@@ -124,6 +124,8 @@ def test_boxes_lying_on_each_other_in_a_mesh_object_are_refused(doc):
         hexdom.mesh_part(doc, part, size=2.5)
     assert info.value.stage == "check the input"
     assert objs_mesh_is_empty(info.value.objects)
+    # The Surface shows the triangles refused, for the user to find the two named.
+    assert info.value.objects["surface"].TriangleCount == 24
 
 
 def objs_mesh_is_empty(objs):
