@@ -38,8 +38,7 @@ def held_by_pipeline(objs):
     surface = objs.get("surface")
     part = getattr(surface, "Source", None)
     return (surface is not None and objs.get("segmentation") is not None
-            and (getattr(part, "Shape", None) is not None
-                 or tessellation.triangle_input(surface) is not None)
+            and (getattr(part, "Shape", None) is not None or tessellation.takes_triangles(surface))
             and all(getattr(o, "FromPipeline", False) for o in stages(objs)))
 
 
@@ -151,9 +150,8 @@ def run_pipeline(objs, store_mesh=None, run=None):
     the GUI; Cancel raises progress.Cancelled), or in ``run``. Inverted cells left are kept and
     counted (the Mesh's InvertedCount). Returns the core.MeshRun."""
     mesh, surface_obj = objs["mesh"], objs["surface"]
-    triangles = tessellation.triangle_input(surface_obj)
-    if triangles is not None:
-        return run_surface_pipeline(objs, triangles, store_mesh, run)
+    if tessellation.takes_triangles(surface_obj):
+        return run_surface_pipeline(objs, tessellation.triangle_input(surface_obj), store_mesh, run)
     part = surface_obj.Source
     shape = part.Shape
     if shape is None or shape.isNull() or not shape.Solids:

@@ -134,6 +134,12 @@ def mesh_feature_surface(obj):
     return core.Surface(V, F, np.ones(len(F), np.int32))
 
 
+def takes_triangles(obj):
+    """True when the HexDom Surface ``obj`` takes triangles as they are (its Source a mesh object,
+    or no Source and a SourceFile) rather than tessellating a Part."""
+    return is_mesh_feature(obj.Source) if obj.Source is not None else bool(obj.SourceFile)
+
+
 def triangle_input(obj):
     """(core.Surface, name for messages, Method) of the triangles the HexDom Surface ``obj`` takes
     as they are, before any check: its Source's when that is a mesh object, else its SourceFile's;
