@@ -144,13 +144,11 @@ def triangle_input(obj):
     """(core.Surface, name for messages, Method) of the triangles the HexDom Surface ``obj`` takes
     as they are, before any check: its Source's when that is a mesh object, else its SourceFile's;
     None when it tessellates a Part or has neither."""
+    if not takes_triangles(obj):
+        return None
     if obj.Source is not None:
-        if not is_mesh_feature(obj.Source):
-            return None
         return mesh_feature_surface(obj.Source), obj.Source.Label, "mesh"
-    if obj.SourceFile:
-        return core.read_surface(obj.SourceFile), os.path.basename(obj.SourceFile), "file"
-    return None
+    return core.read_surface(obj.SourceFile), os.path.basename(obj.SourceFile), "file"
 
 
 def is_surface(obj):

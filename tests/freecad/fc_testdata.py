@@ -139,3 +139,27 @@ def island(editor, patch_id=5):
     t0 = min(inner, key=lambda t: np.linalg.norm(editor.V[editor.F[t]].mean(axis=0) - centre))
     ring = np.unique(np.concatenate([editor.vertex_triangles(v) for v in editor.F[t0]]))
     return np.array([t for t in ring.tolist() if t in set(inner)])
+
+
+# A box's 12 triangles, counter-clockwise seen from outside, over corners i = x + 2y + 4z.
+BOX_TRIANGLES = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
+                 (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
+
+
+def box_triangles(lo, hi, reverse=False):
+    """The box [lo, hi] as 12 triangles of corner tuples, facing out (or in, ``reverse``)."""
+    corners = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2])
+               for i in range(8)]
+    tris = [(a, c, b) if reverse else (a, b, c) for a, b, c in BOX_TRIANGLES]
+    return [tuple(corners[k] for k in t) for t in tris]
+
+
+def write_stl(path, tris):
+    """An ASCII STL of the triangles ``tris`` (corner tuples); returns the path as a string."""
+    lines = ["solid t"]
+    for tri in tris:
+        lines += ["facet normal 0 0 0", "outer loop"]
+        lines += ["vertex {!r} {!r} {!r}".format(*map(float, p)) for p in tri] + ["endloop", "endfacet"]
+    with open(str(path), "w") as f:
+        f.write("\n".join(lines + ["endsolid t"]) + "\n")
+    return str(path)

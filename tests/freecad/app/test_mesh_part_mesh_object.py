@@ -22,6 +22,8 @@ import Mesh
 import HexDomWorkbench as hexdom
 from HexDomWorkbench import api
 
+import fc_testdata
+
 _here = os.environ.get("HEXDOM_FC_TEST_DIR") or os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(_here, "app"))
@@ -31,15 +33,9 @@ from test_mesh_part_prisms import _verdict_of  # noqa: E402  (FemMesh -> VTK gri
 
 CLI = os.environ.get("HEXDOM_CLI", "")
 
-BOX_TRIANGLES = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
-                 (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
-
-
 def _box(lo, hi, reverse=False):
-    corners = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2])
-               for i in range(8)]
-    tris = [(a, c, b) if reverse else (a, b, c) for a, b, c in BOX_TRIANGLES]
-    return [[FreeCAD.Vector(*corners[k]) for k in t] for t in tris]
+    """fc_testdata's box as FreeCAD facets."""
+    return [[FreeCAD.Vector(*p) for p in t] for t in fc_testdata.box_triangles(lo, hi, reverse)]
 
 
 def _mesh_object(doc, facets, name):

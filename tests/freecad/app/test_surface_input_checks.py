@@ -12,24 +12,9 @@ import FreeCAD
 from HexDomWorkbench import api, make
 from HexDomWorkbench.objects import tessellation
 
-BOX_TRIANGLES = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
-                 (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
+import fc_testdata
 
-
-def _box(lo, hi, reverse=False):
-    corners = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2])
-               for i in range(8)]
-    tris = [(a, c, b) if reverse else (a, b, c) for a, b, c in BOX_TRIANGLES]
-    return [tuple(corners[k] for k in t) for t in tris]
-
-
-def _write_stl(path, tris):
-    lines = ["solid t"]
-    for tri in tris:
-        lines += ["facet normal 0 0 0", "outer loop"]
-        lines += ["vertex {} {} {}".format(*p) for p in tri] + ["endloop", "endfacet"]
-    path.write_text("\n".join(lines + ["endsolid t"]) + "\n")
-    return str(path)
+_box, _write_stl = fc_testdata.box_triangles, fc_testdata.write_stl
 
 
 def _volume(obj):

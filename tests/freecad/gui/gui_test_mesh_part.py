@@ -446,27 +446,15 @@ def run():
     mesh_object(action, errors)
 
 
-def box_facets(lo, hi, reverse=False):
-    """A box's 12 triangles, facing out (or in), as STL facets."""
-    tris = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
-            (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
-    corners = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2])
-               for i in range(8)]
-    return [[corners[k] for k in ((a, c, b) if reverse else (a, b, c))] for a, b, c in tris]
-
-
 def mesh_object(action, errors):
     """7. Mesh Part on an STL opened in FreeCAD."""
     import FreeCAD
     import FreeCADGui
     import Mesh
-    path = os.path.join(g.ARTIFACTS, "two_boxes.stl")
-    lines = ["solid boxes"]
-    for tri in box_facets((0, 0, 0), (20, 20, 20)) + box_facets((20, 5, 5), (30, 15, 15), reverse=True):
-        lines += ["facet normal 0 0 0", "outer loop"] + ["vertex {} {} {}".format(*p) for p in tri]
-        lines += ["endloop", "endfacet"]
-    with open(path, "w") as f:
-        f.write("\n".join(lines + ["endsolid boxes"]) + "\n")
+    import fc_testdata
+    path = fc_testdata.write_stl(os.path.join(g.ARTIFACTS, "two_boxes.stl"),
+                                 fc_testdata.box_triangles((0, 0, 0), (20, 20, 20))
+                                 + fc_testdata.box_triangles((20, 5, 5), (30, 15, 15), reverse=True))
     doc = FreeCAD.newDocument("MeshPartStl")
     Mesh.insert(path, doc.Name)
     doc.recompute()
