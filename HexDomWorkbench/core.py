@@ -150,16 +150,19 @@ def generate(surface, structure, level=2, relax_sweeps=10, snap_tolerance=1e-4, 
                                   structure.types, level, relax_sweeps, snap_tolerance, untangle, threads))
 
 
-def mesh_structure(surface, structure, level=None, improve=True, threads=0):
+def mesh_structure(surface, structure, level=None, improve=True, threads=0, frame=None, stretch=None):
     """The polycube path's generation and improvement on a polycube ``structure`` (a Mesh of hex,
     prism and tet blocks) over its patch Surface ``surface`` at ``level`` (None: `hexdom mesh`'s),
     as `hexdom mesh` runs them after building the polycube (pipeline::generate_and_improve): the
-    same options, one call. Returns a MeshRun (mesh, generated, quality, generated_quality,
-    seconds, level; no labels nor polycube)."""
+    same options, one call. stretch (with frame: MeshRun.stretch and frame["rotation"]): both
+    meshed stretched so, as the pipeline meshes a thin part, the mesh mapped back. Returns a
+    MeshRun (mesh, generated, quality, generated_quality, seconds, level; no labels nor
+    polycube)."""
     extra = {} if level is None else {"level": int(level)}
     return _mesh_run(_hexdom.mesh_structure(surface.V, surface.F, surface.patch, structure.V,
                                             structure.cells, structure.types, improve=bool(improve),
-                                            threads=int(threads), **extra))
+                                            threads=int(threads), frame=_frame_arg(frame),
+                                            stretch=_stretch_arg(stretch), **extra))
 
 
 def check_surface(surface, name="the surface", self_intersection=True):
@@ -223,22 +226,22 @@ class Segmentation(Surface):
 
 def segment(surface, edge_weight=0.1, respect_faces=None, manual=None, classical_sweeps=50,
             edge_sweeps=200, min_moves=3, max_drift=10.0, ring=2, planar_angle=1.0,
-            face_majority=0.9, frame=None):
+            face_majority=0.9, frame=None, stretch=None):
     """Polycube segmentation of a closed Surface: CVT of the triangle normals with the generators
     +-X, +-Y, +-Z, classical energy first, then the edge-weighted energy (lambda = edge_weight)
     that removes zig-zag boundaries. respect_faces: None = when surface.patch has more than one id
     (CAD faces, e.g. from tessellation): planar faces keep one label and boundaries follow CAD edges
     where they can. manual: a path to the original's override file ("triangle label", 0-based) or
     (triangle, label 1..6) rows. frame: a 3 x 3 rotation (cube_frame()["rotation"], MeshRun.frame):
-    the labels name its axes. Returns a Segmentation."""
+    the labels name its axes. stretch: factors along the frame's axes (MeshRun.stretch): the surface
+    is segmented stretched so, as the pipeline segments a thin part. Returns a Segmentation."""
     if isinstance(manual, (str, os.PathLike)):
         manual = read_manual_labels(manual)
     if manual is not None:
         manual = np.asarray(manual, np.int32).reshape(-1, 2)
     r = _hexdom.segment(surface.V, surface.F, surface.patch, edge_weight, classical_sweeps,
                         edge_sweeps, min_moves, max_drift, ring, respect_faces, planar_angle,
-                        face_majority, manual,
-                        None if frame is None else np.asarray(frame, np.float64).reshape(3, 3))
+                        face_majority, manual, _frame_arg(frame), _stretch_arg(stretch))
     info = {k: v for k, v in r.items() if k not in ("label", "classical", "generators")}
     return Segmentation(surface.V, surface.F, r["label"], r["classical"], r["generators"], info)
 
@@ -262,14 +265,23 @@ def nearest_label(normals):
     return _hexdom.nearest_label(np.asarray(normals, np.float64).reshape(-1, 3)).astype(np.int32)
 
 
-def labels_from_normals(V, F, patch=None, frame=None):
+def _frame_arg(frame):
+    return None if frame is None else np.asarray(frame, np.float64).reshape(3, 3)
+
+
+def _stretch_arg(stretch):
+    return None if stretch is None else np.asarray(stretch, np.float64).reshape(3)
+
+
+def labels_from_normals(V, F, patch=None, frame=None, stretch=None):
     """Label 1..6 per triangle: the axis nearest its normal, or with ``patch`` the axis nearest the
     area-weighted normal of the triangle's patch (one label per patch). frame: a 3 x 3 rotation whose
-    axes the labels name (x_frame = frame @ x); None: the model's."""
+    axes the labels name (x_frame = frame @ x); None: the model's. stretch: factors along the
+    frame's axes (MeshRun.stretch): the normals of the surface stretched so."""
     return _hexdom.labels_from_normals(
         np.asarray(V, np.float64), np.asarray(F, np.int32).reshape(-1, 3),
-        None if patch is None else np.asarray(patch, np.int32),
-        None if frame is None else np.asarray(frame, np.float64).reshape(3, 3)).astype(np.int32)
+        None if patch is None else np.asarray(patch, np.int32), _frame_arg(frame),
+        _stretch_arg(stretch)).astype(np.int32)
 
 
 def frame_diagonal(surface, rotation):
@@ -491,7 +503,7 @@ def _auto_polycube(r):
 
 def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
                  max_relabel_area=0.03, untangle_rounds=50, keep_widths=True,
-                 collapse_apexes=True, frame=None):
+                 collapse_apexes=True, frame=None, stretch=None):
     """Polycube structure of a labelled Surface (patch = label 1..6 per triangle, e.g. from
     segment()) with no manual step: blocks are the grid cells of spacing h = size * 2^level
     (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto (prism
@@ -502,13 +514,15 @@ def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
     collapse_apexes: the blocks under an apex cap become tets and prisms (False: hexes). The two
     are the candidates mesh_surface chooses between (MeshRun.keep_widths, .collapse_apexes).
     frame: the rotation the labels refer to (segment's frame); every result is in the input's
-    coordinates. Raises GeometryError naming the charts when the labelling cannot be repaired.
-    Returns an AutoPolycube."""
+    coordinates. stretch: factors along the frame's axes (MeshRun.stretch): the polycube is built
+    on the labels stretched so (``size`` in that space), every result mapped back. Raises
+    GeometryError naming the charts when the labelling cannot be repaired. Returns an
+    AutoPolycube."""
     return _auto_polycube(_hexdom.autopolycube(labels.V, labels.F, labels.patch, float(size),
                                                int(level), int(max_relabels), int(max_attempts),
                                                float(max_relabel_area), int(untangle_rounds),
                                                bool(keep_widths), bool(collapse_apexes),
-                                               None if frame is None else np.asarray(frame, np.float64).reshape(3, 3)))
+                                               _frame_arg(frame), _stretch_arg(stretch)))
 
 
 MESH_STAGES = ("segment", "autopolycube", "generate", "improve")
@@ -525,7 +539,10 @@ class MeshRun:
     it). ``keep_widths`` and ``collapse_apexes`` are the polycube options of the candidate kept
     (see autopolycube): segment(edge_weight=edge_weight) then autopolycube(level=level,
     keep_widths=..., collapse_apexes=..., both with frame=frame["rotation"]) rebuild its polycube;
-    ``frame`` is the cube_frame dict of the axes the labels refer to; ``choice`` says it in words.
+    ``frame`` is the cube_frame dict of the axes the labels refer to; ``stretch`` the factors along
+    its axes a thin part was stretched by for segmenting, the polycube and generation (ones: not
+    stretched; pass it with the frame to segment, autopolycube and mesh_structure to rebuild
+    them); ``choice`` says it in words.
     ``snap`` holds snap_to_brep's report for mesh_part (None otherwise). ``method`` names the path
     that made the mesh: "polycube" or "overlay" (a grid laid over the part; its run has no labels
     nor polycube, and level, edge_weight and the polycube options mean nothing then);
@@ -548,6 +565,7 @@ class MeshRun:
     collapse_apexes: bool = True
     choice: str = ""
     frame: dict = None
+    stretch: tuple = (1.0, 1.0, 1.0)  # factors along the frame's axes (see above)
     surface: Surface = None  # mesh_part: the tessellation meshed
     tessellations: int = 1   # mesh_part: tessellations made (see cad::MeshCadOptions::retessellate)
     tessellation_factor: float = 1.0  # mesh_part: the kept one's triangle size over the first's
@@ -574,6 +592,7 @@ def _mesh_run(r):
                    dict(zip(MESH_STAGES, r["seconds"])), int(r["level"]), float(r["edge_weight"]),
                    keep_widths=bool(r["keep_widths"]), collapse_apexes=bool(r["collapse_apexes"]),
                    choice=str(r["choice"]), frame=dict(r["frame"]),
+                   stretch=tuple(float(f) for f in r.get("stretch", (1.0, 1.0, 1.0))),
                    method=str(r.get("method", "polycube")), polycube_note=str(r.get("polycube_note", "")),
                    face_only=list(r.get("face_only", [])), solids=int(r.get("solids", 1)),
                    touching=[tuple(int(k) for k in pair) for pair in r.get("touching", [])],

@@ -32,12 +32,13 @@ def nearest_label(normals):
     return core.nearest_label(normals)
 
 
-def labels_from_normals(V, F, patch=None, frame=None):
+def labels_from_normals(V, F, patch=None, frame=None, stretch=None):
     """Polycube label per triangle: the axis nearest its normal, or with ``patch`` the axis
     nearest the area-weighted mean normal of the triangle's patch (one label per patch). frame:
-    a 3 x 3 rotation whose axes the labels name (None: the model's). The core's
+    a 3 x 3 rotation whose axes the labels name (None: the model's); stretch: factors along its
+    axes the surface is stretched by first (the Segmentation's Stretch; None: none). The core's
     segmentation::labels_from_normals."""
-    return core.labels_from_normals(V, F, patch, frame)
+    return core.labels_from_normals(V, F, patch, frame, stretch)
 
 
 def patches_from_labels(F, labels):

@@ -52,11 +52,16 @@ class PatchEditor(UndoableEditor):
     labels (#F): label 1..6 per triangle (None: the axis nearest each patch's mean normal);
     face_ids (#F): CAD face (or file part) id per triangle, for selecting whole faces.
     ``check_options`` go to core.check_patches. frame (3 x 3 rotation, the Segmentation's Frame):
-    the axes the labels name, for the labels taken from normals (None: the model's axes).
+    the axes the labels name, for the labels taken from normals (None: the model's axes); stretch
+    (the Segmentation's Stretch): factors along those axes the normals are taken stretched by.
     """
 
-    def __init__(self, V, F, patches, labels=None, face_ids=None, check_options=None, frame=None):
+    def __init__(self, V, F, patches, labels=None, face_ids=None, check_options=None, frame=None,
+                 stretch=None):
         self.frame = np.eye(3) if frame is None else np.asarray(frame, float).reshape(3, 3)
+        # Normals (and sums of area vectors) of the stretched surface in the frame: diag(1 / f) R n.
+        self.normal_map = (self.frame if stretch is None
+                           else np.diag(1.0 / np.asarray(stretch, float)) @ self.frame)
         self.V = np.ascontiguousarray(V, float).reshape(-1, 3)
         self.F = np.ascontiguousarray(F, np.int32).reshape(-1, 3)
         n = len(self.F)
@@ -67,7 +72,8 @@ class PatchEditor(UndoableEditor):
             raise ValueError("patch ids must be positive")
         self.normals, self.areas = triangle_normals(self.V, self.F)
         if labels is None:
-            labels = labels_from_normals(self.V, self.F, self.patches, frame=self.frame)
+            labels = labels_from_normals(self.V, self.F, self.patches, frame=self.frame,
+                                         stretch=stretch)
         self.labels = np.array(labels, np.int32).reshape(-1)
         if len(self.labels) != n:
             raise ValueError("{} labels for {} triangles".format(len(self.labels), n))
@@ -281,7 +287,7 @@ class PatchEditor(UndoableEditor):
         tris = self._triangles(triangles)
         if label is None:
             mean = (self.normals[tris] * self.areas[tris, None]).sum(axis=0)
-            label = int(nearest_label(self.frame @ mean)[0])
+            label = int(nearest_label(self.normal_map @ mean)[0])
         label = label_number(label)
         patches = np.asarray(core.reassign_triangles(self.surface(), tris, 0), np.int32)
         new_id = int(patches[tris[0]])

@@ -258,7 +258,9 @@ class HexMesh(BaseHexDomObject):
         with Progress("Meshing " + obj.Label, 1 + bool(snap) + second) as bar:
             # The pipeline's own stage (generate, then improve), with its options.
             run = bar.run("generate and improve" if obj.Improve else "generate", core.mesh_structure,
-                          surface, structure, level=obj.Level, improve=bool(obj.Improve))
+                          surface, structure, level=obj.Level, improve=bool(obj.Improve),
+                          frame=segmentation.frame_matrix(seg),
+                          stretch=segmentation.stretch_factors(seg))
             mesh = run.mesh
             bar.step("{hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             info = None

@@ -287,6 +287,7 @@ def fill_mesh_part(objs, result, store_mesh=None, stages_only=False):
         if hasattr(seg, "Frame") and result.frame is not None:
             segmentation.set_frame(seg, result.frame["rotation"] if result.frame["turned"]
                                    else None)
+        segmentation.set_stretch(seg, result.stretch)
         if list(seg.Issues):
             seg.Issues = []
         if poly is not None:

@@ -167,7 +167,8 @@ def build_automatic(obj):
                          size=float(obj.Size.Value), level=int(obj.Level),
                          keep_widths=bool(getattr(obj, "KeepWidths", True)),
                          collapse_apexes=bool(getattr(obj, "TetApexes", True)),
-                         frame=segmentation.frame_matrix(seg))
+                         frame=segmentation.frame_matrix(seg),
+                         stretch=segmentation.stretch_factors(seg))
         bar.step("{} blocks of {:g}".format(len(result.structure.types),
                                             float(result.info.get("cell", 0.0))))
     store_structure(obj, result.structure)

@@ -44,7 +44,7 @@ class Segmentation(BaseHexDomObject):
     """Proxy of a HexDom Segmentation object (App::FeaturePython)."""
 
     Type = TYPE
-    STAGE_INPUTS = ("Surface", "Method", "EdgeWeight", "Frame", "PatchFile", "EditedTriangles",
+    STAGE_INPUTS = ("Surface", "Method", "EdgeWeight", "Frame", "Stretch", "PatchFile", "EditedTriangles",
                     "EditedLabels", "EditedPatchTriangles", "EditedPatchIds")
 
     def add_properties(self, obj):
@@ -70,6 +70,13 @@ class Segmentation(BaseHexDomObject):
                             "rotation (x in the frame = Frame applied to x); the identity: the "
                             "model's axes. Mesh Part sets the frame the faces fit best "
                             "(core.cube_frame) for a part lying at an angle")
+        if not hasattr(obj, "Stretch"):
+            obj.addProperty("App::PropertyVector", "Stretch", "Segmentation",
+                            "Factors along the Frame's axes the surface is stretched by before "
+                            "it is labelled, the polycube built and the mesh generated (each "
+                            "mapped back); (1, 1, 1): none. Mesh Part sets the one the pipeline "
+                            "took for a thin part (cells of a different length along each axis)")
+            obj.Stretch = (1.0, 1.0, 1.0)
         if not hasattr(obj, "PatchFile"):
             obj.addProperty("App::PropertyFile", "PatchFile", "Segmentation",
                             "Segmented surface (.k shells, part id = patch id) for Method "
@@ -141,7 +148,7 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
         if not weight >= 0:
             raise ValueError("{}: EdgeWeight must be 0 or more".format(obj.Label))
         result = run("segment", segment, surface, edits=edits if len(edits) else None,
-                     edge_weight=weight, frame=frame_matrix(obj))
+                     edge_weight=weight, frame=frame_matrix(obj), stretch=stretch_factors(obj))
         return result.labels, result.patch, False
     if method == "Surface patches":
         patches = np.asarray(surface.patch, np.int32)
@@ -157,7 +164,8 @@ def base_segmentation(obj, surface, triangles=(), new_labels=(), run=None):
                              np.int32)
     else:
         raise ValueError("{}: unknown Method '{}'".format(obj.Label, method))
-    labels = labels_from_normals(surface.V, surface.F, patches, frame=frame_matrix(obj))
+    labels = labels_from_normals(surface.V, surface.F, patches, frame=frame_matrix(obj),
+                                 stretch=stretch_factors(obj))
     return labels, patches, True
 
 
@@ -204,6 +212,26 @@ def frame_matrix(obj):
     m = frame.toMatrix()
     R = np.array([[m.A11, m.A12, m.A13], [m.A21, m.A22, m.A23], [m.A31, m.A32, m.A33]], float)
     return None if np.allclose(R, np.eye(3), rtol=0, atol=1e-12) else R
+
+
+def stretch_factors(obj):
+    """The Segmentation's Stretch as three factors, or None for none ((1, 1, 1), or a document
+    older than Stretch)."""
+    stretch = getattr(obj, "Stretch", None)
+    if stretch is None:
+        return None
+    factors = (float(stretch.x), float(stretch.y), float(stretch.z))
+    return None if factors == (1.0, 1.0, 1.0) else factors
+
+
+def set_stretch(obj, factors):
+    """Sets the Segmentation's Stretch (None: none) when the document has it; touches it only when
+    it changes."""
+    if not hasattr(obj, "Stretch"):
+        return
+    factors = (1.0, 1.0, 1.0) if factors is None else tuple(float(f) for f in factors)
+    if tuple(obj.Stretch) != factors:
+        obj.Stretch = factors
 
 
 def set_frame(obj, R):

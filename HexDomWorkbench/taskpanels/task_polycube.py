@@ -128,7 +128,8 @@ class _TaskPanel:
             labels = np.asarray(seg.Labels, np.int32)
             if own is not None:
                 labels = labels_from_normals(surface.V, surface.F, surface.patch,
-                                             frame=segmentation.frame_matrix(seg))
+                                             frame=segmentation.frame_matrix(seg),
+                                             stretch=segmentation.stretch_factors(seg))
             _, first = np.unique(numbers, return_index=True)
             for n, t in zip(np.unique(numbers).tolist(), first.tolist()):
                 self.patch_labels[n] = int(labels[t]) if len(labels) > t else 0

@@ -56,7 +56,8 @@ class _TaskPanel:
         self.editor = PatchEditor(surface.V, surface.F, surface.patch,
                                   labels if len(labels) == len(surface.F) else None,
                                   face_ids if len(face_ids) == len(surface.F) else None,
-                                  frame=segmentation.frame_matrix(obj))
+                                  frame=segmentation.frame_matrix(obj),
+                                  stretch=segmentation.stretch_factors(obj))
         self.pick_mode = "facet"
         self.highlighted = None
         self.last_error = ""

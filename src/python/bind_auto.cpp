@@ -11,6 +11,7 @@
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/mesh_surface.h"
+#include "hexdom/pipeline/stretch.h"
 
 namespace py = pybind11;
 
@@ -44,7 +45,9 @@ const char* kAutopolycubeDoc =
     "walls of a hole facing each other across the void keep their distance in cells (False: least-squares plane\n"
     "offsets); collapse_apexes: the blocks under an apex cap collapse to tets and prisms (False: they stay hexes).\n"
     "frame: a 3 x 3 rotation (cube_frame's): the labels refer to its axes, x_frame = frame @ x; every result\n"
-    "is in the input's coordinates. Raises GeometryError naming the charts when the labelling cannot be repaired.";
+    "is in the input's coordinates. stretch: factors along the frame's axes (mesh_surface's stretch): the\n"
+    "polycube is built on the labels stretched so (size in that space), every result mapped back. Raises\n"
+    "GeometryError naming the charts when the labelling cannot be repaired.";
 
 const char* kMeshSurfaceDoc =
     "Hex mesh of a closed surface with no manual step: segment (CVT, edge_weight) -> autopolycube (size,\n"
@@ -56,7 +59,9 @@ const char* kMeshSurfaceDoc =
     "edge_weight, keep_widths, collapse_apexes (segment with edge_weight, then autopolycube with level,\n"
     "keep_widths and collapse_apexes rebuild its polycube), frame (the cube_frame dict the labels and the\n"
     "polycube refer to: segment and autopolycube with its rotation rebuild them; align=False: the model's\n"
-    "axes; frame: this 3 x 3 rotation instead of the one the faces fit) and choice (them as one line of text).\n"
+    "axes; frame: this 3 x 3 rotation instead of the one the faces fit), stretch (the factors along the\n"
+    "frame's axes a thin part was stretched by for those stages: segment, autopolycube and mesh_structure\n"
+    "with frame and stretch rebuild them; ones: not stretched) and choice (them as one line of text).\n"
     "method: \"polycube\", \"overlay\" (a grid laid over the part, which meshes any closed surface) or \"auto\"\n"
     "(the polycube, and the overlay too when the polycube fails or misses a target; the better kept). The\n"
     "dict's method names the path that made the mesh, polycube_note why the overlay was tried (empty when it\n"
@@ -132,6 +137,7 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["face_only"] = std::vector<int>(face_only.begin(), face_only.end());
   d["budget_passed"] = r.budget_passed;
   d["frame"] = frame_dict(r.frame);
+  d["stretch"] = std::vector<double>{r.stretch(0), r.stretch(1), r.stretch(2)};
   d["stage"] = r.stage;
   d["solids"] = std::max<size_t>(1, r.solids.size());
   py::list touching;
@@ -185,10 +191,15 @@ void bind_auto(py::module_& m) {
   m.def("autopolycube",
         [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
            double max_relabel_area, int untangle_rounds, bool keep_widths, bool collapse_apexes,
-           std::optional<Eigen::Matrix3d> frame) {
+           std::optional<Eigen::Matrix3d> frame, std::optional<Eigen::Vector3d> stretch) {
           mesh::SurfaceMesh s = surface_of(V, F, label);
           autopolycube::AutoPolycubeOptions opt;
           if (frame) opt.frame = checked_rotation(*frame);
+          const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch);
+          if (st) {  // the labels taken into the stretched frame, the results back
+            s.V = pipeline::stretched(s.V, *st);
+            opt.frame = Eigen::Matrix3d::Identity();
+          }
           opt.size = size;
           opt.level = level;
           opt.max_relabels = max_relabels;
@@ -202,12 +213,13 @@ void bind_auto(py::module_& m) {
             py::gil_scoped_release nogil;
             r = autopolycube::autopolycube(s, opt);
           }
+          if (st) pipeline::map_polycube(r, *st, false);
           return polycube_dict(r);
         },
         py::arg("V"), py::arg("F"), py::arg("label"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("max_relabels") = 200, py::arg("max_attempts") = 20, py::arg("max_relabel_area") = 0.03,
         py::arg("untangle_rounds") = 50, py::arg("keep_widths") = true, py::arg("collapse_apexes") = true,
-        py::arg("frame") = py::none(), kAutopolycubeDoc);
+        py::arg("frame") = py::none(), py::arg("stretch") = py::none(), kAutopolycubeDoc);
 
   m.def("check_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, const std::string& name, bool self_intersection,
@@ -246,7 +258,8 @@ void bind_auto(py::module_& m) {
 
   m.def("mesh_structure",
         [](const RefV& V, const RefF& F, const RefI& patch, const Eigen::MatrixXd& structure_V, const CellArray& structure_cells,
-           const Eigen::VectorXi& structure_types, int level, bool improve, int relax_sweeps, int threads) {
+           const Eigen::VectorXi& structure_types, int level, bool improve, int relax_sweeps, int threads,
+           std::optional<Eigen::Matrix3d> frame, std::optional<Eigen::Vector3d> stretch) {
           const mesh::SurfaceMesh patches = surface_of(V, F, patch);
           const mesh::Mesh structure = make_mesh(structure_V, structure_cells, structure_types, std::nullopt);
           pipeline::MeshSurfaceOptions opt;
@@ -259,7 +272,10 @@ void bind_auto(py::module_& m) {
           pipeline::MeshSurfaceRun r;
           {
             py::gil_scoped_release nogil;
-            pipeline::generate_and_improve(patches, structure, opt, r);
+            if (const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch))
+              pipeline::generate_and_improve_stretched(patches, structure, *st, opt, r);
+            else
+              pipeline::generate_and_improve(patches, structure, opt, r);
           }
           py::dict d = run_dict(r);
           d["warnings"] = warnings.lines();
@@ -269,10 +285,12 @@ void bind_auto(py::module_& m) {
         py::arg("structure_types"), py::arg("level") = pipeline::MeshSurfaceOptions{}.level,
         py::arg("improve") = pipeline::MeshSurfaceOptions{}.improve,
         py::arg("relax_sweeps") = pipeline::MeshSurfaceOptions{}.relax_sweeps, py::arg("threads") = 0,
+        py::arg("frame") = py::none(), py::arg("stretch") = py::none(),
         "The polycube path's generation and improvement stages (pipeline::generate_and_improve) on a polycube\n"
         "structure (V, cells, types of its blocks) over its patch surface (V, F, patch), with `hexdom mesh`'s\n"
         "options: what mesh_surface runs after autopolycube. Returns mesh_surface's dict (mesh, generated,\n"
-        "quality, generated_quality, seconds, level; no labels nor polycube) and warnings.");
+        "quality, generated_quality, seconds, level; no labels nor polycube) and warnings. stretch (with frame,\n"
+        "as mesh_surface's run reports them): both meshed stretched so, the mesh mapped back.");
 
   const py::handle module = m;
   using pipeline::method_name;

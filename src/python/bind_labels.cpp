@@ -30,18 +30,25 @@ void bind_labels(py::module_& m) {
         "ties (and zero rows) going to the lower label.");
 
   m.def("labels_from_normals",
-        [](const RefV& V, const RefF& F, std::optional<Eigen::VectorXi> patch, std::optional<Eigen::Matrix3d> frame) {
+        [](const RefV& V, const RefF& F, std::optional<Eigen::VectorXi> patch, std::optional<Eigen::Matrix3d> frame,
+           std::optional<Eigen::Vector3d> stretch) {
           if (patch && patch->size() != F.rows())
             throw GeometryError(std::to_string(patch->size()) + " patch ids for " + std::to_string(F.rows()) +
                                 " triangles");
-          const mesh::SurfaceMesh s = surface_of(V, F, patch ? *patch : Eigen::VectorXi::Zero(F.rows()));
-          const Eigen::Matrix3d R = frame ? checked_rotation(*frame) : Eigen::Matrix3d::Identity();
+          mesh::SurfaceMesh s = surface_of(V, F, patch ? *patch : Eigen::VectorXi::Zero(F.rows()));
+          Eigen::Matrix3d R = frame ? checked_rotation(*frame) : Eigen::Matrix3d::Identity();
+          if (const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch)) {
+            s.V = pipeline::stretched(s.V, *st);  // the normals of the stretched surface, in its frame
+            R = Eigen::Matrix3d::Identity();
+          }
           return segmentation::labels_from_normals(s, R, patch.has_value());
         },
         py::arg("V"), py::arg("F"), py::arg("patch") = py::none(), py::arg("frame") = py::none(),
+        py::arg("stretch") = py::none(),
         "Label 1..6 (+X, -X, +Y, -Y, +Z, -Z) per triangle: the axis nearest its normal, or with patch the\n"
         "axis nearest the area-weighted normal of its patch (one label per patch). frame: a 3 x 3\n"
-        "rotation whose axes the labels name (x_frame = frame @ x); None: the model's axes.");
+        "rotation whose axes the labels name (x_frame = frame @ x); None: the model's axes. stretch: factors\n"
+        "along the frame's axes (mesh_surface's stretch): the normals of the surface stretched so.");
 
   m.def("frame_diagonal",
         [](const RefV& V, const RefF& F, const Eigen::Matrix3d& rotation) {

@@ -52,6 +52,7 @@ const char* kSegmentDoc =
     "Returns a dict: label (#F, 1..6), classical (#F, after the first pass), generators (6 x 3), and\n"
     "classical_sweeps, edge_sweeps, classical_moves, edge_moves, respected_faces, faces, planar_faces,\n"
     "uniform_faces. frame: a 3 x 3 rotation (cube_frame's): the labels name its axes (x_frame = frame @ x).\n"
+    "stretch: factors along the frame's axes (mesh_surface's stretch): the surface is segmented stretched so.\n"
     "Raises GeometryError for an open, non-manifold or degenerate surface.";
 
 // segment, cube_frame, read_manual_labels, segmentation_stats: labelling a surface and its figures.
@@ -60,10 +61,14 @@ void bind_labelling(py::module_& m) {
         [](const RefV& V, const RefF& F, const RefI& patch, double edge_weight, int classical_sweeps, int edge_sweeps,
            int min_moves, double max_drift, int ring, std::optional<bool> respect_faces, double planar_angle,
            double face_majority, std::optional<Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>> manual,
-           std::optional<Eigen::Matrix3d> frame) {
+           std::optional<Eigen::Matrix3d> frame, std::optional<Eigen::Vector3d> stretch) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           segmentation::CvtOptions opt;
           if (frame) opt.frame = checked_rotation(*frame);
+          if (const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch)) {
+            s.V = pipeline::stretched(s.V, *st);  // segmented in the stretched frame
+            opt.frame = Eigen::Matrix3d::Identity();
+          }
           opt.edge_weight = edge_weight;
           opt.classical_sweeps = classical_sweeps;
           opt.edge_sweeps = edge_sweeps;
@@ -99,7 +104,7 @@ void bind_labelling(py::module_& m) {
         py::arg("V"), py::arg("F"), py::arg("patch"), py::arg("edge_weight") = 0.1, py::arg("classical_sweeps") = 50,
         py::arg("edge_sweeps") = 200, py::arg("min_moves") = 3, py::arg("max_drift") = 10.0, py::arg("ring") = 2,
         py::arg("respect_faces") = py::none(), py::arg("planar_angle") = 1.0, py::arg("face_majority") = 0.9,
-        py::arg("manual") = py::none(), py::arg("frame") = py::none(), kSegmentDoc);
+        py::arg("manual") = py::none(), py::arg("frame") = py::none(), py::arg("stretch") = py::none(), kSegmentDoc);
 
   m.def("cube_frame",
         [](const RefV& V, const RefF& F, double min_gain) {

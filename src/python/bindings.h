@@ -12,6 +12,7 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/pipeline/mesh_surface.h"
+#include "hexdom/pipeline/stretch.h"
 
 namespace hexdom::python {
 /// A MeshSurfaceRun as _hexdom.mesh_surface returns it (bind_auto.cpp); also mesh_cad's "run".
@@ -30,6 +31,11 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                   const std::map<int, double>& face_sizes = {},
                                                   double growth_rate = overlay::kGrowthRate, int order = 1,
                                                   double time_limit = 0);
+/// The stretch a stage's `frame` and `stretch` keywords name (stretch: the factors along the
+/// frame's axes, MeshSurfaceRun::stretch; frame none: the model's axes); none when stretch is none
+/// or all ones. InputError for a frame that is not a rotation or a factor not positive.
+std::optional<pipeline::Stretch> stretch_arg(const std::optional<Eigen::Matrix3d>& frame,
+                                             const std::optional<Eigen::Vector3d>& stretch);
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);

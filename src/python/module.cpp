@@ -56,6 +56,12 @@ void register_errors(py::module_& m) {
 
 }  // namespace
 
+std::optional<pipeline::Stretch> python::stretch_arg(const std::optional<Eigen::Matrix3d>& frame,
+                                                    const std::optional<Eigen::Vector3d>& stretch) {
+  if (!stretch || *stretch == Eigen::Vector3d::Ones()) return std::nullopt;
+  return pipeline::stretch_of(frame ? checked_rotation(*frame) : Eigen::Matrix3d::Identity(), *stretch);
+}
+
 [[noreturn]] void python::raise_with(py::handle module, const Error& e, const char* name, py::object value) {
   const char* cls = dynamic_cast<const InputError*>(&e)      ? "InputError"
                     : dynamic_cast<const GeometryError*>(&e) ? "GeometryError"

@@ -435,6 +435,40 @@ def test_core_mesh_structure_is_the_pipeline_s_generation_and_improvement(core):
     assert np.array_equal(plain.mesh.V, run.generated.V)
 
 
+def test_core_stages_rebuild_a_thin_part_stretched(core, freecad):
+    """A plate 100 x 40 x 1 with its top edges chamfered 0.5 is meshed by the polycube path
+    stretched along its thickness (cells of a different length along each axis). core.segment,
+    autopolycube and mesh_structure given the run's frame and stretch (what the HexDom Segmentation
+    keeps) rebuild its labels, polycube and mesh bit for bit. Unstretched, the chamfers (45 degrees,
+    about 79 degrees stretched) take other labels."""
+    if not core._hexdom.has_opencascade():
+        pytest.skip("_hexdom built without OpenCASCADE (the plate's tessellation)")
+    _, Part = freecad
+    plate = Part.makeBox(100, 40, 1.0)
+    plate = plate.makeChamfer(0.5, [e for e in plate.Edges if e.BoundBox.ZLength < 1e-9 and e.BoundBox.ZMin > 0.5])
+    s = core.mesh_part(plate.exportBrepToString(), method="polycube", polycube_seconds=0).surface
+    run = core.mesh_surface(s, method="polycube", polycube_seconds=0)
+    assert run.method == "polycube" and run.stretch[2] > 1 and run.stretch[:2] == (1.0, 1.0)
+    frame = run.frame["rotation"]
+    seg = core.segment(s, edge_weight=run.edge_weight, frame=frame, stretch=run.stretch)
+    assert np.array_equal(seg.patch, run.labels.patch)
+    assert not np.array_equal(core.segment(s, edge_weight=run.edge_weight, frame=frame).patch, seg.patch)
+    cell = run.polycube.info["cell"]  # in the stretched space, as the Polycube's Size
+    poly = core.autopolycube(core.Surface(s.V, s.F, seg.patch), size=cell / 2 ** run.level,
+                             level=run.level, keep_widths=run.keep_widths,
+                             collapse_apexes=run.collapse_apexes, frame=frame, stretch=run.stretch)
+    assert np.array_equal(poly.structure.cells, run.polycube.structure.cells)
+    assert np.array_equal(poly.structure.V, run.polycube.structure.V)
+    again = core.mesh_structure(poly.patches, poly.structure, level=run.level, frame=frame,
+                                stretch=run.stretch)
+    assert np.array_equal(again.mesh.cells, run.mesh.cells)
+    assert np.array_equal(again.mesh.V, run.mesh.V)
+    ratio = oracle.edge_ratios(again.mesh.V[again.mesh.cells], oracle.HEX).max()
+    assert ratio == pytest.approx(run.quality["hex"]["edge_ratio_max"], rel=1e-9) and ratio < 6
+    with pytest.raises(core.InputError, match="finite and positive"):
+        core.segment(s, stretch=(1.0, 0.0, 1.0))
+
+
 def test_core_mesh_surface_takes_the_method(core):
     """HexDomWorkbench.core passes method= through and reports the path: the rockerarm with no label
     repair defeats the polycube ("polycube" raises), "auto" gives the overlay grid's mesh with the

@@ -463,6 +463,25 @@ def test_labels_taken_from_normals_name_the_frames_axes():
     assert np.array_equal(labels.labels_from_normals(V, s.F, s.patch, frame=R.T), square.labels)
 
 
+def test_labels_taken_from_normals_follow_the_segmentation_s_stretch():
+    """With the Segmentation's Stretch (a thin part segmented stretched), the editor's labels from
+    normals and a new patch's label are those of the surface stretched so: the bracket stretched
+    4 times along Z by the editor and by hand give the same labels, 128 triangles of its hole
+    other than unstretched."""
+    s, square = bracket_editor()
+    f = np.array([1.0, 1.0, 4.0])
+    stretched = PatchEditor(s.V, s.F, s.patch, stretch=f)
+    by_hand = PatchEditor(s.V * f, s.F, s.patch)
+    assert np.array_equal(stretched.labels, by_hand.labels)
+    changed = stretched.labels != square.labels
+    assert np.count_nonzero(changed) == 128
+    tris = np.flatnonzero(s.patch == s.patch[np.flatnonzero(changed)[0]])
+    new = stretched.patch_label(stretched.new_patch(tris))
+    assert new == by_hand.patch_label(by_hand.new_patch(tris))
+    assert new != square.patch_label(square.new_patch(tris))
+    assert np.array_equal(labels.labels_from_normals(s.V, s.F, s.patch, stretch=f), by_hand.labels)
+
+
 # ------------------------------------------------------------------------------------------------
 # What the editors share: labels, the triangle adjacency, the block face table
 

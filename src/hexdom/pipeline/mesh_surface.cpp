@@ -243,6 +243,7 @@ void keep_polycube_attempt(const MeshSurfaceRun& attempt, MeshSurfaceRun& overla
   overlay.level = attempt.level;
   overlay.keep_widths = attempt.keep_widths;
   overlay.collapse_apexes = attempt.collapse_apexes;
+  overlay.stretch = attempt.stretch;
 }
 
 std::string method_name(Method m) { return m == Method::Auto ? "auto" : m == Method::Polycube ? "polycube" : "overlay"; }
@@ -453,6 +454,7 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
                      fmt("(%.4g, %.4g, %.4g)", st->factor(0), st->factor(1), st->factor(2)));
     o.size = st->size;
     o.align = false;
+    o.stretched_by = &*st;
     o.segment.frame = o.polycube.frame = I;
     mesh::SurfaceMesh s = surface;
     s.V = stretched(surface.V, *st);
@@ -467,10 +469,12 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
     } catch (...) {
       map_run(r, *st, false);
       r.frame = frame;
+      r.stretch = st->factor;
       throw;
     }
     map_run(r, *st, false);
     r.frame = frame;
+    r.stretch = st->factor;
     return r;
   }
   try {
@@ -564,7 +568,15 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
            : std::string()) +
       fmt(", worst block SJ %.3f, in %.2f s", r.polycube.min_block_quality, r.seconds[1]));
 
-  generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
+  if (opt.stretched_by) {  // the polycube as the run will report it, mapped back, stretched again
+    mesh::SurfaceMesh patches = r.polycube.patches;
+    mesh::Mesh structure = r.polycube.structure;
+    patches.V = stretched(unstretched(patches.V, *opt.stretched_by), *opt.stretched_by);
+    structure.V = stretched(unstretched(structure.V, *opt.stretched_by), *opt.stretched_by);
+    generate_and_improve(patches, structure, opt, r);
+  } else {
+    generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
+  }
   r.keep_widths = opt.polycube.keep_widths;
   r.collapse_apexes = opt.polycube.collapse_apexes;
   r.stage = "done";

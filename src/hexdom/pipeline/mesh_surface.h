@@ -31,6 +31,7 @@ std::string method_name(Method m);
 Method method_from_name(const std::string& name);
 
 struct MeshSurfaceRun;
+struct Stretch;
 
 struct MeshSurfaceOptions {
   Method method = Method::Auto;
@@ -90,6 +91,11 @@ struct MeshSurfaceOptions {
   /// Method::Polycube: when set, the first candidate's run, already made with these options (auto's
   /// first run, before any snap): the candidates start from it instead of meshing it again.
   const MeshSurfaceRun* first_run = nullptr;
+  /// Set by the polycube path for a part it meshes stretched (stretch.h; the surface given is then
+  /// the stretched one): generation takes the polycube's structure and patch surface rounded
+  /// through the model's coordinates, stretched(unstretched(x)), as a rebuild from what the run
+  /// reports (mapped back) takes them, so that the rebuild gives the same mesh bit for bit.
+  const Stretch* stretched_by = nullptr;
   int relax_sweeps = 10;              ///< generation's relaxation sweeps
   bool improve = true;                ///< run the improvement stage (recommended sequence)
   optimize::ImproveOptions improvement;  ///< its surface is the patch surface
@@ -179,6 +185,10 @@ struct MeshSurfaceRun {
   /// The frame the labels and the polycube refer to (see align); rotation the identity when the
   /// part was meshed in its own axes.
   segmentation::CubeFrame frame;
+  /// The factors a thin part was stretched by along the frame's axes (x_stretched = stretch .*
+  /// (frame.rotation x), stretch.h) for its segmentation, polycube, generation and improvement,
+  /// whose results here are mapped back; ones when it was not stretched.
+  Eigen::Vector3d stretch = Eigen::Vector3d::Ones();
   int segmentations = 0;      ///< segmentations tried
   /// The polycube path's deadline passed after it had a mesh: the improvement stopped early or
   /// candidates were left untried; the mesh is the best one made in the time.
@@ -195,7 +205,7 @@ struct MeshSurfaceRun {
   /// solid's own run, in the order mesh::check_solid_surface numbers them; `mesh` and `generated`
   /// are theirs put together with region = solid number (1, 2, ...), `labels` theirs (triangles
   /// of solid 1 first), `quality` and `generated_quality` measured on those; `method` Overlay when
-  /// every solid's mesh is an overlay mesh, else Polycube; level, edge_weight, frame and the
+  /// every solid's mesh is an overlay mesh, else Polycube; level, edge_weight, frame, stretch and the
   /// polycube options are the first solid's; `polycube` is empty. Empty for one solid.
   std::vector<MeshSurfaceRun> solids;
   /// Of those, the pairs (1-based, first < second) that touch (mesh::SurfaceCheck::touching): their

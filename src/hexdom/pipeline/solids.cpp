@@ -63,6 +63,7 @@ void merge_solid_runs(std::vector<MeshSurfaceRun> runs, MeshSurfaceRun& r) {
   r.keep_widths = first.keep_widths;
   r.collapse_apexes = first.collapse_apexes;
   r.frame = first.frame;
+  r.stretch = first.stretch;
   for (size_t k = 0; k < runs.size(); ++k) {
     const MeshSurfaceRun& s = runs[k];
     for (int i = 0; i < 4; ++i) r.seconds[i] += s.seconds[i];

@@ -1,5 +1,7 @@
 #include "hexdom/pipeline/stretch.h"
 
+#include "hexdom/common/error.h"
+#include "hexdom/common/format.h"
 #include "hexdom/overlay/grid.h"
 #include "hexdom/quality/report.h"
 
@@ -33,11 +35,39 @@ Eigen::MatrixXd unstretched(const Eigen::MatrixXd& V, const Stretch& s) {
   return (V * s.factor.cwiseInverse().asDiagonal()) * s.rotation;
 }
 
+Stretch stretch_of(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& factor) {
+  if (!factor.allFinite() || factor.minCoeff() <= 0)
+    throw InputError(fmt("stretch (%g, %g, %g): each factor must be finite and positive", factor(0), factor(1), factor(2)));
+  Stretch s;
+  s.rotation = rotation;
+  s.factor = factor;
+  return s;
+}
+
+void map_polycube(autopolycube::AutoPolycube& p, const Stretch& s, bool forward) {
+  for (Eigen::MatrixXd* V : {&p.structure.V, &p.patches.V, &p.labels.V, &p.polycube.V})
+    *V = forward ? stretched(*V, s) : unstretched(*V, s);
+}
+
+void generate_and_improve_stretched(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const Stretch& s,
+                                    const MeshSurfaceOptions& options, MeshSurfaceRun& r) {
+  mesh::SurfaceMesh sp = patches;
+  sp.V = stretched(patches.V, s);
+  mesh::Mesh ss = structure;
+  ss.V = stretched(structure.V, s);
+  try {
+    generate_and_improve(sp, ss, options, r);
+  } catch (...) {
+    map_run(r, s, false);
+    throw;
+  }
+  map_run(r, s, false);
+}
+
 void map_run(MeshSurfaceRun& r, const Stretch& s, bool forward) {
   auto map = [&](Eigen::MatrixXd& V) { V = forward ? stretched(V, s) : unstretched(V, s); };
-  for (Eigen::MatrixXd* V : {&r.mesh.V, &r.generated.V, &r.labels.V, &r.polycube.structure.V, &r.polycube.patches.V,
-                             &r.polycube.labels.V, &r.polycube.polycube.V})
-    map(*V);
+  for (Eigen::MatrixXd* V : {&r.mesh.V, &r.generated.V, &r.labels.V}) map(*V);
+  map_polycube(r.polycube, s, forward);
   if (r.mesh.num_cells() > 0) r.quality = quality::quality_report(r.mesh);
   if (r.generated.num_cells() > 0) r.generated_quality = quality::quality_report(r.generated);
 }

@@ -33,6 +33,23 @@ std::optional<Stretch> thin_stretch(const mesh::SurfaceMesh& surface, const Eige
 Eigen::MatrixXd stretched(const Eigen::MatrixXd& V, const Stretch& s);
 Eigen::MatrixXd unstretched(const Eigen::MatrixXd& V, const Stretch& s);
 
+/// The stretch by `factor` along the axes of `rotation` (spacing and size left unset): the one a run
+/// reports (MeshSurfaceRun::frame's rotation and ::stretch), to redo a stage of it in the space it
+/// ran in. InputError unless every factor is finite and positive.
+Stretch stretch_of(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& factor);
+
+/// An automatic polycube's geometries (structure, patch surface, labels, polycube surface) taken
+/// into stretched space (`forward`) or back.
+void map_polycube(autopolycube::AutoPolycube& p, const Stretch& s, bool forward);
+
+/// generate_and_improve on a polycube structure and its patch surface given in the model, for a
+/// part the polycube path meshed stretched by `s`: both taken into stretched space and meshed there,
+/// as mesh_surface meshes them, and the run mapped back (map_run). Given the structure and patch
+/// surface a run of mesh_surface reports (and its frame's rotation and stretch, exactly), its mesh
+/// bit for bit (MeshSurfaceOptions::stretched_by).
+void generate_and_improve_stretched(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const Stretch& s,
+                                    const MeshSurfaceOptions& options, MeshSurfaceRun& r);
+
 /// Every geometry of a run (mesh, generated, labels, the polycube's structure, patches, labels and
 /// polycube; not the repaired labelling, which stays in stretched space for the candidates handed
 /// it) taken into stretched space (`forward`) or back, and its quality reports measured again there.

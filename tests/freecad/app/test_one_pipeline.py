@@ -237,6 +237,53 @@ def test_a_document_saved_in_pipeline_mode_reopens_without_meshing_again(doc, tm
         FreeCAD.closeDocument(doc2.Name)
 
 
+def _max_edge_ratio(fc):
+    P, cells, types, _ = fc
+    hexes = np.array([c for c, t in zip(cells, types) if t == oracles.HEX])
+    return float(oracles.edge_ratios(P[hexes], oracles.HEX).max())
+
+
+def test_a_thin_part_s_stages_rebuild_it_stretched(doc):
+    """A plate 100 x 40 x 1 with its top edges chamfered 0.5 is thin: the pipeline segments it,
+    builds its polycube and generates it stretched along its thickness (cells of a different length
+    along each axis; docs/sizing.md). The Segmentation holds the stretch (Stretch): the Mesh built
+    from the stages, and the Segmentation and Polycube computed again after an edit, give the
+    pipeline's mesh. With Stretch (1, 1, 1) the chamfers take other labels and the cells get twice
+    as long for their thickness."""
+    box = Part.makeBox(100, 40, 1.0)
+    part = doc.addObject("Part::Feature", "Plate")
+    part.Shape = box.makeChamfer(0.5, [e for e in box.Edges
+                                       if e.BoundBox.ZLength < 1e-9 and e.BoundBox.ZMin > 0.5])
+    doc.recompute()
+    objs = hexdom.mesh_part(doc, part, allow_inverted=True, polycube_seconds=0)
+    mesh, seg, poly = objs["mesh"], objs["segmentation"], objs["polycube"]
+    assert mesh.MeshingPath == "polycube"
+    stretch = tuple(seg.Stretch)
+    assert max(stretch) > 2 and min(stretch) == 1.0, stretch
+    first = _fc_mesh(mesh)
+    diagonal = part.Shape.BoundBox.DiagonalLength
+    ratio = _max_edge_ratio(first)
+    assert ratio < 7
+    # The Mesh out of Pipeline: generated and improved from the Polycube, stretched.
+    mesh.Pipeline = False
+    mesh.touch()
+    api.recompute_document(doc, [mesh])
+    _assert_same(_fc_mesh(mesh), first + (None, None), diagonal)
+    # The Segmentation edited (an input set again): it and the Polycube compute as stages.
+    labels, blocks = list(seg.Labels), poly.HexBlocks
+    seg.EdgeWeight = float(seg.EdgeWeight)
+    poly.KeepWidths = poly.KeepWidths
+    api.recompute_document(doc, list(objs.values()))
+    assert not seg.FromPipeline and not poly.FromPipeline and not mesh.Pipeline
+    assert list(seg.Labels) == labels and poly.HexBlocks == blocks
+    _assert_same(_fc_mesh(mesh), first + (None, None), diagonal)
+    # Without the stretch the stages make the long thin cells the stretch avoids.
+    seg.Stretch = (1.0, 1.0, 1.0)
+    api.recompute_document(doc, list(objs.values()))
+    assert list(seg.Labels) != labels
+    assert _max_edge_ratio(_fc_mesh(mesh)) > 1.5 * ratio
+
+
 @pytest.mark.parametrize("name", ["bracket", "cone_000"])
 def test_stage_by_stage_on_the_pipeline_s_stages_is_the_pipeline_s_mesh(doc, corpus, name):
     """The Mesh out of Pipeline, recomputed from the stages the pipeline filled (generation,
