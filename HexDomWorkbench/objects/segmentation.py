@@ -70,6 +70,12 @@ class Segmentation(BaseHexDomObject):
                             "rotation (x in the frame = Frame applied to x); the identity: the "
                             "model's axes. Mesh Part sets the frame the faces fit best "
                             "(core.cube_frame) for a part lying at an angle")
+        if not hasattr(obj, "FrameMatrix"):
+            obj.addProperty("App::PropertyMatrix", "FrameMatrix", "Segmentation",
+                            "The Frame as the pipeline gave it, to the last digit (the Frame "
+                            "itself is kept as a quaternion); used while the Frame is that "
+                            "rotation")
+        obj.setEditorMode("FrameMatrix", 2)
         if not hasattr(obj, "Stretch"):
             obj.addProperty("App::PropertyVector", "Stretch", "Segmentation",
                             "Factors along the Frame's axes the surface is stretched by before "
@@ -205,13 +211,38 @@ def apply_patch_edits(obj, patches, issues):
 
 def frame_matrix(obj):
     """The 3 x 3 rotation of the Segmentation's Frame (x_frame = R @ x), or None for the model's
-    axes (the identity, or a document older than Frame)."""
+    axes (the identity, or a document older than Frame). The Frame is a quaternion: the matrix the
+    pipeline gave (FrameMatrix, set with it by set_frame) is returned while the Frame is still that
+    rotation, so that the stages rebuild with the very numbers the pipeline used."""
     frame = getattr(obj, "Frame", None)
     if frame is None:
         return None
     m = frame.toMatrix()
     R = np.array([[m.A11, m.A12, m.A13], [m.A21, m.A22, m.A23], [m.A31, m.A32, m.A33]], float)
-    return None if np.allclose(R, np.eye(3), rtol=0, atol=1e-12) else R
+    if np.allclose(R, np.eye(3), rtol=0, atol=1e-12):
+        return None
+    exact = getattr(obj, "FrameMatrix", None)
+    if exact is not None:
+        E = np.array([[exact.A11, exact.A12, exact.A13], [exact.A21, exact.A22, exact.A23],
+                      [exact.A31, exact.A32, exact.A33]], float)
+        if np.allclose(E, R, rtol=0, atol=1e-9):
+            return E
+    return R
+
+
+def set_frame(obj, R):
+    """Sets the Segmentation's Frame to the 3 x 3 rotation R (None: the model's axes), and
+    FrameMatrix to R exactly; touches it only when the frame changes."""
+    import FreeCAD
+    R = np.eye(3) if R is None else np.asarray(R, float).reshape(3, 3)
+    current = frame_matrix(obj)
+    if np.array_equal(np.eye(3) if current is None else current, R):
+        return
+    matrix = FreeCAD.Matrix(R[0, 0], R[0, 1], R[0, 2], 0, R[1, 0], R[1, 1], R[1, 2], 0,
+                            R[2, 0], R[2, 1], R[2, 2], 0, 0, 0, 0, 1)
+    if hasattr(obj, "FrameMatrix"):
+        obj.FrameMatrix = matrix
+    obj.Frame = FreeCAD.Rotation(matrix)
 
 
 def stretch_factors(obj):
@@ -232,18 +263,6 @@ def set_stretch(obj, factors):
     factors = (1.0, 1.0, 1.0) if factors is None else tuple(float(f) for f in factors)
     if tuple(obj.Stretch) != factors:
         obj.Stretch = factors
-
-
-def set_frame(obj, R):
-    """Sets the Segmentation's Frame to the 3 x 3 rotation R (None: the model's axes); touches
-    it only when the frame changes."""
-    import FreeCAD
-    R = np.eye(3) if R is None else np.asarray(R, float).reshape(3, 3)
-    current = frame_matrix(obj)
-    if np.allclose(np.eye(3) if current is None else current, R, rtol=0, atol=1e-12):
-        return
-    obj.Frame = FreeCAD.Rotation(FreeCAD.Matrix(R[0, 0], R[0, 1], R[0, 2], 0, R[1, 0], R[1, 1], R[1, 2], 0,
-                                                R[2, 0], R[2, 1], R[2, 2], 0, 0, 0, 0, 1))
 
 
 def is_segmentation(obj):
