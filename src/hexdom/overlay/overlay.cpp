@@ -229,6 +229,38 @@ struct Ranking {
   }
 };
 
+// After a grid of `cells` cells (`kept`: it became `best`) left `best` short of the targets
+// (Ranking): whether the spacing is halved again (saying why not, or why), counting the halvings
+// for quality alone in `finer_for_quality`. Without local sizes (`no_local`), an octree grid ends
+// the halvings.
+bool halve_again(const OverlayResult& best, double cells, bool kept, bool no_local, const Ranking& rank,
+                 const OverlayOptions& opt, int& finer_for_quality) {
+  auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
+  // An octree grid is already refined where the part is thin: halving it as well would multiply
+  // its cells (up to a million) by 8.
+  if (best.octree_levels > 0 && no_local) {
+    say("overlay: the octree's grid is kept; no halving after it");
+    return false;
+  }
+  // A finer grid for quality alone (the part is whole) costs 8 times the cells: not beyond
+  // max_cells_for_quality, nor beyond max_cells_for_extra for the worst SJ alone.
+  // A grid halved for the SJ alone that did no better ends the halvings.
+  const double finer_cells = 8.0 * cells;
+  const bool for_sj = inverted(best.quality) == 0 && !rank.volume_off(best);
+  const double cap = for_sj ? opt.max_cells_for_extra : opt.max_cells_for_quality;
+  if (for_sj && !kept) return false;
+  if (!rank.lost(best) && (++finer_for_quality > opt.refinements_for_quality || finer_cells > cap)) {
+    if (finer_for_quality <= opt.refinements_for_quality)
+      say(fmt("overlay: a finer grid would have about %.0f cells, more than %.0f; keeping this one", finer_cells, cap));
+    return false;
+  }
+  say(inverted(best.quality) > 0 ? "overlay: inverted cells remain; halving the spacing"
+      : rank.volume_off(best)    ? "overlay: the volume is off by more than the target; halving the spacing"
+                                 : fmt("overlay: worst SJ %.3f, below %.2f; halving the spacing", best.quality.hex.sj_min,
+                                       opt.refine_below_sj));
+  return true;
+}
+
 // Local sizes (opt.local_sizes) on a grid of spacing h: h scaled so that the smallest is met at
 // some octree level (local_levels; idempotent), said in the log, and the refinement it needs.
 Local local_refinement(Eigen::Vector3d& h, const OverlayOptions& opt, const LocalSizeField& field) {
@@ -380,6 +412,28 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   bool have = false;
   std::string why;
   int finer_for_quality = 0;
+  // One more grid of spacing h with options o (`what` says which in the log), kept in `into` when better.
+  auto extra_grid = [&](Eigen::Vector3d h, const OverlayOptions& o, const char* what, OverlayResult& into) {
+    opt.deadline.check("overlay");
+    try {
+      OverlayResult r = one_grid(h, o);
+      say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + rank.summary(r));
+      if (rank.better(r, into)) into = std::move(r);
+    } catch (const GeometryError& e) {
+      say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + e.what());
+    }
+  };
+  // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
+  // wall_fallback cells across (wall_f times h0, measured once), the better kept; made once, and
+  // before any halving only when it is the coarser.
+  double wall_f = 0;
+  bool walls_made = false;
+  auto walls_grid = [&](bool before_halving) {
+    if (wall_f == 0) wall_f = opt.wall_across == 0 && opt.wall_fallback > 0 ? wall_factor(opt.wall_fallback) : 1.0;
+    if (walls_made || wall_f >= 1 || (before_halving && wall_f <= 0.5)) return;
+    walls_made = true;
+    extra_grid(h0 * wall_f, opt, " for the walls", best);
+  };
   for (int k = 0; k <= opt.refinements; ++k) {
     Eigen::Vector3d h = h0 / std::pow(2.0, k);
     if (k > 0 && h.minCoeff() < opt.min_size * (1 - 1e-9)) {
@@ -404,13 +458,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
         r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
       OverlayOptions corners = opt;
       corners.core_by_centres = false;
-      try {
-        OverlayResult r2 = one_grid(h, corners);
-        say(fmt("overlay: spacing %g, core by corners: ", h.maxCoeff()) + rank.summary(r2));
-        if (rank.better(r2, r)) r = std::move(r2);
-      } catch (const GeometryError& e) {
-        say(std::string("overlay: core by corners: ") + e.what());
-      }
+      extra_grid(h, corners, ", core by corners", r);
     }
     const double cells = r.core_cells + r.buffer_cells;
     const bool kept = !have || rank.better(r, best);
@@ -418,47 +466,15 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       best = std::move(r);
       have = true;
     }
+    // The first grid left cells inverted: the grid for thin walls before any halving when it is
+    // the coarser of the two (fewer cells; cheapest first).
+    if (k == 0 && inverted(best.quality) > 0) walls_grid(true);
     const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || best.quality.hex.sj_min < opt.refine_below_sj;
     if (!short_of || k == opt.refinements) break;
-    // An octree grid is already refined where the part is thin: halving it as well would multiply
-    // its cells (up to a million) by 8.
-    if (best.octree_levels > 0 && field.empty()) {
-      say("overlay: the octree's grid is kept; no halving after it");
-      break;
-    }
-    // A finer grid for quality alone (the part is whole) costs 8 times the cells: not beyond
-    // max_cells_for_quality, nor beyond max_cells_for_extra for the worst SJ alone.
-    // A grid halved for the SJ alone that did no better ends the halvings.
-    const double finer_cells = 8.0 * cells;
-    const bool for_sj = inverted(best.quality) == 0 && !rank.volume_off(best);
-    const double cap = for_sj ? opt.max_cells_for_extra : opt.max_cells_for_quality;
-    if (for_sj && !kept) break;
-    if (!rank.lost(best) && (++finer_for_quality > opt.refinements_for_quality || finer_cells > cap)) {
-      if (finer_for_quality <= opt.refinements_for_quality)
-        say(fmt("overlay: a finer grid would have about %.0f cells, more than %.0f; keeping this one", finer_cells, cap));
-      break;
-    }
-    say(inverted(best.quality) > 0 ? "overlay: inverted cells remain; halving the spacing"
-        : rank.volume_off(best)    ? "overlay: the volume is off by more than the target; halving the spacing"
-                                   : fmt("overlay: worst SJ %.3f, below %.2f; halving the spacing", best.quality.hex.sj_min,
-                                         opt.refine_below_sj));
+    if (!halve_again(best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
   }
-  // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
-  // wall_fallback cells across, the better kept.
-  if (have && inverted(best.quality) > 0 && opt.wall_across == 0 && opt.wall_fallback > 0) {
-    const double f = wall_factor(opt.wall_fallback);
-    if (f < 1) {
-      opt.deadline.check("overlay");
-      try {
-        Eigen::Vector3d h = h0 * f;
-        OverlayResult r = one_grid(h, opt);
-        say(fmt("overlay: spacing %g for the walls: ", h.maxCoeff()) + rank.summary(r));
-        if (rank.better(r, best)) best = std::move(r);
-      } catch (const GeometryError& e) {
-        say(std::string("overlay: the grid for the walls: ") + e.what());
-      }
-    }
-  }
+  // Cells still inverted after the halvings: the grid for thin walls, finer than a halving.
+  if (have && inverted(best.quality) > 0) walls_grid(false);
   if (!have) throw GeometryError("overlay: " + why);
   best.grids = grids;
   best.frame = frame;

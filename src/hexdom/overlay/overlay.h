@@ -42,8 +42,10 @@ struct OverlayOptions {
   /// are cubes in (a plate's thin axis already has its own spacing). 0 (the default): the spacing
   /// as it is (docs/overlay.md: not yet a gain over the whole corpus).
   double wall_across = 0;
-  /// With wall_across 0: when the grids made keep inverted cells and the walls are thinner than
-  /// this many cells, one more grid with the spacing wall_across would give (the better kept).
+  /// With wall_across 0: when a grid keeps inverted cells and the walls are thinner than this
+  /// many cells, one more grid with the spacing wall_across would give (the better kept): right
+  /// after the first grid when it is coarser than a halving (cheapest first; no halving follows
+  /// when it meets the targets the halvings are for), else after the halvings.
   double wall_fallback = 2;
   double wall_quantile = 0.5;
   double max_wall_refinement = 8;

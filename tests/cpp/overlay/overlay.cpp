@@ -397,6 +397,31 @@ TEST(OverlayWalls, InvertedCellsOnThinWallsGetOneMoreGridForThem) {
   EXPECT_LT(boundary_distance(with.mesh, shell), 1e-9 * diagonal(shell));
 }
 
+// Cheapest first: on the hollow sphere (wall 1) at size 0.7 the first grid keeps inverted cells;
+// the grid for the walls (spacing 0.5, fewer cells than a halving to 0.35) comes next and, valid
+// with the volume within 1%, ends the search: no halving. Without it the halving is made instead,
+// with more than twice the cells.
+TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  overlay::OverlayOptions o;
+  o.size = 0.7;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult walls = overlay::overlay_mesh(shell, o);
+  EXPECT_NE(log.find("for the walls"), std::string::npos) << log;
+  EXPECT_EQ(log.find("halving"), std::string::npos) << log;
+  EXPECT_NEAR(walls.spacing, 0.5, 0.01);
+  EXPECT_EQ(inverted(walls.quality), 0);
+  EXPECT_NEAR(walls.quality.total_volume, volume, 0.01 * volume);
+  o.wall_fallback = 0;
+  o.log = nullptr;
+  const overlay::OverlayResult halved = overlay::overlay_mesh(shell, o);
+  EXPECT_NEAR(halved.spacing, 0.35, 0.01);
+  EXPECT_EQ(inverted(halved.quality), 0);
+  EXPECT_GT(halved.mesh.num_cells(), 2 * walls.mesh.num_cells());
+}
+
 // Local sizes: the spacing as asked when one of its levels is within 1.2 of the smallest size,
 // else the nearest that gives one (at most 1.2 coarser); none for sizes at the spacing or above;
 // the min size bounds them.
