@@ -217,17 +217,18 @@ def frame_matrix(obj):
     frame = getattr(obj, "Frame", None)
     if frame is None:
         return None
-    m = frame.toMatrix()
-    R = np.array([[m.A11, m.A12, m.A13], [m.A21, m.A22, m.A23], [m.A31, m.A32, m.A33]], float)
+    R = _rotation_part(frame.toMatrix())
     if np.allclose(R, np.eye(3), rtol=0, atol=1e-12):
         return None
     exact = getattr(obj, "FrameMatrix", None)
-    if exact is not None:
-        E = np.array([[exact.A11, exact.A12, exact.A13], [exact.A21, exact.A22, exact.A23],
-                      [exact.A31, exact.A32, exact.A33]], float)
-        if np.allclose(E, R, rtol=0, atol=1e-9):
-            return E
+    if exact is not None and np.allclose(_rotation_part(exact), R, rtol=0, atol=1e-9):
+        return _rotation_part(exact)
     return R
+
+
+def _rotation_part(m):
+    """The upper-left 3 x 3 of a FreeCAD.Matrix, as a numpy array."""
+    return np.array([[m.A11, m.A12, m.A13], [m.A21, m.A22, m.A23], [m.A31, m.A32, m.A33]], float)
 
 
 def set_frame(obj, R):

@@ -195,11 +195,7 @@ void bind_auto(py::module_& m) {
           mesh::SurfaceMesh s = surface_of(V, F, label);
           autopolycube::AutoPolycubeOptions opt;
           if (frame) opt.frame = checked_rotation(*frame);
-          const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch);
-          if (st) {  // the labels taken into the stretched frame, the results back
-            s.V = pipeline::stretched(s.V, *st);
-            opt.frame = Eigen::Matrix3d::Identity();
-          }
+          const std::optional<pipeline::Stretch> st = into_stretched_frame(s, opt.frame, frame, stretch);
           opt.size = size;
           opt.level = level;
           opt.max_relabels = max_relabels;

@@ -37,10 +37,7 @@ void bind_labels(py::module_& m) {
                                 " triangles");
           mesh::SurfaceMesh s = surface_of(V, F, patch ? *patch : Eigen::VectorXi::Zero(F.rows()));
           Eigen::Matrix3d R = frame ? checked_rotation(*frame) : Eigen::Matrix3d::Identity();
-          if (const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch)) {
-            s.V = pipeline::stretched(s.V, *st);  // the normals of the stretched surface, in its frame
-            R = Eigen::Matrix3d::Identity();
-          }
+          into_stretched_frame(s, R, frame, stretch);  // the normals of the stretched surface
           return segmentation::labels_from_normals(s, R, patch.has_value());
         },
         py::arg("V"), py::arg("F"), py::arg("patch") = py::none(), py::arg("frame") = py::none(),

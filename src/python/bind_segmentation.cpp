@@ -65,10 +65,7 @@ void bind_labelling(py::module_& m) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           segmentation::CvtOptions opt;
           if (frame) opt.frame = checked_rotation(*frame);
-          if (const std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch)) {
-            s.V = pipeline::stretched(s.V, *st);  // segmented in the stretched frame
-            opt.frame = Eigen::Matrix3d::Identity();
-          }
+          into_stretched_frame(s, opt.frame, frame, stretch);  // segmented there
           opt.edge_weight = edge_weight;
           opt.classical_sweeps = classical_sweeps;
           opt.edge_sweeps = edge_sweeps;

@@ -36,6 +36,12 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
 /// or all ones. InputError for a frame that is not a rotation or a factor not positive.
 std::optional<pipeline::Stretch> stretch_arg(const std::optional<Eigen::Matrix3d>& frame,
                                              const std::optional<Eigen::Vector3d>& stretch);
+/// A stage's input `s` taken into the stretched frame the `frame` and `stretch` keywords name
+/// (stretch_arg), and `R`, the frame the stage then works in, set to the identity; returns that
+/// stretch, to map the results back (none: `s` and `R` left as they are).
+std::optional<pipeline::Stretch> into_stretched_frame(mesh::SurfaceMesh& s, Eigen::Matrix3d& R,
+                                                      const std::optional<Eigen::Matrix3d>& frame,
+                                                      const std::optional<Eigen::Vector3d>& stretch);
 /// Raises `e` as the _hexdom error of its class (module: _hexdom) with attribute `name` set to
 /// `value` (what the finished stages made, for a front end that shows them).
 [[noreturn]] void raise_with(pybind11::handle module, const Error& e, const char* name, pybind11::object value);

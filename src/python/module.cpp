@@ -62,6 +62,17 @@ std::optional<pipeline::Stretch> python::stretch_arg(const std::optional<Eigen::
   return pipeline::stretch_of(frame ? checked_rotation(*frame) : Eigen::Matrix3d::Identity(), *stretch);
 }
 
+std::optional<pipeline::Stretch> python::into_stretched_frame(mesh::SurfaceMesh& s, Eigen::Matrix3d& R,
+                                                             const std::optional<Eigen::Matrix3d>& frame,
+                                                             const std::optional<Eigen::Vector3d>& stretch) {
+  std::optional<pipeline::Stretch> st = stretch_arg(frame, stretch);
+  if (st) {
+    s.V = pipeline::stretched(s.V, *st);
+    R = Eigen::Matrix3d::Identity();
+  }
+  return st;
+}
+
 [[noreturn]] void python::raise_with(py::handle module, const Error& e, const char* name, py::object value) {
   const char* cls = dynamic_cast<const InputError*>(&e)      ? "InputError"
                     : dynamic_cast<const GeometryError*>(&e) ? "GeometryError"

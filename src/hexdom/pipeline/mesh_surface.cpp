@@ -569,10 +569,12 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
       fmt(", worst block SJ %.3f, in %.2f s", r.polycube.min_block_quality, r.seconds[1]));
 
   if (opt.stretched_by) {  // the polycube as the run will report it, mapped back, stretched again
+    const Stretch& st = *opt.stretched_by;
+    auto through_model = [&](const Eigen::MatrixXd& V) { return stretched(unstretched(V, st), st); };
     mesh::SurfaceMesh patches = r.polycube.patches;
     mesh::Mesh structure = r.polycube.structure;
-    patches.V = stretched(unstretched(patches.V, *opt.stretched_by), *opt.stretched_by);
-    structure.V = stretched(unstretched(structure.V, *opt.stretched_by), *opt.stretched_by);
+    patches.V = through_model(patches.V);
+    structure.V = through_model(structure.V);
     generate_and_improve(patches, structure, opt, r);
   } else {
     generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
