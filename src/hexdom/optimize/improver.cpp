@@ -115,8 +115,9 @@ int Improver::sweep(const std::vector<int>* nodes, Visit&& visit) {
     together.clear();
     alone.clear();
     for (int v : bucket) (concurrent(v) ? together : alone).push_back(v);
-    if (threads_ > 1 && together.size() >= kMinConcurrent) {
-      parallel_for(static_cast<int>(together.size()), threads_, [&](int i) { visit(together[i]); });
+    const int threads = granted_threads(threads_);
+    if (threads > 1 && together.size() >= kMinConcurrent) {
+      parallel_for(static_cast<int>(together.size()), threads, [&](int i) { visit(together[i]); });
     } else {
       for (int v : together) visit(v);
     }

@@ -120,7 +120,8 @@ class Improver {
   // its numerical gradient (untangling inverted cells on the way).
   int optimize_round(double threshold);
 
-  /// Threads the passes share a colour's nodes among (1: the calling thread only). Boundary nodes
+  /// Threads the passes share a colour's nodes among (1: the calling thread only; under a thread
+  /// grant, common/thread_grant.h, the grant's count at each sweep instead). Boundary nodes
   /// whose projection hook is not BoundaryConstraints::project_concurrent move on the calling thread.
   void set_threads(int n) { threads_ = std::max(1, n); }
   int colours() const { return static_cast<int>(colours_.size()); }

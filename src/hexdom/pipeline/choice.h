@@ -16,6 +16,7 @@
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
 #include "hexdom/common/parallel_for.h"
+#include "hexdom/common/thread_grant.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::pipeline {
@@ -96,6 +97,27 @@ inline MeshSurfaceOptions step3_options(const MeshSurfaceOptions& mo, bool furth
   return full;
 }
 
+/// Step 1's options (see choose_path): the polycube path with its first candidate only, on
+/// `threads` threads, within `deadline`.
+inline MeshSurfaceOptions step1_options(const MeshSurfaceOptions& mo, int threads, const Deadline& deadline) {
+  MeshSurfaceOptions quick = mo;
+  quick.method = Method::Polycube;
+  quick.deadline = deadline;
+  quick.threads = threads;
+  quick.try_without_widths = quick.try_hex_apexes = quick.refine_when_inverted = false;
+  quick.retry_edge_weights.clear();
+  return quick;
+}
+
+/// The edge weights step 3 segments with when step 1's labelling defeats the repair: the options'
+/// retry_edge_weights without the first one's and without repeats.
+inline std::vector<double> further_edge_weights(const MeshSurfaceOptions& mo) {
+  std::vector<double> weights;
+  for (double w : mo.retry_edge_weights)
+    if (w != mo.segment.edge_weight && std::find(weights.begin(), weights.end(), w) == weights.end()) weights.push_back(w);
+  return weights;
+}
+
 /// Method::Auto on one surface, cheapest first:
 ///  1. the polycube path with its first candidate only (no further candidate: without the widths of
 ///     holes, hex blocks under apex caps, a finer level), within the options' deadline. A mesh that
@@ -123,27 +145,25 @@ inline MeshSurfaceOptions step3_options(const MeshSurfaceOptions& mo, bool furth
 /// when no path gives a mesh. `mesh_path` must be callable from two threads at once on different
 /// runs (the two paths share only what they read), and say its messages through the options' log.
 /// Each path's optimisers (and snap) get half of the options' threads, at least one: the paths
-/// already run beside each other, and the meshes do not depend on the number.
+/// already run beside each other, and the meshes do not depend on the number. Once a path's thread
+/// is done (the overlay's, or the polycube's steps 1 and 3), the other runs on all of them (a
+/// ThreadGrant, common/thread_grant.h).
 template <class Run, class MeshPath, class RunOf, class Blank, class Unsnapped>
 void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_path, RunOf run_of, Blank blank,
                  Unsnapped unsnapped, Run& r) {
   auto say = [&](const std::string& m) { if (mo.log) mo.log(0, m); };
-  MeshSurfaceOptions quick = mo;
-  quick.method = Method::Polycube;
   // Step 1's and step 3's deadlines: the polycube's one budget, each called off by the overlay's
   // thread (see below).
   const Deadline budget = polycube_deadline(mo);
-  quick.deadline = Deadline::cancellable(budget);
   PathCut cut(mo.polycube_seconds_overlay_met);  // see polycube_seconds_overlay_met
-  // The two paths run beside each other: each gets half the threads (the mesh does not depend on it).
-  const int half = std::max(1, thread_count(mo.threads) / 2);
-  quick.threads = half;
-  quick.try_without_widths = quick.try_hex_apexes = quick.refine_when_inverted = false;
-  quick.retry_edge_weights.clear();
-  // The edge weights step 3 segments with when step 1's labelling defeats the repair.
-  std::vector<double> weights;
-  for (double w : mo.retry_edge_weights)
-    if (w != mo.segment.edge_weight && std::find(weights.begin(), weights.end(), w) == weights.end()) weights.push_back(w);
+  // The two paths run beside each other on half the threads each (the mesh does not depend on it);
+  // a path's threads go to the other once it ends (thread_grant.h).
+  const int all_threads = thread_count(mo.threads);
+  const int half = std::max(1, all_threads / 2);
+  const ThreadGrant polycube_grant(half), overlay_grant(half);
+  const ThreadGrantScope polycube_scope(&polycube_grant);
+  MeshSurfaceOptions quick = step1_options(mo, half, Deadline::cancellable(budget));
+  const std::vector<double> weights = further_edge_weights(mo);
   // Step 2 starts now on its own thread, with its messages kept; it is called off (its deadline
   // cancelled) when step 1's mesh is kept, and always joined before this returns or throws.
   Run grid = blank(r);
@@ -160,8 +180,10 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
   const Interrupt* interrupt = current_interrupt();  // the overlay's thread runs under the caller's
   std::thread worker([&] {
     const InterruptScope scope(interrupt);
+    const ThreadGrantScope granted(&overlay_grant);
     try {
       mesh_path(overlay, grid);
+      polycube_grant.set(all_threads);
       have_grid = true;
       cut.overlay_done.store(true);
       if (meets_targets(run_of(grid), reference, mo)) step3.cancel();
@@ -171,6 +193,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
         quick.deadline.cancel();
       }
     } catch (...) {
+      polycube_grant.set(all_threads);
       grid_error = std::current_exception();
       cut.overlay_done.store(true);
     }
@@ -234,6 +257,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
                              : "the polycube with the further edge weights: " + polycube_failure_note(e, run_of(again).stage);
     }
   }
+  overlay_grant.set(all_threads);
   join.cancel = false;
   worker.join();
   check_interrupt("auto");
