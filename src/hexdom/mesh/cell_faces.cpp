@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <unordered_map>
 
 #include "hexdom/common/error.h"
 
@@ -20,13 +19,49 @@ const std::array<int, 2> kHexEdges[12] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}
 const std::array<int, 2> kWedgeEdges[9] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
 const std::array<int, 2> kTetEdges[6] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
 
-struct FaceHash {
-  size_t operator()(const std::array<int, 4>& k) const {
-    size_t h = 1469598103934665603ull;
-    for (int x : k) h = (h ^ static_cast<size_t>(x + 1)) * 1099511628211ull;
-    return h;
+// Every cell face with its nodes sorted (the key; -1 after a triangle's three), sorted by key and
+// then by (cell, local face): faces shared by cells come together, the lower cell first.
+struct FaceRecord {
+  std::array<int, 4> key;
+  int cell, local;
+  bool operator<(const FaceRecord& o) const {
+    return key != o.key ? key < o.key : cell != o.cell ? cell < o.cell : local < o.local;
   }
 };
+
+std::vector<FaceRecord> sorted_faces(const Mesh& m) {
+  std::vector<FaceRecord> all;
+  all.reserve(6 * static_cast<size_t>(m.num_cells()));
+  for (int c = 0; c < m.num_cells(); ++c) {
+    auto [lf, nf] = cell_faces(m.type(c));
+    for (int f = 0; f < nf; ++f) {
+      FaceRecord r{{-1, -1, -1, -1}, c, f};
+      for (int i = 0; i < lf[f].n; ++i) r.key[i] = m.cells(c, lf[f].v[i]);
+      for (int i = 1; i < lf[f].n; ++i)  // insertion sort of at most 4 ids
+        for (int j = i; j > 0 && r.key[j] < r.key[j - 1]; --j) std::swap(r.key[j], r.key[j - 1]);
+      all.push_back(r);
+    }
+  }
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+// Calls run(first, count) for each run of faces with one key in `all`; throws GeometryError for a
+// key held by more than two cells (the lowest such key).
+template <class Run>
+void face_runs(const std::vector<FaceRecord>& all, Run&& run) {
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i + 1;
+    while (j < all.size() && all[j].key == all[i].key) ++j;
+    if (j - i > 2) {
+      const auto& key = all[i].key;
+      throw GeometryError("face with nodes " + std::to_string(key[0] + 1) + " " + std::to_string(key[1] + 1) + " " +
+                          std::to_string(key[2] + 1) + " is shared by more than two cells");
+    }
+    run(i, j - i);
+    i = j;
+  }
+}
 }  // namespace
 
 std::pair<const LocalFace*, int> cell_faces(CellType t) {
@@ -48,27 +83,16 @@ std::pair<const std::array<int, 2>*, int> cell_edges(CellType t) {
 }
 
 std::vector<BoundaryFace> boundary_faces(const Mesh& m) {
-  std::unordered_map<std::array<int, 4>, std::pair<int, int>, FaceHash> seen;  // key -> (count, first)
-  std::vector<BoundaryFace> all;
-  seen.reserve(4 * static_cast<size_t>(m.num_cells()));
-  for (int c = 0; c < m.num_cells(); ++c) {
-    auto [lf, nf] = cell_faces(m.type(c));
-    for (int f = 0; f < nf; ++f) {
-      BoundaryFace b{c, f, lf[f].n, {-1, -1, -1, -1}};
-      for (int i = 0; i < lf[f].n; ++i) b.v[i] = m.cells(c, lf[f].v[i]);
-      std::array<int, 4> key = b.v;
-      for (int i = 1; i < b.n; ++i)  // insertion sort of at most 4 ids
-        for (int j = i; j > 0 && key[j] < key[j - 1]; --j) std::swap(key[j], key[j - 1]);
-      auto [it, ins] = seen.try_emplace(key, 0, static_cast<int>(all.size()));
-      if (++it->second.first > 2)
-        throw GeometryError("face with nodes " + std::to_string(key[0] + 1) + " " + std::to_string(key[1] + 1) + " " +
-                            std::to_string(key[2] + 1) + " is shared by more than two cells");
-      if (ins) all.push_back(b);
-    }
-  }
+  const std::vector<FaceRecord> all = sorted_faces(m);
   std::vector<BoundaryFace> out;
-  for (const auto& [key, cf] : seen)
-    if (cf.first == 1) out.push_back(all[cf.second]);
+  face_runs(all, [&](size_t i, size_t n) {
+    if (n != 1) return;
+    const FaceRecord& r = all[i];
+    const LocalFace& lf = cell_faces(m.type(r.cell)).first[r.local];
+    BoundaryFace b{r.cell, r.local, lf.n, {-1, -1, -1, -1}};
+    for (int k = 0; k < lf.n; ++k) b.v[k] = m.cells(r.cell, lf.v[k]);
+    out.push_back(b);
+  });
   std::sort(out.begin(), out.end(), [](const BoundaryFace& a, const BoundaryFace& b) {
     return a.cell != b.cell ? a.cell < b.cell : a.local < b.local;
   });
@@ -76,25 +100,11 @@ std::vector<BoundaryFace> boundary_faces(const Mesh& m) {
 }
 
 std::vector<std::array<int, 2>> face_neighbours(const Mesh& m) {
-  std::unordered_map<std::array<int, 4>, int, FaceHash> first;  // key -> first cell, or -1 once paired
-  first.reserve(4 * static_cast<size_t>(m.num_cells()));
+  const std::vector<FaceRecord> all = sorted_faces(m);
   std::vector<std::array<int, 2>> pairs;
-  for (int c = 0; c < m.num_cells(); ++c) {
-    auto [lf, nf] = cell_faces(m.type(c));
-    for (int f = 0; f < nf; ++f) {
-      std::array<int, 4> key{-1, -1, -1, -1};
-      for (int i = 0; i < lf[f].n; ++i) key[i] = m.cells(c, lf[f].v[i]);
-      for (int i = 1; i < lf[f].n; ++i)
-        for (int j = i; j > 0 && key[j] < key[j - 1]; --j) std::swap(key[j], key[j - 1]);
-      auto [it, ins] = first.try_emplace(key, c);
-      if (ins) continue;
-      if (it->second < 0)
-        throw GeometryError("face with nodes " + std::to_string(key[0] + 1) + " " + std::to_string(key[1] + 1) + " " +
-                            std::to_string(key[2] + 1) + " is shared by more than two cells");
-      pairs.push_back({std::min(it->second, c), std::max(it->second, c)});
-      it->second = -1;
-    }
-  }
+  face_runs(all, [&](size_t i, size_t n) {
+    if (n == 2) pairs.push_back({all[i].cell, all[i + 1].cell});
+  });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
