@@ -191,9 +191,10 @@ Vec Improver::constrain(int v, const Vec& x) const {
 }
 
 double Improver::shortest_edge(int v, const Vec& x) const {
+  // One square root: it is monotonic and correctly rounded, so this is the least of the lengths.
   double s = std::numeric_limits<double>::max();
-  for (int u : t_.edge_nbrs[v]) s = std::min(s, (m_.V.row(u).transpose() - x).norm());
-  return s;
+  for (int u : t_.edge_nbrs[v]) s = std::min(s, (m_.V.row(u).transpose() - x).squaredNorm());
+  return std::sqrt(s);
 }
 
 void Improver::mark_around(int v) {
