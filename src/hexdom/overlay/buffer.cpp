@@ -314,6 +314,10 @@ int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, con
   for (int c : cells)
     for (int i = 0; i < 8; ++i)
       if (m.cells(c, i) >= 0) nodes.push_back(m.cells(c, i));
+  return loosen_nodes(p, std::move(nodes), feat);
+}
+
+int loosen_nodes(Placement& p, std::vector<int> nodes, const SurfaceFeatures& feat) {
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   int freed = 0;

@@ -66,6 +66,8 @@ std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::ve
 /// not make valid with their nodes held on sharp features or on one face. Returns the number of
 /// nodes let off.
 int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& features);
+/// The same for the given nodes (in any order, repeated or not).
+int loosen_nodes(Placement& p, std::vector<int> nodes, const SurfaceFeatures& features);
 
 /// Where node v of a placement goes for a candidate position x (its region, curve or corner).
 Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& features, int v, const Eigen::Vector3d& x);

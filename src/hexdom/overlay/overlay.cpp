@@ -8,6 +8,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
 #include "hexdom/overlay/buffer.h"
@@ -84,6 +85,27 @@ Core octree_core(const OctreeMesh& tree, const mesh::SurfaceMesh& s, const mesh:
   Core core = manifold_core(cells, std::move(keep), f.distance);
   core.parted = parted;
   return core;
+}
+
+// The nodes at both ends of the shortest edge of each cell above `max_ratio` whose two ends are
+// both held on a curve or at a corner.
+std::vector<int> held_short_edges(const mesh::Mesh& m, const Placement& place_of, double max_ratio) {
+  const quality::CellMetrics metrics = quality::compute_metrics(m);
+  auto held = [&](int v) { return place_of.kind[v] == optimize::Curve || place_of.kind[v] == optimize::Corner; };
+  std::vector<int> out;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    if (!(metrics.edge_ratio(c) > max_ratio)) continue;
+    const auto [edges, n] = mesh::cell_edges(m.type(c));
+    int a = -1, b = -1;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < n; ++e) {
+      const int u = m.cells(c, edges[e][0]), v = m.cells(c, edges[e][1]);
+      const double l = (m.V.row(u) - m.V.row(v)).squaredNorm();
+      if (l < shortest) shortest = l, a = u, b = v;
+    }
+    if (a >= 0 && held(a) && held(b)) out.insert(out.end(), {a, b});
+  }
+  return out;
 }
 
 // One grid of spacing h over `s` (in the frame): core, buffer layer, placement, optimiser. With
@@ -182,6 +204,28 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
       opt.log(0, fmt("overlay: %.0f inverted cells: %.0f of their nodes let off their curves or corners, ", double(bad.size()),
                      double(freed)) + fmt("%.0f inverted after", double(inverted(again.after))));
     if (inverted(again.after) > inverted(ir.after)) break;
+    ir = std::move(again);
+  }
+  // Cells above the edge-ratio target whose shortest edge joins two nodes held on curves or
+  // corners (a ledge, a CAD edge or a small hole far shorter than the cells: no move of either
+  // can lengthen it): those two nodes let off one level, the optimiser again, kept when the
+  // largest ratio goes down with no cell inverted and the worst cell not below the lower of its
+  // SJ and refine_below_sj; twice at most (a corner goes to a curve, then to a face).
+  for (int round = 0; round < 2 && opt.max_edge_ratio > 0 && inverted(ir.after) == 0; ++round) {
+    const double ratio = quality::max_edge_ratio(ir.after);
+    if (!(ratio > opt.max_edge_ratio)) break;
+    const std::vector<int> held = held_short_edges(ir.mesh, place_of, opt.max_edge_ratio);
+    if (held.empty() || loosen_nodes(place_of, held, feat) == 0) break;
+    io.kinds = place_of.kind;
+    io.curve_neighbours = curve_neighbours(place_of, outer, feat);
+    optimize::ImproveResult again = optimize::improve(ir.mesh, io);
+    opt.deadline.check("overlay");
+    if (opt.log)
+      opt.log(0, fmt("overlay: largest edge ratio %.1f: %.0f nodes on the ends of the shortest edges let off their curves or "
+                     "corners, %.1f after", ratio, double(held.size()), quality::max_edge_ratio(again.after)));
+    if (inverted(again.after) > 0 || !(quality::max_edge_ratio(again.after) < ratio) ||
+        again.after.hex.sj_min < std::min(ir.after.hex.sj_min, opt.refine_below_sj))
+      break;
     ir = std::move(again);
   }
   if (stretch) {
@@ -423,6 +467,9 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + e.what());
     }
   };
+  // The spacings asked of the halvings so far: a grid for the walls of one of them (its factor cut
+  // at 1 / max_wall_refinement, a power of 2) would be the same mesh again.
+  std::vector<Eigen::Vector3d> halvings;
   // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
   // wall_fallback cells across (wall_f times h0, measured once), the better kept; made once, and
   // before any halving only when it is the coarser.
@@ -432,7 +479,13 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     if (wall_f == 0) wall_f = opt.wall_across == 0 && opt.wall_fallback > 0 ? wall_factor(opt.wall_fallback) : 1.0;
     if (walls_made || wall_f >= 1 || (before_halving && wall_f <= 0.5)) return;
     walls_made = true;
-    extra_grid(h0 * wall_f, opt, " for the walls", best);
+    const Eigen::Vector3d h = h0 * wall_f;
+    for (const Eigen::Vector3d& made : halvings)
+      if ((made - h).norm() <= 1e-9 * h.norm()) {
+        say(fmt("overlay: the grid for the walls has the spacing %g, already meshed", h.maxCoeff()));
+        return;
+      }
+    extra_grid(h, opt, " for the walls", best);
   };
   for (int k = 0; k <= opt.refinements; ++k) {
     Eigen::Vector3d h = h0 / std::pow(2.0, k);
@@ -442,6 +495,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       break;
     }
     opt.deadline.check("overlay");
+    halvings.push_back(h);
     OverlayResult r;
     try {
       r = one_grid(h, opt);

@@ -624,3 +624,54 @@ TEST(Overlay, TheEdgeOfASplitFaceIsFollowed) {
   EXPECT_GT(top, 50);
   EXPECT_EQ(straddling, 0);
 }
+
+// A grid for the walls whose spacing a halving already had is not made again: the hollow sphere
+// (wall 1) at size 8 (a grid of 6.67 over its extent) has walls of 0.15 cell, so the factor for
+// them is cut at 1 / 8, the spacing 0.83 of the third halving. The log says so and the mesh is
+// that of the halvings alone.
+TEST(OverlayWalls, TheGridForTheWallsIsNotMadeTwice) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  overlay::OverlayOptions o;
+  o.size = 8;
+  o.refinements_for_quality = 0;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult r = overlay::overlay_mesh(shell, o);
+  EXPECT_NE(log.find("the grid for the walls has the spacing 0.833333, already meshed"), std::string::npos) << log;
+  EXPECT_EQ(log.find("for the walls:"), std::string::npos) << log;
+  EXPECT_NEAR(r.spacing, 20.0 / 24, 1e-9);
+  o.wall_fallback = 0;
+  o.log = nullptr;
+  const overlay::OverlayResult halvings = overlay::overlay_mesh(shell, o);
+  EXPECT_EQ(r.grids, halvings.grids);
+  EXPECT_EQ(r.mesh.num_cells(), halvings.mesh.num_cells());
+}
+
+// A ledge 0.4 high along a block 100 x 100 x 20 whose cells are about 4.8: the two corners at each
+// end of the ledge are 0.4 apart, and held there the cells between them would have an edge ratio
+// of about 12. Their nodes are let off the corners (the log says so): every cell within the
+// edge-ratio target, the mesh valid, on the surface, with the block's volume.
+TEST(Overlay, ALedgeFarThinnerThanTheCellsMakesNoNeedleCells) {
+  std::vector<std::array<int, 3>> cells;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) {
+      cells.push_back({i, j, 0});
+      if (i < 5) cells.push_back({i, j, 1});
+    }
+  mesh::SurfaceMesh s = test::cell_surface(cells, 1, 1.0);
+  for (int v = 0; v < s.V.rows(); ++v) {
+    const double z = s.V(v, 2);
+    s.V.row(v) << 10 * s.V(v, 0), 10 * s.V(v, 1), z <= 1 ? 20 * z : 20 + 0.4 * (z - 1);
+  }
+  const double volume = 100 * 100 * 20 + 50 * 100 * 0.4;
+  ASSERT_NEAR(mesh::enclosed_volume(s.V, s.F), volume, 1e-6);
+  overlay::OverlayOptions o;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_NE(log.find("nodes on the ends of the shortest edges let off"), std::string::npos) << log;
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_LE(quality::max_edge_ratio(r.quality), o.max_edge_ratio);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
+}
