@@ -6,7 +6,6 @@
 #include <exception>
 #include <mutex>
 #include <thread>
-#include <vector>
 
 #include "hexdom/common/interrupt.h"
 #include "hexdom/common/thread_grant.h"
@@ -15,13 +14,14 @@
 namespace hexdom {
 
 /// Calls f(i) for every i in [0, n) on `threads` threads (the caller's and the program's pool's,
-/// thread_pool.h; fewer when n is smaller, one when threads < 1). Each thread takes runs of consecutive indices (about a
-/// sixteenth of n / threads each), in increasing order: neighbouring items, which often write to
-/// neighbouring memory, go to the same thread. f must write only what index i owns; then the
-/// result does not depend on the number of threads. When calls throw, the exception of the lowest
-/// index is rethrown after every call has returned. The threads run under the caller's interrupt
-/// (interrupt.h); once it is raised no further run starts and InterruptedError is thrown. Under a
-/// thread grant (thread_grant.h) the grant's count replaces `threads`.
+/// thread_pool.h; fewer when n is smaller, one when threads < 1). Each thread takes runs of
+/// consecutive indices (about a sixteenth of n / threads each), in increasing order: neighbouring
+/// items, which often write to neighbouring memory, go to the same thread. f must write only what
+/// index i owns; then the result does not depend on the number of threads. When calls throw, the
+/// exception of the lowest index is rethrown after every call has returned. The threads run under
+/// the caller's interrupt (interrupt.h); once it is raised no further run starts and
+/// InterruptedError is thrown. Under a thread grant (thread_grant.h) the grant's count replaces
+/// `threads`.
 template <class Fn>
 void parallel_for(int n, int threads, Fn&& f) {
   threads = std::max(1, std::min(granted_threads(threads), n));
@@ -61,7 +61,8 @@ void parallel_for(int n, int threads, Fn&& f) {
 
 /// One thread per hardware thread when `requested` is 0 or less, else `requested`.
 inline int thread_count(int requested) {
-  return requested > 0 ? requested : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  return requested > 0 ? requested : std::max(1, cores);
 }
 
 }  // namespace hexdom
