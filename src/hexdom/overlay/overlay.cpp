@@ -186,6 +186,14 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.deadline = opt.deadline;
   optimize::ImproveResult ir = optimize::improve(m, io);
   opt.deadline.check("overlay");
+  // The optimiser once more after nodes were let off their features (loosen, loosen_nodes).
+  auto improve_again = [&] {
+    io.kinds = place_of.kind;
+    io.curve_neighbours = curve_neighbours(place_of, outer, feat);
+    optimize::ImproveResult again = optimize::improve(ir.mesh, io);
+    opt.deadline.check("overlay");
+    return again;
+  };
   // Cells the optimiser could not make valid with their nodes held on curves, corners and regions:
   // those nodes let off one level (loosen), the optimiser again, the better kept; three times at
   // most (a corner node can end anywhere on the surface).
@@ -196,10 +204,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
       if (!(metrics.scaled_jacobian(c) > 0)) bad.push_back(c);
     const int freed = loosen(place_of, ir.mesh, bad, feat);
     if (freed == 0) break;
-    io.kinds = place_of.kind;
-    io.curve_neighbours = curve_neighbours(place_of, outer, feat);
-    optimize::ImproveResult again = optimize::improve(ir.mesh, io);
-    opt.deadline.check("overlay");
+    optimize::ImproveResult again = improve_again();
     if (opt.log)
       opt.log(0, fmt("overlay: %.0f inverted cells: %.0f of their nodes let off their curves or corners, ", double(bad.size()),
                      double(freed)) + fmt("%.0f inverted after", double(inverted(again.after))));
@@ -216,10 +221,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     if (!(ratio > opt.max_edge_ratio)) break;
     const std::vector<int> held = held_short_edges(ir.mesh, place_of, opt.max_edge_ratio);
     if (held.empty() || loosen_nodes(place_of, held, feat) == 0) break;
-    io.kinds = place_of.kind;
-    io.curve_neighbours = curve_neighbours(place_of, outer, feat);
-    optimize::ImproveResult again = optimize::improve(ir.mesh, io);
-    opt.deadline.check("overlay");
+    optimize::ImproveResult again = improve_again();
     if (opt.log)
       opt.log(0, fmt("overlay: largest edge ratio %.1f: %.0f nodes on the ends of the shortest edges let off their curves or "
                      "corners, %.1f after", ratio, double(held.size()), quality::max_edge_ratio(again.after)));
