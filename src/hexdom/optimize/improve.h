@@ -32,7 +32,8 @@ struct ImproveOptions {
   int mean_passes = 12;
   /// Edge-ratio target (largest over shortest edge of a cell, quality::edge_ratio); 0: none. After
   /// the mean passes, the nodes of the cells above it step down the gradient of their cells'
-  /// largest ratio, at most `ratio_rounds` rounds. A move never lowers a type's worst scaled
+  /// largest ratio (steps of their typical edge, then of their own shortest edge where that is far
+  /// shorter: a thin layer), at most `ratio_rounds` rounds. A move never lowers a type's worst scaled
   /// Jacobian, never inverts a cell, and never takes a cell that was at or above `ratio_sj_floor`
   /// below it: the ratio gives way to the scaled Jacobian targets.
   double max_edge_ratio = 0;

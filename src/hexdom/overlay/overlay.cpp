@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
@@ -111,9 +112,12 @@ std::vector<int> held_short_edges(const mesh::Mesh& m, const Placement& place_of
 // One grid of spacing h over `s` (in the frame): core, buffer layer, placement, optimiser. With
 // `stretch`, s and feat are the stretched copies: the mesh is optimised there, stretched back and
 // optimised again on the real surface, its nodes kept on the same regions, curves and corners.
-// Throws GeometryError when the core is empty or in pieces.
+// Throws GeometryError when the core is empty or in pieces. With `lost_at` > 0, a mesh whose volume
+// is off that of s by more than that fraction is returned as the optimiser left it, without the
+// rounds that let nodes off their features to mend inverted or needle cells: the caller ranks it
+// below any mesh that kept the part (Ranking::lost) and makes a finer grid.
 OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& feat, const Eigen::Vector3d& h,
-                             const OverlayOptions& opt, const Stretch* stretch, const Local& local) {
+                             const OverlayOptions& opt, const Stretch* stretch, const Local& local, double lost_at) {
   OverlayResult r;
   const Grid grid = grid_around(s.V, h);
   r.spacing = grid.h.maxCoeff();
@@ -186,6 +190,11 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.deadline = opt.deadline;
   optimize::ImproveResult ir = optimize::improve(m, io);
   opt.deadline.check("overlay");
+  const double enclosed = lost_at > 0 ? mesh::enclosed_volume(s.V, s.F) : 0.0;
+  const bool mend = !(lost_at > 0 && std::abs(ir.after.total_volume - enclosed) > lost_at * std::abs(enclosed));
+  if (!mend && inverted(ir.after) > 0 && opt.log)
+    opt.log(0, fmt("overlay: spacing %g lost %.0f%% of the solid: its %.0f inverted cells are left as they are, a finer "
+                   "grid follows", h.maxCoeff(), 100 * std::abs(ir.after.total_volume / enclosed - 1), double(inverted(ir.after))));
   // The optimiser once more after nodes were let off their features (loosen, loosen_nodes).
   auto improve_again = [&] {
     io.kinds = place_of.kind;
@@ -197,7 +206,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   // Cells the optimiser could not make valid with their nodes held on curves, corners and regions:
   // those nodes let off one level (loosen), the optimiser again, the better kept; three times at
   // most (a corner node can end anywhere on the surface).
-  for (int round = 0; round < 3 && inverted(ir.after) > 0; ++round) {
+  for (int round = 0; mend && round < 3 && inverted(ir.after) > 0; ++round) {
     const quality::CellMetrics metrics = quality::compute_metrics(ir.mesh);
     std::vector<int> bad;
     for (int c = 0; c < ir.mesh.num_cells(); ++c)
@@ -216,7 +225,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   // can lengthen it): those two nodes let off one level, the optimiser again, kept when the
   // largest ratio goes down with no cell inverted and the worst cell not below the lower of its
   // SJ and refine_below_sj; twice at most (a corner goes to a curve, then to a face).
-  for (int round = 0; round < 2 && opt.max_edge_ratio > 0 && inverted(ir.after) == 0; ++round) {
+  for (int round = 0; mend && round < 2 && opt.max_edge_ratio > 0 && inverted(ir.after) == 0; ++round) {
     const double ratio = quality::max_edge_ratio(ir.after);
     if (!(ratio > opt.max_edge_ratio)) break;
     const std::vector<int> held = held_short_edges(ir.mesh, place_of, opt.max_edge_ratio);
@@ -393,6 +402,87 @@ struct FeatureSets {
   }
 };
 
+// The grids of one overlay_mesh run over the surface `s` (in the frame; `ss` its stretched copy
+// when the spacings differ by `stretch`), with its features, local sizes and ranking.
+class Grids {
+ public:
+  Grids(const mesh::SurfaceMesh& s, const mesh::SurfaceMesh& ss, const Eigen::Vector3d& stretch, const FeatureSets& fs,
+        const LocalSizeField& field, const Ranking& rank, const OverlayOptions& opt)
+      : s_(s), ss_(ss), stretch_(stretch), stretched_((stretch.array() != 1.0).any()), fs_(fs), field_(field), rank_(rank),
+        opt_(opt) {}
+
+  int made() const { return grids_; }
+
+  // One grid of spacing h with the core rule `o` asks for and the features `f` (`sf`: theirs on
+  // the stretched surface), stretched when the spacings differ; h is first made to meet the local
+  // sizes. A mesh that lost part of the solid is not mended when `unmended_if_lost`
+  // (mesh_with_grid).
+  OverlayResult features_grid(Eigen::Vector3d& h, const OverlayOptions& o, const SurfaceFeatures& f,
+                              const SurfaceFeatures* sf, bool unmended_if_lost) {
+    ++grids_;
+    const Local local = local_refinement(h, o, field_);
+    const double lost_at = unmended_if_lost ? o.lost_volume : 0.0;
+    if (!stretched_) return mesh_with_grid(s_, f, h, o, nullptr, local, lost_at);
+    const Stretch st{stretch_, &s_, &f};
+    OverlayResult r = mesh_with_grid(ss_, *sf, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local, lost_at);
+    const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch_);
+    r.spacing = spacing.maxCoeff();
+    r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
+    return r;
+  }
+
+  // The grid with the surface's features; where cells stay inverted within a spacing of a curve
+  // patch_edges added, the same grid without those curves too (an extra mesh: up to
+  // max_cells_for_extra cells), the better kept (fewer CAD edges followed, rather than
+  // inversions). With `finer_follows` (a finer grid is made after this one when it lost part of
+  // the solid), a mesh that lost part of the solid is neither mended nor made again without the
+  // curves: mending changes no ranking among such meshes (Ranking::better).
+  OverlayResult one_grid(Eigen::Vector3d& h, const OverlayOptions& o, bool finer_follows) {
+    const Eigen::Vector3d asked = h;
+    OverlayResult r = features_grid(h, o, *fs_.feat, fs_.sfeat.get(), finer_follows);
+    r.patch_edges = fs_.plain != nullptr;
+    if (r.core_cells + r.buffer_cells > o.max_cells_for_extra || !fs_.inverted_near_added(r)) return r;
+    if (finer_follows && rank_.lost(r)) return r;
+    Eigen::Vector3d h2 = asked;
+    try {
+      // Beside a mesh that kept the part, one that lost some never wins: it is not mended then.
+      OverlayResult r2 = features_grid(h2, o, *fs_.plain, fs_.splain.get(), !rank_.lost(r));
+      say(fmt("overlay: spacing %g without the edges between tangent or coplanar faces: ", h2.maxCoeff()) + rank_.summary(r2));
+      if (rank_.better(r2, r)) r = std::move(r2);
+    } catch (const GeometryError& e) {
+      say(std::string("overlay: without the edges between tangent or coplanar faces: ") + e.what());
+    }
+    return r;
+  }
+
+  // One more grid of spacing h with options o (`what` says which in the log), kept in `into` when
+  // better; not mended when it lost part of the solid and `into` did not (it cannot win then).
+  void extra_grid(Eigen::Vector3d h, const OverlayOptions& o, const char* what, OverlayResult& into) {
+    opt_.deadline.check("overlay");
+    try {
+      OverlayResult r = one_grid(h, o, !rank_.lost(into));
+      say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + rank_.summary(r));
+      if (rank_.better(r, into)) into = std::move(r);
+    } catch (const GeometryError& e) {
+      say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + e.what());
+    }
+  }
+
+ private:
+  void say(const std::string& m) const {
+    if (opt_.log) opt_.log(0, m);
+  }
+  const mesh::SurfaceMesh& s_;
+  const mesh::SurfaceMesh& ss_;
+  const Eigen::Vector3d stretch_;
+  const bool stretched_;
+  const FeatureSets& fs_;
+  const LocalSizeField& field_;
+  const Ranking& rank_;
+  const OverlayOptions& opt_;
+  int grids_ = 0;
+};
+
 }  // namespace
 
 OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOptions& opt) {
@@ -422,53 +512,11 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
                                   Eigen::Matrix3d(stretch.asDiagonal());
   const LocalSizeField field = opt.local_sizes.empty() ? LocalSizeField()
                                                        : LocalSizeField(stretched ? ss : s, opt.local_sizes, opt.growth_rate, to_grid);
-  int grids = 0;
-  // One grid of spacing h with the core rule `o` asks for and the features `f` (`sf`: theirs on the
-  // stretched surface), stretched when the spacings differ; h is first made to meet the local sizes.
-  auto features_grid = [&](Eigen::Vector3d& h, const OverlayOptions& o, const SurfaceFeatures& f, const SurfaceFeatures* sf) {
-    ++grids;
-    const Local local = local_refinement(h, o, field);
-    if (!stretched) return mesh_with_grid(s, f, h, o, nullptr, local);
-    const Stretch st{stretch, &s, &f};
-    OverlayResult r = mesh_with_grid(ss, *sf, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local);
-    const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch);
-    r.spacing = spacing.maxCoeff();
-    r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
-    return r;
-  };
-  // The grid with the surface's features; where cells stay inverted within a spacing of a curve
-  // patch_edges added, the same grid without those curves too (an extra mesh: up to
-  // max_cells_for_extra cells), the better kept (fewer CAD edges followed, rather than inversions).
-  auto one_grid = [&](Eigen::Vector3d& h, const OverlayOptions& o) {
-    const Eigen::Vector3d asked = h;
-    OverlayResult r = features_grid(h, o, *fs.feat, fs.sfeat.get());
-    r.patch_edges = fs.plain != nullptr;
-    if (r.core_cells + r.buffer_cells > o.max_cells_for_extra || !fs.inverted_near_added(r)) return r;
-    Eigen::Vector3d h2 = asked;
-    try {
-      OverlayResult r2 = features_grid(h2, o, *fs.plain, fs.splain.get());
-      say(fmt("overlay: spacing %g without the edges between tangent or coplanar faces: ", h2.maxCoeff()) + rank.summary(r2));
-      if (rank.better(r2, r)) r = std::move(r2);
-    } catch (const GeometryError& e) {
-      say(std::string("overlay: without the edges between tangent or coplanar faces: ") + e.what());
-    }
-    return r;
-  };
+  Grids grid(s, ss, stretch, fs, field, rank, opt);
   OverlayResult best;
   bool have = false;
   std::string why;
   int finer_for_quality = 0;
-  // One more grid of spacing h with options o (`what` says which in the log), kept in `into` when better.
-  auto extra_grid = [&](Eigen::Vector3d h, const OverlayOptions& o, const char* what, OverlayResult& into) {
-    opt.deadline.check("overlay");
-    try {
-      OverlayResult r = one_grid(h, o);
-      say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + rank.summary(r));
-      if (rank.better(r, into)) into = std::move(r);
-    } catch (const GeometryError& e) {
-      say(fmt("overlay: spacing %g", h.maxCoeff()) + what + ": " + e.what());
-    }
-  };
   // The spacings asked of the halvings so far: a grid for the walls of one of them (its factor cut
   // at 1 / max_wall_refinement, a power of 2) would be the same mesh again.
   std::vector<Eigen::Vector3d> halvings;
@@ -487,8 +535,9 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
         say(fmt("overlay: the grid for the walls has the spacing %g, already meshed", h.maxCoeff()));
         return;
       }
-    extra_grid(h, opt, " for the walls", best);
+    grid.extra_grid(h, opt, " for the walls", best);
   };
+  std::optional<Eigen::Vector3d> unmended;  // the spacing of `best` when it was not mended
   for (int k = 0; k <= opt.refinements; ++k) {
     Eigen::Vector3d h = h0 / std::pow(2.0, k);
     if (k > 0 && h.minCoeff() < opt.min_size * (1 - 1e-9)) {
@@ -498,9 +547,12 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     }
     opt.deadline.check("overlay");
     halvings.push_back(h);
+    // Whether a grid that lost part of the solid is halved (halve_again); then it is not mended.
+    const bool finer_follows = k < opt.refinements && h.minCoeff() / 2 >= opt.min_size * (1 - 1e-9) &&
+                               !(opt.octree_levels > 0 && field.empty());
     OverlayResult r;
     try {
-      r = one_grid(h, opt);
+      r = grid.one_grid(h, opt, finer_follows);
     } catch (const GeometryError& e) {
       why = e.what();
       say("overlay: " + why + (k < opt.refinements ? "; halving the spacing" : ""));
@@ -510,15 +562,16 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     say(fmt("overlay: spacing %g: ", h.maxCoeff()) + rank.summary(r));
     // Cells left inverted by the core by centres: the same grid with the core by corners too (its
     // buffer layer is thicker where the surface turns sharply), the better kept.
-    if (opt.core_by_centres && field.empty() && inverted(r.quality) > 0 &&
+    if (opt.core_by_centres && field.empty() && inverted(r.quality) > 0 && !(finer_follows && rank.lost(r)) &&
         r.core_cells + r.buffer_cells <= opt.max_cells_for_extra) {
       OverlayOptions corners = opt;
       corners.core_by_centres = false;
-      extra_grid(h, corners, ", core by corners", r);
+      grid.extra_grid(h, corners, ", core by corners", r);
     }
     const double cells = r.core_cells + r.buffer_cells;
     const bool kept = !have || rank.better(r, best);
     if (kept) {
+      unmended = finer_follows && rank.lost(r) ? std::optional<Eigen::Vector3d>(h) : std::nullopt;
       best = std::move(r);
       have = true;
     }
@@ -529,10 +582,17 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     if (!short_of || k == opt.refinements) break;
     if (!halve_again(best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
   }
+  // The finer grids lost more of the solid (or were not made): the one kept, mended after all.
+  if (have && unmended && inverted(best.quality) > 0) {
+    try {
+      best = grid.one_grid(*unmended, opt, false);
+    } catch (const GeometryError&) {  // it was made once: the same again
+    }
+  }
   // Cells still inverted after the halvings: the grid for thin walls, finer than a halving.
   if (have && inverted(best.quality) > 0) walls_grid(false);
   if (!have) throw GeometryError("overlay: " + why);
-  best.grids = grids;
+  best.grids = grid.made();
   best.frame = frame;
   if (frame.turned()) best.mesh.V = best.mesh.V * frame.rotation;  // x = R^T x_frame, row-wise
   best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -332,6 +332,34 @@ TEST(Improve, EdgeRatioTargetOpensASqueezedLayerWithoutLoweringTheWorst) {
   EXPECT_NEAR(quality::compute_metrics(with.mesh).volume.sum(), 1.0, 1e-9);
 }
 
+// Two thin layers, 0.102 and 0.103 of the cells' width, the one node inside them (between the
+// layers) 0.004 lower: its edge below gives the largest ratio, 10.2. Within the target 10 it must
+// lie within a window of 0.005 of the width, narrower than the smallest step of its typical edge
+// (about 0.009): such steps swap the largest ratio between the layers (10.16 after one), steps of
+// its shortest edge reach the window.
+TEST(Improve, EdgeRatioStepsFitTheWindowBetweenTwoThinLayers) {
+  mesh::Mesh m = cube_grid(2, 0.0, 7);  // 2 x 2 x 2 cells 0.5 wide
+  const double w = 0.5;
+  int inside = -1;
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    const long k = std::lround(m.V(v, 2) / w);
+    m.V(v, 2) = k == 0 ? 0.0 : k == 1 ? 0.102 * w : 0.205 * w;
+    if (k == 1 && std::lround(m.V(v, 0) / w) == 1 && std::lround(m.V(v, 1) / w) == 1) inside = v;
+  }
+  ASSERT_GE(inside, 0);
+  m.V(inside, 2) -= 0.004 * w;
+  auto max_ratio = [](const mesh::Mesh& x) { return quality::compute_metrics(x).edge_ratio.maxCoeff(); };
+  ASSERT_NEAR(max_ratio(m), 1 / 0.098, 1e-4);
+  optimize::ImproveOptions opt;  // explicit stages; the optimisation moves nothing (every SJ is 1)
+  opt.optimize = 1;
+  opt.max_edge_ratio = 10;
+  const optimize::ImproveResult r = optimize::improve(m, opt);
+  std::printf("edge ratio %.3f -> %.3f\n", max_ratio(m), max_ratio(r.mesh));
+  EXPECT_LE(max_ratio(r.mesh), 10.0 + 1e-9);
+  EXPECT_GT(sj_of(r.mesh).minCoeff(), 0.99);
+  EXPECT_NEAR(quality::compute_metrics(r.mesh).volume.sum(), 4 * w * w * 0.205 * w, 1e-12);
+}
+
 // The user's Cancel: another thread raises the interrupt the call runs under (common/interrupt.h)
 // 0.2 s into an optimisation that takes several seconds; the call throws InterruptedError soon
 // after (the bound is generous, the latency itself is bench/bench_cancel.py's), and the input mesh

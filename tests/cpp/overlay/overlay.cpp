@@ -647,6 +647,26 @@ TEST(OverlayWalls, TheGridForTheWallsIsNotMadeTwice) {
   EXPECT_EQ(r.mesh.num_cells(), halvings.mesh.num_cells());
 }
 
+// A hollow sphere (wall 1) on a grid of spacing 3.6: the coarse grids keep a fraction of the wall,
+// with cells inverted; a finer grid follows, so those are not mended (no node is let off its
+// feature on them; the log says so), and the mesh kept, of a finer grid, is valid with the volume.
+TEST(OverlayWalls, AGridThatLostPartOfTheSolidIsNotMended) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  overlay::OverlayOptions o;
+  o.size = 3.6;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult r = overlay::overlay_mesh(shell, o);
+  const size_t lost = log.find(" of the solid: its ");
+  ASSERT_NE(lost, std::string::npos) << log;
+  EXPECT_NE(log.find("inverted cells are left as they are, a finer grid follows", lost), std::string::npos) << log;
+  EXPECT_EQ(log.rfind("let off their curves or corners", lost), std::string::npos) << log;
+  EXPECT_LT(r.spacing, 1.0);
+  EXPECT_EQ(quality::inverted_cells(r.quality), 0) << log;
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume) << log;
+}
+
 // A ledge 0.4 high along a block 100 x 100 x 20 whose cells are about 4.8: the two corners at each
 // end of the ledge are 0.4 apart, and held there the cells between them would have an edge ratio
 // of about 12. Their nodes are let off the corners (the log says so): every cell within the
