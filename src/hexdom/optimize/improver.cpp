@@ -413,14 +413,15 @@ int Improver::ratio_round(double target, const double bar[3]) {
     }
     if (!(g.norm() > 0) || !g.allFinite()) return;
     const Vec d = -g.normalized();
+    auto step = [&](double length) { return try_move_ratio(v, constrain(v, x0 + length * d), f0, bar); };
     for (double a : {0.3, 0.15, 0.07, 0.03, 0.01})
-      if (try_move_ratio(v, constrain(v, x0 + a * edge_[v] * d), f0, bar)) return;
+      if (step(a * edge_[v])) return;
     // The ratio is set by the short edges: where the node's own shortest edge is far below its
     // typical one (a thin layer), steps of that shortest edge, so that two short edges sharing
     // the node can be evened out.
     const double s = shortest_edge(v, x0);
     for (double a : {0.1, 0.03, 0.01})
-      if (a * s < 0.01 * edge_[v] && try_move_ratio(v, constrain(v, x0 + a * s * d), f0, bar)) return;
+      if (a * s < 0.01 * edge_[v] && step(a * s)) return;
   });
 }
 

@@ -538,9 +538,10 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     grid.extra_grid(h, opt, " for the walls", best);
   };
   std::optional<Eigen::Vector3d> unmended;  // the spacing of `best` when it was not mended
+  auto above_min_size = [&](const Eigen::Vector3d& x) { return x.minCoeff() >= opt.min_size * (1 - 1e-9); };
   for (int k = 0; k <= opt.refinements; ++k) {
     Eigen::Vector3d h = h0 / std::pow(2.0, k);
-    if (k > 0 && h.minCoeff() < opt.min_size * (1 - 1e-9)) {
+    if (k > 0 && !above_min_size(h)) {
       why += fmt("; halving the spacing would give cells shorter than the min size %g", opt.min_size);
       if (have) say(fmt("overlay: a finer grid would have cells shorter than the min size %g; keeping this one", opt.min_size));
       break;
@@ -548,8 +549,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     opt.deadline.check("overlay");
     halvings.push_back(h);
     // Whether a grid that lost part of the solid is halved (halve_again); then it is not mended.
-    const bool finer_follows = k < opt.refinements && h.minCoeff() / 2 >= opt.min_size * (1 - 1e-9) &&
-                               !(opt.octree_levels > 0 && field.empty());
+    const bool finer_follows = k < opt.refinements && above_min_size(h / 2) && !(opt.octree_levels > 0 && field.empty());
     OverlayResult r;
     try {
       r = grid.one_grid(h, opt, finer_follows);
