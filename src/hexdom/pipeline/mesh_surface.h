@@ -57,10 +57,10 @@ struct MeshSurfaceOptions {
   /// far above what any part has needed: a bound against a run that never ends, not a budget.
   double time_limit = 1800;
   /// Method::Auto (pipeline/choice.h): seconds from the start of the choice after which a path
-  /// that still runs is stopped when the other one has a mesh that meets every target
-  /// (meets_path_targets): the polycube's first candidate when the overlay's mesh does (it keeps
-  /// what it has), the overlay when the polycube's further candidates' mesh does. Paths that end
-  /// before it are chosen between as without it. 0: no such stop.
+  /// that still runs is stopped when the other one has a mesh that meets every target: the
+  /// polycube's first candidate when the overlay's mesh does, the edge ratio aside (meets_targets;
+  /// it keeps what it has), the overlay when the polycube's further candidates' mesh does
+  /// (meets_path_targets). Paths that end before it are chosen between as without it. 0: no such stop.
   double polycube_seconds_overlay_met = 5;
   /// When set, the polycube path's deadline in Auto and Polycube, instead of polycube_seconds: a
   /// moment fixed by the caller (mesh_cad_part sets it once for all its tessellations). With

@@ -33,6 +33,7 @@ MeshSurfaceRun fake_run(Method method, double sj) {
 
 struct Fake {
   double first_sj = 0.2, overlay_sj = 0.5, further_sj = 0.6;
+  double overlay_ratio = 2;  // the overlay mesh's largest edge ratio
   int first_millis = 0, overlay_millis = 0, further_millis = 0;  // how long each pretends to work
   double seconds_overlay_met = 5;  // MeshSurfaceOptions::polycube_seconds_overlay_met
   std::atomic<bool> first_cancelled{false}, overlay_cancelled{false}, further_cancelled{false};
@@ -65,6 +66,7 @@ struct Fake {
       work(overlay_millis, o.deadline, overlay_cancelled);
       if (overlay_cancelled) o.deadline.check("overlay");
       run = fake_run(Method::Overlay, overlay_sj);
+      run.quality.hex.edge_ratio_max = overlay_ratio;
     } else if (o.first_run == nullptr) {
       o.log(0, "fake first candidate");
       work(first_millis, o.deadline, first_cancelled);
@@ -170,6 +172,30 @@ TEST(ChoosePath, AnOverlayMeshThatMeetsEveryTargetStopsASlowFirstCandidateAtTheC
     EXPECT_EQ(g.choose().method, Method::Polycube);
     EXPECT_FALSE(g.first_cancelled.load());
   }
+}
+
+TEST(ChoosePath, AnOverlayMeshThatMissesOnlyTheEdgeRatioStillStopsASlowFirstCandidateAtTheCut) {
+  // The overlay's mesh misses the edge ratio (12 > 10) but meets the other targets: a first
+  // candidate still running at the cut is stopped there too, and the note says what the overlay
+  // missed. A first candidate that ends before the cut is chosen against it as without the cut.
+  Fake f;
+  f.first_millis = 20000;
+  f.overlay_ratio = 12;
+  f.seconds_overlay_met = 0.3;
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshSurfaceRun r = f.choose();
+  EXPECT_LT(seconds_since(t0), 10.0);
+  EXPECT_TRUE(f.first_cancelled.load());
+  EXPECT_EQ(r.method, Method::Overlay);
+  EXPECT_NE(r.polycube_note.find("the overlay mesh meets every target but the edge ratio"), std::string::npos)
+      << r.polycube_note;
+  Fake g;
+  g.first_millis = 100;
+  g.first_sj = 0.7;  // meets every target, edge ratio 2
+  g.overlay_ratio = 12;
+  g.seconds_overlay_met = 0.3;
+  EXPECT_EQ(g.choose().method, Method::Polycube);
+  EXPECT_FALSE(g.first_cancelled.load());
 }
 
 TEST(ChoosePath, FurtherCandidatesThatMeetEveryTargetStopASlowOverlayAtTheCut) {
