@@ -1,5 +1,6 @@
 #include "hexdom/autopolycube/map/untangle_plane_map.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -133,4 +134,37 @@ TEST(UntanglePlaneMap, AStepTakenAtOnceCostsOneEvaluation) {
   // more where the line search backtracks. Two passes per step (the old count) exceed this.
   EXPECT_LT(r.evaluations, 1.5 * r.iterations + 3 * r.rounds + 1)
       << r.evaluations << " passes, " << r.iterations << " steps, " << r.rounds << " rounds";
+}
+
+// The results are kept: the same inputs again give the same map; other inputs (a boundary vertex
+// moved) are untangled for themselves, not given the kept map.
+TEST(UntanglePlaneMap, TheSameChartAgainGetsTheSameMapAndAnotherChartItsOwn) {
+  const Grid g = grid(6, [](int i, int j) { return i >= 4 && j >= 4; });
+  Eigen::MatrixXd V = Eigen::MatrixXd::Zero(g.UV.rows(), 3), D0 = V;
+  V.leftCols(2) = g.UV;
+  D0.leftCols(2) = g.UV;
+  for (int v = 0; v < D0.rows(); ++v)
+    if (g.free_vertex[v]) { D0(v, 0) = g.UV(v, 1) * 0.25 + 3.0; D0(v, 1) = g.UV(v, 0) * 0.3 + 0.7; }
+  std::vector<int> tris(g.F.rows());
+  for (int f = 0; f < g.F.rows(); ++f) tris[f] = f;
+  Eigen::MatrixXd D1 = D0, D2 = D0, D3 = D0;
+  const auto r1 = autopolycube::untangle_plane_map(V, g.F, tris, g.free_vertex, 2, 1, D1);
+  const auto r2 = autopolycube::untangle_plane_map(V, g.F, tris, g.free_vertex, 2, 1, D2);
+  ASSERT_GT(r1.folded_before, 0);
+  EXPECT_EQ(r1.folded_after, 0);
+  EXPECT_EQ(r2.folded_before, r1.folded_before);
+  EXPECT_EQ(r2.folded_after, r1.folded_after);
+  EXPECT_EQ(r2.rounds, r1.rounds);
+  EXPECT_TRUE(D2 == D1);
+  // The corner (0, 0) pulled outward: the polygon stays simple, the map is another one.
+  D3(0, 0) = -0.5;
+  D3(0, 1) = -0.5;
+  const auto r3 = autopolycube::untangle_plane_map(V, g.F, tris, g.free_vertex, 2, 1, D3);
+  EXPECT_EQ(r3.folded_after, 0);
+  for (double a : plane_areas(D3, g.F, 2, 1)) EXPECT_GT(a, 0);
+  EXPECT_EQ(D3(0, 0), -0.5);
+  double moved = 0;
+  for (int v = 0; v < D3.rows(); ++v)
+    if (g.free_vertex[v]) moved = std::max(moved, (D3.row(v) - D1.row(v)).norm());
+  EXPECT_GT(moved, 1e-6);
 }

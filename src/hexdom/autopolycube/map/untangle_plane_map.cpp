@@ -6,7 +6,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <deque>
+#include <map>
+#include <mutex>
 
 namespace hexdom::autopolycube {
 
@@ -138,11 +142,9 @@ int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations) {
   return taken;
 }
 
-}  // namespace
-
-UntangleResult untangle_plane_map(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris,
-                                  const std::vector<char>& free_vertex, int axis, int sign, Eigen::MatrixXd& D,
-                                  const UntangleOptions& opt) {
+// The untangling itself (untangle_plane_map without the memo).
+UntangleResult untangle(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris,
+                        const std::vector<char>& free_vertex, int axis, int sign, Eigen::MatrixXd& D, const UntangleOptions& opt) {
   UntangleResult r;
   Problem P;
   P.theta = opt.theta;
@@ -226,6 +228,110 @@ UntangleResult untangle_plane_map(const Eigen::MatrixXd& V, const Eigen::MatrixX
   r.evaluations = P.evaluations;
   for (size_t t = 0; t < P.vid.size(); ++t)
     if (P.vid[t][0] < 0 && P.vid[t][1] < 0 && P.vid[t][2] < 0 && P.jacobian(best, t).determinant() <= 0) ++r.folded_fixed;
+  return r;
+}
+
+// Two 64-bit hashes (splitmix64 steps from two seeds) of every input untangle() reads.
+struct Key {
+  uint64_t h[2] = {0x9e3779b97f4a7c15ull, 0xd1b54a32d192ed03ull};
+  void add(uint64_t x) {
+    for (uint64_t& k : h) {
+      uint64_t z = (k ^ x) + 0x9e3779b97f4a7c15ull;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+      k = z ^ (z >> 31);
+      x = ~x;  // the second hash sees other words
+    }
+  }
+  void add(double d) {
+    uint64_t x;
+    std::memcpy(&x, &d, sizeof x);
+    add(x);
+  }
+  bool operator<(const Key& o) const { return h[0] != o.h[0] ? h[0] < o.h[0] : h[1] < o.h[1]; }
+};
+
+Key key_of(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const std::vector<char>& free_vertex,
+           int axis, int sign, const Eigen::MatrixXd& D, const UntangleOptions& opt) {
+  Key k;
+  for (double x : {double(axis), double(sign), double(opt.outer), double(opt.inner), opt.theta, double(tris.size())}) k.add(x);
+  const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+  for (int f : tris)
+    for (int i = 0; i < 3; ++i) {
+      const int v = F(f, i);
+      for (double x : {double(v), double(free_vertex[v] != 0), V(v, 0), V(v, 1), V(v, 2), D(v, b), D(v, c)}) k.add(x);
+    }
+  return k;
+}
+
+// What an untangling gave: the free vertices' new coordinates in the plane, and its result.
+struct Untangled {
+  std::vector<std::array<double, 3>> moves;  // vertex, D(v, b), D(v, c)
+  UntangleResult result;
+};
+
+// The results kept, oldest first dropped beyond kMemoValues coordinates in all.
+class Memo {
+ public:
+  bool find(const Key& k, Untangled& out) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = kept_.find(k);
+    if (it == kept_.end()) return false;
+    out = it->second;
+    return true;
+  }
+  void keep(const Key& k, Untangled u) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (kept_.count(k)) return;
+    size_ += u.moves.size();
+    order_.push_back(k);
+    kept_.emplace(k, std::move(u));
+    while (size_ > kMemoValues && order_.size() > 1) {
+      const auto old = kept_.find(order_.front());
+      size_ -= old->second.moves.size();
+      kept_.erase(old);
+      order_.pop_front();
+    }
+  }
+
+ private:
+  static constexpr size_t kMemoValues = 1 << 20;  // about 24 MB
+  std::mutex mutex_;
+  std::map<Key, Untangled> kept_;
+  std::deque<Key> order_;
+  size_t size_ = 0;
+};
+
+Memo& memo() {
+  static Memo m;
+  return m;
+}
+
+}  // namespace
+
+UntangleResult untangle_plane_map(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris,
+                                  const std::vector<char>& free_vertex, int axis, int sign, Eigen::MatrixXd& D,
+                                  const UntangleOptions& opt) {
+  opt.deadline.check("autopolycube (chart maps)");
+  const Key k = key_of(V, F, tris, free_vertex, axis, sign, D, opt);
+  const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+  Untangled u;
+  if (memo().find(k, u)) {
+    for (const auto& [v, x, y] : u.moves) D(static_cast<int>(v), b) = x, D(static_cast<int>(v), c) = y;
+    return u.result;
+  }
+  u.result = untangle(V, F, tris, free_vertex, axis, sign, D, opt);
+  std::vector<char> seen(V.rows(), 0);
+  for (int f : tris)
+    for (int i = 0; i < 3; ++i) {
+      const int v = F(f, i);
+      if (free_vertex[v] && !seen[v]) {
+        seen[v] = 1;
+        u.moves.push_back({double(v), D(v, b), D(v, c)});
+      }
+    }
+  const UntangleResult r = u.result;
+  memo().keep(k, std::move(u));
   return r;
 }
 

@@ -33,6 +33,10 @@ struct UntangleResult {
 /// positively oriented for the outward sign `sign`; the reference shape of each triangle is its
 /// shape in V (scaled to the polygon's area). Vertices not free are fixed; coordinate `axis` of D is
 /// left alone. Returns how many triangles were folded before and after.
+/// The results are kept (about 24 MB, the oldest dropped first): a call whose inputs (the chart's
+/// triangles, their vertices in V and D, the free flags, axis, sign and options) are those of an
+/// earlier call in the process gives that call's output at once. The label repair and the further
+/// candidates map unchanged charts again; the untangling is deterministic, so the output is the same.
 /// \note The boundary polygon must admit a fold-free map (a simple polygon, holes inside); nothing
 /// is thrown when it does not: the folded count says so.
 UntangleResult untangle_plane_map(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris,
