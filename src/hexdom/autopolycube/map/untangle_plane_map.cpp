@@ -18,7 +18,6 @@ namespace {
 
 // chi(d, eps) = (d + sqrt(eps^2 + d^2)) / 2: a smooth positive stand-in for max(d, 0).
 double chi(double d, double eps) { return 0.5 * (d + std::sqrt(eps * eps + d * d)); }
-double chi_deriv(double d, double eps) { return 0.5 * (1.0 + d / std::sqrt(eps * eps + d * d)); }
 
 struct Problem {
   std::vector<std::array<int, 3>> vid;    // per triangle: free index or -1 - fixed vertex index
@@ -50,12 +49,13 @@ struct Problem {
       const double d = J.determinant();
       md = std::min(md, d);
       nf += d <= 0;
-      const double ch = chi(d, eps), tr = J.squaredNorm();
+      const double r = std::sqrt(eps * eps + d * d);  // chi and its derivative share it
+      const double ch = 0.5 * (d + r), tr = J.squaredNorm();
       E += weight[t] * ((1 - theta) * tr / ch + theta * (d * d + 1) / ch);
       if (!grad) continue;
       Eigen::Matrix2d cof;
       cof << J(1, 1), -J(1, 0), -J(0, 1), J(0, 0);
-      const double cd = chi_deriv(d, eps);
+      const double cd = 0.5 * (1.0 + d / r);
       const Eigen::Matrix2d dJ = (1 - theta) * (2 * J / ch - tr / (ch * ch) * cd * cof) +
                                  theta * (2 * d / ch * cof - (d * d + 1) / (ch * ch) * cd * cof);
       const Eigen::Matrix2d dU = weight[t] * dJ * dinv[t].transpose();
@@ -78,36 +78,40 @@ struct Problem {
 int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations) {
   int taken = 0;
   const int m = 8;
+  // The last m steps s and gradient changes y, with y . s; the vectors of a dropped pair are
+  // reused for the next one, and every work vector is made once.
   std::deque<Eigen::VectorXd> S, Y;
-  Eigen::VectorXd g, gn;
+  std::deque<double> YS;
+  Eigen::VectorXd g, gn, q, dir, xn, s, y;
+  std::vector<double> alpha;
   double E = P.eval(x, eps, &g, nullptr, nullptr);
   const double g0 = g.norm();
   for (int it = 0; it < iterations; ++it) {
     check_interrupt("autopolycube (chart maps)");
     if (g.norm() <= 1e-8 * std::max(g0, 1e-300)) break;
     // Two-loop recursion.
-    Eigen::VectorXd q = g;
-    std::vector<double> alpha(S.size());
+    q = g;
+    alpha.assign(S.size(), 0.0);
     for (int i = static_cast<int>(S.size()) - 1; i >= 0; --i) {
-      alpha[i] = S[i].dot(q) / Y[i].dot(S[i]);
+      alpha[i] = S[i].dot(q) / YS[i];
       q -= alpha[i] * Y[i];
     }
-    if (!S.empty()) q *= S.back().dot(Y.back()) / Y.back().squaredNorm();
+    if (!S.empty()) q *= YS.back() / Y.back().squaredNorm();
     for (size_t i = 0; i < S.size(); ++i) {
-      const double beta = Y[i].dot(q) / Y[i].dot(S[i]);
+      const double beta = Y[i].dot(q) / YS[i];
       q += (alpha[i] - beta) * S[i];
     }
-    Eigen::VectorXd dir = -q;
+    dir = -q;
     double slope = g.dot(dir);
     if (!(slope < 0)) {
       S.clear();
       Y.clear();
+      YS.clear();
       dir = -g;
       slope = -g.squaredNorm();
     }
     double step = 1.0;
     if (S.empty()) step = std::min(1.0, 1.0 / std::max(g.norm(), 1e-300));
-    Eigen::VectorXd xn;
     double En = 0;
     bool ok = false, have_gradient = false;
     for (int ls = 0; ls < 40; ++ls) {
@@ -123,19 +127,32 @@ int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations) {
       if (S.empty()) break;
       S.clear();
       Y.clear();
+      YS.clear();
       continue;
     }
     if (!have_gradient) P.eval(xn, eps, &gn, nullptr, nullptr);
-    const Eigen::VectorXd s = xn - x, y = gn - g;
-    if (s.dot(y) > 1e-12 * s.norm() * y.norm()) {
-      S.push_back(s);
-      Y.push_back(y);
-      if (static_cast<int>(S.size()) > m) { S.pop_front(); Y.pop_front(); }
+    s = xn - x;
+    y = gn - g;
+    const double ys = s.dot(y);
+    if (ys > 1e-12 * s.norm() * y.norm()) {
+      Eigen::VectorXd so, yo;
+      if (static_cast<int>(S.size()) == m) {  // the oldest pair goes; its vectors take the new one
+        so = std::move(S.front());
+        yo = std::move(Y.front());
+        S.pop_front();
+        Y.pop_front();
+        YS.pop_front();
+      }
+      so = s;
+      yo = y;
+      S.push_back(std::move(so));
+      Y.push_back(std::move(yo));
+      YS.push_back(ys);
     }
     const double dE = E - En;
     ++taken;
-    x = std::move(xn);
-    g = std::move(gn);
+    x.swap(xn);
+    g.swap(gn);
     E = En;
     if (dE <= 1e-12 * std::abs(E)) break;
   }
