@@ -193,9 +193,10 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
       polycube_grant.set(all_threads);
       have_grid = true;
       cut.overlay_done.store(true);
-      if (meets_targets(run_of(grid), reference, mo)) step3.cancel();
-      // A mesh that meets every target, the edge ratio aside: step 1 is stopped at the cut if it runs then.
-      if (meets_targets(run_of(grid), reference, mo) && cut.wait(cut.step1_done, overlay.deadline)) {
+      // Every target met, the edge ratio aside: step 3 called off, step 1 stopped at the cut if it runs.
+      const bool met = meets_targets(run_of(grid), reference, mo);
+      if (met) step3.cancel();
+      if (met && cut.wait(cut.step1_done, overlay.deadline)) {
         cut.step1_stopped.store(true);
         quick.deadline.cancel();
       }
