@@ -196,7 +196,9 @@ def improve(mesh, surface=None, pillow=False, smooth=0, optimize=0, feature_angl
     """Pillowing, smoothing and Jacobian optimisation of a Mesh. With no stage set, runs the
     recommended sequence until the worst cell stops improving, then raises the mean scaled Jacobian
     without lowering the worst hex, prism or tet; then, for cells whose edge ratio is above
-    max_edge_ratio (0: none), moves their nodes to lower it, no type's worst scaled Jacobian lowered.
+    max_edge_ratio (0: none), moves their nodes to lower it: no cell at or above 0.3 taken below
+    it, each type's worst scaled Jacobian kept, then lowered in two steps towards 0.3 while cells
+    stay above max_edge_ratio.
     Boundary nodes stay on `surface` (a Surface) or on the mesh's own boundary."""
     sv, sf = (surface.V, surface.F) if surface is not None else (None, None)
     return Mesh(*_hexdom.improve(mesh.V, mesh.cells, mesh.types, mesh.region, pillow, smooth,

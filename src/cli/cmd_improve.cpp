@@ -28,8 +28,9 @@ void add_improve(CLI::App& app) {
   cmd->add_option("--feature-angle", a->opt.feature_angle, "boundary edges whose faces' normals differ by more than this many degrees are sharp")
       ->capture_default_str()->excludes(sharp);
   cmd->add_option("--max-edge-ratio", a->opt.max_edge_ratio,
-                  "then move the nodes of cells whose edge ratio is above this to lower it, no type's worst scaled "
-                  "Jacobian lowered, no cell at or above 0.3 taken below it (0: off; hexdom mesh uses 10)")
+                  "then move the nodes of cells whose edge ratio is above this to lower it, no cell at or above 0.3 "
+                  "taken below it, each type's worst scaled Jacobian kept, then lowered in two steps towards 0.3 while "
+                  "cells stay above this (0: off; hexdom mesh uses 10)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--report", a->report, "also write the quality report after improvement as JSON to this file");
   cmd->add_flag("--allow-inverted", a->allow_inverted, "exit 0 even if inverted cells remain (they are still reported)");

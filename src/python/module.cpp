@@ -287,7 +287,8 @@ PYBIND11_MODULE(_hexdom, m) {
      py::arg("max_edge_ratio") = 0.0,
   "Pillowing, smoothing and Jacobian optimisation; with no stage set, the recommended sequence.\n"
   "Boundary nodes stay on the given surface (or the mesh's own boundary). max_edge_ratio > 0: then the\n"
-  "nodes of cells above that edge ratio move to lower it, no type's worst scaled Jacobian lowered.\n"
+  "nodes of cells above that edge ratio move to lower it, no cell at or above 0.3 taken below it, each\n"
+  "type's worst scaled Jacobian kept, then lowered in two steps towards 0.3 while cells stay above it.\n"
   "Returns (V, cells, types, region).");
 
   python::bind_segmentation(m);

@@ -127,6 +127,21 @@ def test_triangular_part_worst_hex_sj_at_least_0_3(name, meshed):
         assert hexes.min() >= 0.3
 
 
+@pytest.mark.parametrize("name", _marks({}))
+def test_triangular_part_edge_ratio_at_most_10(name, meshed):
+    # The pyramid's polycube mesh had 13.2 (2 hexes at its base corners) while its worst hex SJ,
+    # 0.324, barred every move that shortened them; the ratio stage now lowers that bar in steps.
+    _, g, _, types, _ = meshed(name)
+    P, _, conn = oracle.grid_arrays(g)
+    worst = 0.0
+    for t in (oracle.HEX, oracle.WEDGE, oracle.TET):
+        cells = [conn[c] for c in np.flatnonzero(types == t)]
+        if cells:
+            worst = max(worst, float(oracle.edge_ratios(P[np.array(cells)], t).max()))
+    print(f"{name}: largest edge ratio {worst:.3f}")
+    assert worst <= 10 + 1e-6
+
+
 def test_the_polycube_reports_every_figure_of_the_core(freecad, tmp_path, core):
     # The figures come from AutoPolycube::for_each_figure, the one list; the tetrahedron's slanted
     # face is split from its corners, so oblique_faces counts it.

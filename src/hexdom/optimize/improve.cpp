@@ -163,20 +163,29 @@ class Run {
          std::to_string(passes) + " passes (" + std::to_string(seconds_since(t0)) + " s)");
   }
 
-  // Edge-ratio rounds (ImproveOptions::max_edge_ratio) until no cell is above `target`, a round
-  // moves no node, or `max_rounds`. Each type's worst scaled Jacobian is kept, and a cell above
-  // `sj_floor` is not pushed below it.
+  // Edge-ratio rounds (ImproveOptions::max_edge_ratio) in three steps of the scaled Jacobian bar,
+  // each until no cell is above `target`, a round moves no node, or `max_rounds`: first each type's
+  // worst scaled Jacobian is kept, then half its margin above `sj_floor`, then `sj_floor` alone
+  // (a cell at or above it is not pushed below it; a cell below it gets no worse). The worst cell
+  // gives way to the ratio one step at a time, never below the SJ target. A lower bar that leaves
+  // the ratio above the target is kept too: above the SJ target the choice of meshes ranks a
+  // smaller largest ratio before a higher worst SJ (pipeline::better_run), and a later run (the
+  // snap's restoration) goes on from it.
   void ratio_stage(double target, double sj_floor, int max_rounds) {
     const double r0 = imp_->max_ratio();
     if (!(r0 > target)) return;
     const auto t0 = std::chrono::steady_clock::now();
-    double bar[3];
-    imp_->worst_by_type(bar);
-    for (double& b : bar) b = std::max(b, sj_floor);
+    double worst[3];
+    imp_->worst_by_type(worst);
     int rounds = 0;
-    while (rounds < max_rounds && !out_of_time()) {
-      ++rounds;
-      if (imp_->ratio_round(target, bar) == 0) break;
+    for (double keep : {1.0, 0.5, 0.0}) {
+      double bar[3];
+      for (int k = 0; k < 3; ++k) bar[k] = sj_floor + keep * std::max(0.0, worst[k] - sj_floor);
+      for (int i = 0; i < max_rounds && !out_of_time(); ++i) {
+        ++rounds;
+        if (imp_->ratio_round(target, bar) == 0) break;
+      }
+      if (!(imp_->max_ratio() > target) || out_of_time()) break;
     }
     log_(name() + ": largest edge ratio " + fmt("%.3g", r0) + " -> " + fmt("%.3g", imp_->max_ratio()) + " in " +
          std::to_string(rounds) + " rounds (" + std::to_string(seconds_since(t0)) + " s)");

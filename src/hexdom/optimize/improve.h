@@ -33,9 +33,11 @@ struct ImproveOptions {
   /// Edge-ratio target (largest over shortest edge of a cell, quality::edge_ratio); 0: none. After
   /// the mean passes, the nodes of the cells above it step down the gradient of their cells'
   /// largest ratio (steps of their typical edge, then of their own shortest edge where that is far
-  /// shorter: a thin layer), at most `ratio_rounds` rounds. A move never lowers a type's worst scaled
-  /// Jacobian, never inverts a cell, and never takes a cell that was at or above `ratio_sj_floor`
-  /// below it: the ratio gives way to the scaled Jacobian targets.
+  /// shorter: a thin layer). A move never inverts a cell, never lowers a cell below `ratio_sj_floor`
+  /// (nor one already below it), and at first never lowers a type's worst scaled Jacobian; while
+  /// cells stay above the target, that bar is lowered to half the worst's margin above the floor,
+  /// then to the floor: at most 3 x `ratio_rounds` rounds. The ratio gives way to the scaled
+  /// Jacobian target; the worst cell above that target gives way to the ratio, one step at a time.
   double max_edge_ratio = 0;
   double ratio_sj_floor = 0.3;
   int ratio_rounds = 30;
