@@ -10,6 +10,7 @@
 #include <Extrema_LocateExtPC.hxx>
 #include <Extrema_POnCurv.hxx>
 #include <GeomAdaptor_Curve.hxx>
+#include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
@@ -75,6 +76,85 @@ inline EdgeCurve edge_curve(const TopoDS_Edge& edge) {
   return e;
 }
 
+/// BRepTopAdaptor_FClass2d (IN / ON / OUT of a face's parameter domain, a polygon test over its
+/// boundary's discretisation) with a grid of 128 x 128 cells over the face's parameter bounds,
+/// made at the first query: cells within two cells of a sample of a boundary edge's curve on the
+/// face (samples at most a quarter of a cell apart) always ask the classifier; any other cell holds
+/// the state of its centre, asked once (IN or OUT; otherwise the cell asks), and answers for every
+/// point in it. Such a cell lies inside
+/// one connected piece of the domain's interior or exterior (no boundary curve crosses it, nor the
+/// classifier's polygon, which stays within its deflection of the curves), so its answers are the
+/// classifier's. Points outside the bounds (a periodic parameter), and every point of a face
+/// whose edges lack a curve on it, ask the classifier. Not for use from two threads at once.
+class FaceClassifier {
+ public:
+  FaceClassifier(const TopoDS_Face& face, double tol, double u0, double u1, double v0, double v1)
+      : face_(face), classifier_(face, tol), u0_(u0), v0_(v0), du_((u1 - u0) / kCells), dv_((v1 - v0) / kCells) {}
+
+  TopAbs_State Perform(const gp_Pnt2d& uv) const {
+    if (state_.empty()) build();
+    const double fu = (uv.X() - u0_) / du_, fv = (uv.Y() - v0_) / dv_;
+    if (!(fu >= 0 && fu < kCells && fv >= 0 && fv < kCells)) return classifier_.Perform(uv);
+    const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+    signed char& s = state_[j * kCells + i];
+    if (s == kNearBoundary) return classifier_.Perform(uv);
+    if (s == kUnknown) {
+      const TopAbs_State centre = classifier_.Perform(gp_Pnt2d(u0_ + (i + 0.5) * du_, v0_ + (j + 0.5) * dv_));
+      s = centre == TopAbs_IN || centre == TopAbs_OUT ? static_cast<signed char>(centre) : kNearBoundary;
+      if (s == kNearBoundary) return classifier_.Perform(uv);
+    }
+    ++from_grid_;
+    return static_cast<TopAbs_State>(s);
+  }
+
+  /// Queries answered by a grid cell so far (the rest asked the classifier).
+  long from_grid() const { return from_grid_; }
+
+ private:
+  static constexpr int kCells = 128;
+  static constexpr signed char kUnknown = -1, kNearBoundary = -2;
+
+  void build() const {
+    state_.assign(kCells * kCells, kUnknown);
+    if (!(du_ > 0 && dv_ > 0)) return mark_all();
+    auto mark = [&](double u, double v) {
+      const int ci = static_cast<int>(std::floor((u - u0_) / du_)), cj = static_cast<int>(std::floor((v - v0_) / dv_));
+      for (int j = std::max(cj - 2, 0); j <= std::min(cj + 2, kCells - 1); ++j)
+        for (int i = std::max(ci - 2, 0); i <= std::min(ci + 2, kCells - 1); ++i) state_[j * kCells + i] = kNearBoundary;
+    };
+    for (TopExp_Explorer ex(face_, TopAbs_EDGE); ex.More(); ex.Next()) {
+      double first = 0, last = 0;
+      const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face_, first, last);
+      if (c.IsNull() || !std::isfinite(first) || !std::isfinite(last)) return mark_all();
+      // Samples a quarter of a cell apart at most: the count doubled until the largest step is.
+      for (int n = 256;; n *= 2) {
+        double largest = 0;
+        gp_Pnt2d prev = c->Value(first);
+        for (int k = 1; k <= n && largest <= 0.25; ++k) {
+          const gp_Pnt2d q = c->Value(first + (last - first) * k / n);
+          largest = std::max({largest, std::abs(q.X() - prev.X()) / du_, std::abs(q.Y() - prev.Y()) / dv_});
+          prev = q;
+        }
+        if (largest <= 0.25 || n >= (1 << 16)) {
+          if (largest > 0.25) return mark_all();
+          for (int k = 0; k <= n; ++k) {
+            const gp_Pnt2d q = c->Value(first + (last - first) * k / n);
+            mark(q.X(), q.Y());
+          }
+          break;
+        }
+      }
+    }
+  }
+  void mark_all() const { std::fill(state_.begin(), state_.end(), kNearBoundary); }
+
+  TopoDS_Face face_;
+  BRepTopAdaptor_FClass2d classifier_;
+  double u0_, v0_, du_, dv_;
+  mutable std::vector<signed char> state_;  // per cell: a TopAbs_State, kUnknown or kNearBoundary
+  mutable long from_grid_ = 0;
+};
+
 /// Nearest point of one trimmed face: the nearest of the surface's extrema that lie inside the
 /// face and of the nearest points of its boundary edges. One projector serves one thread.
 class FaceProjector {
@@ -84,7 +164,7 @@ class FaceProjector {
     analysis_ = new ShapeAnalysis_Surface(surface_);
     BRepTools::UVBounds(face, u0_, u1_, v0_, v1_);
     tol_ = std::max(BRep_Tool::Tolerance(face), 1e-9);
-    classifier_ = std::make_unique<BRepTopAdaptor_FClass2d>(face, tol_);
+    classifier_ = std::make_unique<FaceClassifier>(face, tol_, u0_, u1_, v0_, v1_);
     for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) edges_.push_back(edge_curve(TopoDS::Edge(ex.Current())));
     BRepBndLib::Add(face, box_);
     // The extremum search samples the surface once here, not on every query.
@@ -143,7 +223,7 @@ class FaceProjector {
   TopoDS_Face face_;
   Handle(Geom_Surface) surface_;
   Handle(ShapeAnalysis_Surface) analysis_;
-  std::unique_ptr<BRepTopAdaptor_FClass2d> classifier_;
+  std::unique_ptr<FaceClassifier> classifier_;
   std::vector<EdgeCurve> edges_;
   mutable std::vector<std::pair<double, int>> by_box_;  // nearest()'s scratch: edges by box distance
   Bnd_Box box_;

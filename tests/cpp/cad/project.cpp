@@ -151,6 +151,8 @@ TEST(ProjectToShape, NamesTheNearestFace) {
 #include <TColgp_Array1OfPnt.hxx>
 #include <gp_Circ.hxx>
 
+#include <random>
+
 #include "hexdom/cad/face_projector.h"
 
 // A node sliding along an edge (the snap's restoration) is projected from its last parameter
@@ -199,4 +201,64 @@ TEST(ProjectToEdge, FromTheLastParameterMatchesTheWholeEdgeSearch) {
     EXPECT_NEAR(d, 2.0, 1e-6);
   }
 }
+
+// FaceClassifier answers as BRepTopAdaptor_FClass2d does, on every face of parts with holes, fillets,
+// periodic surfaces (cylinder, sphere, cone, torus) and a hole far smaller than a grid cell (radius
+// 0.01 in a face 20 wide: cells of 0.16): random points over the face's parameter bounds and 10%
+// beyond them, points along each boundary curve and 1e-3 of the bounds on either side of it, and
+// points around the small hole. Many of them come from the grid, so the grid is what is checked.
+TEST(FaceClassifier, AnswersAsTheClassifierOnEveryFace) {
+  TopoDS_Shape pinhole = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(20.0, 20.0, 10.0).Shape(),
+                                         BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(7, 9, -1), gp_Dir(0, 0, 1)), 0.01, 12.0).Shape())
+                             .Shape();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  long checked = 0, from_grid = 0, inside_hole = 0;
+  for (const TopoDS_Shape& shape : {test::make_box_with_hole(), test::make_filleted_box(), test::make_cylinder(), test::make_sphere(),
+                                    test::make_cone(), test::make_torus(), pinhole}) {
+    for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+      const TopoDS_Face face = TopoDS::Face(ex.Current());
+      double u0, u1, v0, v1;
+      BRepTools::UVBounds(face, u0, u1, v0, v1);
+      const double tol = std::max(BRep_Tool::Tolerance(face), 1e-9);
+      const BRepTopAdaptor_FClass2d reference(face, tol);
+      const cad::FaceClassifier cached(face, tol, u0, u1, v0, v1);
+      std::vector<gp_Pnt2d> points;
+      for (int k = 0; k < 4000; ++k)
+        points.emplace_back(u0 + (u1 - u0) * (1.2 * unit(rng) - 0.1), v0 + (v1 - v0) * (1.2 * unit(rng) - 0.1));
+      for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+        double first, last;
+        const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Current()), face, first, last);
+        ASSERT_FALSE(c.IsNull());
+        for (int k = 0; k <= 50; ++k) {
+          const gp_Pnt2d q = c->Value(first + (last - first) * k / 50.0);
+          for (double du : {-1e-3, 0.0, 1e-3})
+            for (double dv : {-1e-3, 0.0, 1e-3}) points.emplace_back(q.X() + du * (u1 - u0), q.Y() + dv * (v1 - v0));
+        }
+      }
+      // The pin hole at (7, 9) on the plane faces z = 0 and z = 10, whose parameters are x and y
+      // up to a shift: points within and around it in the parameters' own units.
+      Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
+      GeomAPI_ProjectPointOnSurf onto(gp_Pnt(7, 9, 0), surface);
+      if (shape.IsSame(pinhole) && onto.NbPoints() > 0) {
+        double u, v;
+        onto.LowerDistanceParameters(u, v);
+        for (int k = 0; k < 400; ++k) points.emplace_back(u + 0.03 * (unit(rng) - 0.5), v + 0.03 * (unit(rng) - 0.5));
+      }
+      for (const gp_Pnt2d& p : points) {
+        const TopAbs_State want = reference.Perform(p), got = cached.Perform(p);
+        ASSERT_EQ(got, want) << "(" << p.X() << ", " << p.Y() << ") on a face of bounds [" << u0 << ", " << u1 << "] x [" << v0
+                             << ", " << v1 << "]";
+        ++checked;
+        const gp_Pnt x = surface->Value(p.X(), p.Y());
+        inside_hole += shape.IsSame(pinhole) && want == TopAbs_OUT && std::hypot(x.X() - 7, x.Y() - 9) < 0.009;
+      }
+      from_grid += cached.from_grid();
+    }
+  }
+  std::printf("%ld points, %ld from the grid, %ld inside the pin hole\n", checked, from_grid, inside_hole);
+  EXPECT_GT(from_grid, checked / 3);  // 44%: a third of the points lie near a boundary or beyond the bounds
+  EXPECT_GT(inside_hole, 0) << "no point fell in the pin hole: the test would not see it";
+}
 #endif
+
