@@ -81,11 +81,11 @@ inline EdgeCurve edge_curve(const TopoDS_Edge& edge) {
 /// made at the first query: cells within two cells of a sample of a boundary edge's curve on the
 /// face (samples at most a quarter of a cell apart) always ask the classifier; any other cell holds
 /// the state of its centre, asked once (IN or OUT; otherwise the cell asks), and answers for every
-/// point in it. Such a cell lies inside
-/// one connected piece of the domain's interior or exterior (no boundary curve crosses it, nor the
-/// classifier's polygon, which stays within its deflection of the curves), so its answers are the
-/// classifier's. Points outside the bounds (a periodic parameter), and every point of a face
-/// whose edges lack a curve on it, ask the classifier. Not for use from two threads at once.
+/// point in it. Such a cell lies inside one connected piece of the domain's interior or exterior
+/// (no boundary curve crosses it, nor the classifier's polygon, which stays within its deflection
+/// of the curves), so its answers are the classifier's. Points outside the bounds (a periodic
+/// parameter), and every point of a face whose edges lack a curve on it or need more than 65,536
+/// samples, ask the classifier. Not for use from two threads at once.
 class FaceClassifier {
  public:
   FaceClassifier(const TopoDS_Face& face, double tol, double u0, double u1, double v0, double v1)
@@ -127,23 +127,19 @@ class FaceClassifier {
       const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face_, first, last);
       if (c.IsNull() || !std::isfinite(first) || !std::isfinite(last)) return mark_all();
       // Samples a quarter of a cell apart at most: the count doubled until the largest step is.
+      std::vector<gp_Pnt2d> samples;
       for (int n = 256;; n *= 2) {
-        double largest = 0;
-        gp_Pnt2d prev = c->Value(first);
-        for (int k = 1; k <= n && largest <= 0.25; ++k) {
-          const gp_Pnt2d q = c->Value(first + (last - first) * k / n);
-          largest = std::max({largest, std::abs(q.X() - prev.X()) / du_, std::abs(q.Y() - prev.Y()) / dv_});
-          prev = q;
+        if (n > (1 << 16)) return mark_all();
+        samples.assign(1, c->Value(first));
+        bool fine = true;
+        for (int k = 1; k <= n && fine; ++k) {
+          samples.push_back(c->Value(first + (last - first) * k / n));
+          const gp_Pnt2d &a = samples[k - 1], &b = samples[k];
+          fine = std::abs(b.X() - a.X()) <= 0.25 * du_ && std::abs(b.Y() - a.Y()) <= 0.25 * dv_;
         }
-        if (largest <= 0.25 || n >= (1 << 16)) {
-          if (largest > 0.25) return mark_all();
-          for (int k = 0; k <= n; ++k) {
-            const gp_Pnt2d q = c->Value(first + (last - first) * k / n);
-            mark(q.X(), q.Y());
-          }
-          break;
-        }
+        if (fine) break;
       }
+      for (const gp_Pnt2d& q : samples) mark(q.X(), q.Y());
     }
   }
   void mark_all() const { std::fill(state_.begin(), state_.end(), kNearBoundary); }
