@@ -12,6 +12,13 @@
 
 namespace hexdom::overlay {
 
+namespace {
+// quad_regions: a quad whose normal makes more than 60 degrees with the normal at its centroid's
+// closest point takes the face its normal line meets within kFacingReach quad diagonals instead.
+constexpr double kFacingCos = 0.5;
+constexpr double kFacingReach = 1.5;
+}  // namespace
+
 mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer, std::vector<int>* copy_out) {
   const std::vector<mesh::BoundaryFace> faces = mesh::boundary_faces(core);
   const int n0 = core.num_nodes();
@@ -76,7 +83,27 @@ std::vector<int> quad_regions(const mesh::Mesh& m, const std::vector<std::array<
   for (size_t q = 0; q < quads.size(); ++q) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int v : quads[q]) c += m.V.row(v).transpose() / 4;
-    feat.project(c, &r[q]);
+    Eigen::Vector3d normal;
+    const Eigen::Vector3d x = feat.project(c, &r[q], &normal);
+    // A quad facing away from the nearest point's face (a core cell jutting out past a face next
+    // to the one it faces) takes the face its own normal line meets, when that one faces its way.
+    const Eigen::Vector3d d1 = m.V.row(quads[q][2]) - m.V.row(quads[q][0]), d2 = m.V.row(quads[q][3]) - m.V.row(quads[q][1]);
+    const Eigen::Vector3d n = d1.cross(d2);
+    if (n.norm() == 0) continue;
+    const Eigen::Vector3d u = n.normalized();
+    if (normal.dot(u) >= kFacingCos) continue;
+    const double reach = std::max(kFacingReach * std::max(d1.norm(), d2.norm()), 2 * (x - c).norm());
+    int best = -1;
+    double best_t = std::numeric_limits<double>::infinity();
+    for (const double sign : {1.0, -1.0}) {
+      int t = -1;
+      const double along = feat.triangles().ray_distance(c, sign * u, 0, reach, -1, &t);
+      if (t >= 0 && along < best_t && feat.triangles().normal(t).dot(u) >= kFacingCos) {
+        best_t = along;
+        best = t;
+      }
+    }
+    if (best >= 0) r[q] = feat.region()[best];
   }
   for (int pass = 0; pass < 3; ++pass) {
     bool changed = false;

@@ -695,3 +695,35 @@ TEST(Overlay, ALedgeFarThinnerThanTheCellsMakesNoNeedleCells) {
   EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
   EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
 }
+
+// An L block (a plate 40 x 20 x 8 and an upright 8 x 20 x 30 on its end) on a grid of spacing 2.5
+// whose cells by centres jut 0.75 past the upright's side and the plate's top. The quads on the
+// core's sides next to those faces take the face they face (their normal line meets it 1.25
+// away), not the face they jut past (0.5 from their centroid): the first grid is valid with a
+// good worst cell (before: the side quads flattened onto the other face, 6 cells left inverted
+// on this grid and the core by corners, worst SJ 0.012, kept instead).
+TEST(Overlay, CoreCellsJuttingPastAFaceLeaveTheBufferValid) {
+  std::vector<std::array<int, 3>> cells;
+  for (int j = 0; j < 10; ++j) {
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 20; ++i) cells.push_back({i, j, k});
+    for (int k = 4; k < 15; ++k)
+      for (int i = 0; i < 4; ++i) cells.push_back({i, j, k});
+  }
+  const auto s = test::cell_surface(cells, 1, 2.0);
+  const double volume = 40 * 20 * 8 + 8 * 20 * 22;
+  ASSERT_NEAR(mesh::enclosed_volume(s.V, s.F), volume, 1e-6);
+  overlay::OverlayOptions o;
+  o.size = 2.5;
+  o.refinements = 0;
+  o.refinements_for_quality = 0;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_EQ(log.find("core by corners"), std::string::npos) << log;
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GT(r.quality.hex.sj_min, 0.5);
+  EXPECT_NEAR(r.quality.total_volume, volume, 1e-3 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
+  EXPECT_EQ(r.corner_nodes, 12);
+}
