@@ -14,9 +14,17 @@ namespace hexdom::overlay {
 
 namespace {
 // quad_regions: a quad whose normal makes more than 60 degrees with the normal at its centroid's
-// closest point takes the face its normal line meets within kFacingReach quad diagonals instead.
+// closest point takes the face its normal line meets within kFacingReach quad diagonals (or twice
+// the closest point's distance) instead.
 constexpr double kFacingCos = 0.5;
 constexpr double kFacingReach = 1.5;
+
+// Twice the vector area of quad q of m (the cross product of its diagonals): outward for an outer
+// quad; its length, not its direction, is 0 for a quad folded flat.
+Eigen::Vector3d quad_area_normal(const mesh::Mesh& m, const std::array<int, 4>& q) {
+  const Eigen::Vector3d d1 = m.V.row(q[2]) - m.V.row(q[0]), d2 = m.V.row(q[3]) - m.V.row(q[1]);
+  return d1.cross(d2);
+}
 }  // namespace
 
 mesh::Mesh add_buffer_layer(const mesh::Mesh& core, std::vector<std::array<int, 4>>* outer, std::vector<int>* copy_out) {
@@ -48,8 +56,7 @@ int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer
                      const SurfaceFeatures& feat, const std::vector<double>& depth) {
   std::vector<Eigen::Vector3d> normal(m.num_nodes(), Eigen::Vector3d::Zero());
   for (const auto& q : outer) {
-    const Eigen::Vector3d d1 = m.V.row(q[2]) - m.V.row(q[0]), d2 = m.V.row(q[3]) - m.V.row(q[1]);
-    const Eigen::Vector3d n = d1.cross(d2);  // twice the quad's vector area, outward
+    const Eigen::Vector3d n = quad_area_normal(m, q);
     for (int v : q) normal[v] += n;
   }
   int moved = 0;
@@ -87,12 +94,13 @@ std::vector<int> quad_regions(const mesh::Mesh& m, const std::vector<std::array<
     const Eigen::Vector3d x = feat.project(c, &r[q], &normal);
     // A quad facing away from the nearest point's face (a core cell jutting out past a face next
     // to the one it faces) takes the face its own normal line meets, when that one faces its way.
-    const Eigen::Vector3d d1 = m.V.row(quads[q][2]) - m.V.row(quads[q][0]), d2 = m.V.row(quads[q][3]) - m.V.row(quads[q][1]);
-    const Eigen::Vector3d n = d1.cross(d2);
+    const Eigen::Vector3d n = quad_area_normal(m, quads[q]);
     if (n.norm() == 0) continue;
     const Eigen::Vector3d u = n.normalized();
     if (normal.dot(u) >= kFacingCos) continue;
-    const double reach = std::max(kFacingReach * std::max(d1.norm(), d2.norm()), 2 * (x - c).norm());
+    const double diagonal = std::max((m.V.row(quads[q][2]) - m.V.row(quads[q][0])).norm(),
+                                     (m.V.row(quads[q][3]) - m.V.row(quads[q][1])).norm());
+    const double reach = std::max(kFacingReach * diagonal, 2 * (x - c).norm());
     int best = -1;
     double best_t = std::numeric_limits<double>::infinity();
     for (const double sign : {1.0, -1.0}) {

@@ -42,7 +42,8 @@ int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer
 /// Puts the outer nodes of `m` (those of `outer`) on the surface. Each outer quad takes the region
 /// nearest its centroid, or, when the surface there faces more than 60 degrees away from the quad
 /// (a core cell jutting past the face beside the one it faces), the region its normal line meets
-/// first within 1.5 quad diagonals where that one faces within 60 degrees of it (then a quad whose
+/// first (either way, within 1.5 quad diagonals or twice the closest point's distance, whichever is
+/// more) where that one faces within 60 degrees of it (then a quad whose
 /// neighbours mostly took another region takes theirs); a
 /// node on quads of one region goes onto that region, on two regions that share a curve onto the
 /// curve, and each feature corner gets the nearest node among those on two of its regions (within
