@@ -3,7 +3,12 @@ mesh` runs, snap included) on each shared CAD part at the default size (bounding
 times each factor. An engineer picks a round size, and FreeCAD's bounding box differs from OCCT's,
 so a part that meets the targets at exactly diagonal / 30 and misses them 5% away is fragile.
 
-Run: HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_size_sweep.py [--factors 0.9,1,1.1] [parts...]
+With --corpus DIR the parts are STEP files of DIR (bench/make_corpus.py's corpus: name them, or
+all of them), and --method forces a path (overlay: the grid laid at each size; a part meshed at one
+grid spacing and not at one 5% off has its failure in the grid's placement, not in its size).
+
+Run: HEXDOM_BUILD_DIR=build /usr/bin/python3 bench/bench_size_sweep.py [--factors 0.9,1,1.1]
+     [--corpus DIR] [--method auto|polycube|overlay] [parts...]
 Prints one line per part and factor (cells, worst / mean hex SJ after the snap, inverted cells,
 volume against the B-rep, seconds) and a count of the runs that meet every target. Never asserts.
 """
@@ -31,14 +36,19 @@ def diagonal(path):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--factors", default="0.9,0.95,1,1.05,1.1")
+    ap.add_argument("--corpus", help="a directory of STEP parts (bench/make_corpus.py) instead of the shared CAD parts")
+    ap.add_argument("--method", default="auto", choices=["auto", "polycube", "overlay"])
     ap.add_argument("parts", nargs="*")
     a = ap.parse_args()
     factors = [float(f) for f in a.factors.split(",")]
+    folder = a.corpus or os.path.join(DATA, "cad")
+    stems = a.parts or (sorted(os.path.splitext(f)[0] for f in os.listdir(folder) if f.endswith(".step"))
+                        if a.corpus else CAD)
     met = total = 0
-    for stem in a.parts or CAD:
-        paths = glob.glob(os.path.join(DATA, "cad", stem + ".*"))
+    for stem in stems:
+        paths = glob.glob(os.path.join(folder, stem + ".*"))
         if not paths:
-            print(f"{stem}: skipped, shared data missing: {os.path.join(DATA, 'cad', stem)}.*")
+            print(f"{stem}: skipped, no such part: {os.path.join(folder, stem)}.*")
             continue
         reference = core._hexdom.cad_volume(paths[0])
         d = diagonal(paths[0])
@@ -47,7 +57,7 @@ def main():
             t0 = time.perf_counter()
             total += 1
             try:
-                run = core.mesh_part(paths[0], size=size, allow_inverted=True)
+                run = core.mesh_part(paths[0], size=size, allow_inverted=True, method=a.method)
             except core.Error as e:
                 print(f"{stem:28s} x{f:<5g} size {size:8.4f} failed: {str(e).splitlines()[0][:120]}", flush=True)
                 continue
