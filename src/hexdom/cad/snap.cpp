@@ -363,8 +363,9 @@ class Restoration {
     const Eigen::MatrixXd start = m_.V;
     for (int k = 1; restore && k < steps; ++k) {
       const double a = static_cast<double>(k) / steps;
-      for (int v : boundary_) w.V.row(v) = start.row(v) + a * (target_.row(v) - start.row(v));
       optimize::ImproveOptions io;
+      io.optimised_at = w.V;  // the input, or the restoration of the step before
+      for (int v : boundary_) w.V.row(v) = start.row(v) + a * (target_.row(v) - start.row(v));
       io.smooth = opt_.smooth;
       io.optimize = opt_.optimize;
       io.floor = floor;
@@ -372,10 +373,12 @@ class Restoration {
       io.threads = opt_.threads;
       w = optimize::improve(w, io).mesh;
     }
+    Eigen::MatrixXd optimised = restore ? w.V : Eigen::MatrixXd();
     for (int v : boundary_) w.V.row(v) = target_.row(v);
     out.worst_snapped = worst_sj(w, &out.inverted_snapped);
     if (restore) {
       optimize::ImproveOptions io;
+      io.optimised_at = std::move(optimised);
       io.smooth = opt_.smooth;
       io.optimize = opt_.optimize;
       io.floor = floor;
@@ -446,19 +449,21 @@ class Restoration {
   std::vector<char> has_t_;
 };
 
-/// The restoration kept: the direct one; the progressive snap where the direct one costs quality
-/// (fewer inverted cells first, then the better worst cell); then, where cells stay inverted, the
+/// The restoration kept: the direct one; the progressive snap where the direct one leaves inverted
+/// cells or ends below both the worst SJ before and `keep` (fewer inverted cells first, then the
+/// better worst cell); then, where cells stay inverted, the
 /// restoration without the floor `keep` if it does better.
 Restored best_restoration(Restoration& restoration, double keep, double worst_before, const SnapOptions& opt) {
   const bool restore = restoration.enabled();
   char line[320];
   Restored best = restoration.run(1, keep);
   if (restore && opt.steps > 1) {
-    // The progressive snap where the direct one costs quality: fewer inverted cells first, then
-    // the better worst cell.
+    // The progressive snap where the direct one costs quality below the bar: fewer inverted cells
+    // first, then the better worst cell. Above it, a second whole restoration is not worth its time.
     int inv_best = 0;
     const double w_best = worst_sj(best.mesh, &inv_best);
-    if (inv_best > 0 || w_best < worst_before - 1e-3) {
+    const double bar = keep > -2 ? keep : worst_before;  // keep: min(SnapOptions::keep, worst before)
+    if (inv_best > 0 || w_best < bar - 1e-3) {
       Restored other = restoration.run(opt.steps, keep);
       int inv_other = 0;
       const double w_other = worst_sj(other.mesh, &inv_other);

@@ -43,7 +43,7 @@ struct SnapOptions {
   /// better kept. Negative: no floor.
   double keep = 0.3;
   /// When the direct snap (all boundary nodes at once, then the restoration) ends with inverted
-  /// cells or below the worst SJ before it, the snap is made again in this many equal steps, the
+  /// cells or below both the worst SJ before it and `keep`, the snap is made again in this many equal steps, the
   /// interior restored with the boundary held after each but the last, so that the thin cells along
   /// the boundary (a pillow layer) follow instead of inverting; the better result is kept (fewer
   /// inverted cells, then the better worst cell). 1: direct only.

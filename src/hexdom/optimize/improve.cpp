@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -30,10 +31,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // and the improver working on it.
 class Run {
  public:
-  // `layer`: the boundary faces to pillow (smooth_layer_faces); null or empty: all of them.
-  // Throws GeometryError when the layer cannot be made.
-  Run(const mesh::Mesh& input, const ImproveOptions& opt, bool with_pillow, const std::vector<char>* sharp_in,
-      const BoundaryConstraints& cons, const std::function<void(const std::string&)>& log, const std::vector<char>* layer = nullptr)
+  // `input_kinds`: node_kinds of the input (with `sharp_in`). `layer`: the boundary faces to pillow
+  // (smooth_layer_faces); null or empty: all of them. Throws GeometryError when the layer cannot be made.
+  Run(const mesh::Mesh& input, const NodeKinds& input_kinds, const ImproveOptions& opt, bool with_pillow,
+      const std::vector<char>* sharp_in, const BoundaryConstraints& cons, const std::function<void(const std::string&)>& log,
+      const std::vector<char>* layer = nullptr)
       : with_pillow_(with_pillow), deadline_(opt.deadline), log_(log) {
     m_ = input;
     std::vector<char> sharp;
@@ -57,7 +59,7 @@ class Run {
         }
       }
       // The pillowed boundary has the original geometry, so the angle test finds the same features.
-      t_ = node_kinds(m_, opt.feature_angle, sharp_in ? &sharp : nullptr);
+      t_ = with_pillow ? node_kinds(m_, opt.feature_angle, sharp_in ? &sharp : nullptr) : input_kinds;
       if (!with_pillow && !opt.kinds.empty()) {
         t_.kind = opt.kinds;
         t_.curve_nbrs = opt.curve_neighbours;
@@ -96,6 +98,16 @@ class Run {
     imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
     imp_->set_keep(opt.floor);
     imp_->set_threads(thread_count(opt.threads));
+    if (!with_pillow && opt.optimised_at.rows() > 0) {
+      // Where the input was optimised before: its passes start from the cells changed since.
+      mesh::Mesh was = input;
+      was.V = opt.optimised_at;
+      for (int c = 0; c < m_.num_cells(); ++c)
+        if (std::abs(cell_sj(was, c) - cell_sj(m_, c)) > 1e-3)
+          for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) start_.push_back(m_.cells(c, i));
+      imp_->mark_only(start_);
+      from_start_ = true;
+    }
     log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +
          ": worst scaled Jacobian " + std::to_string(imp_->worst()) + "; " + std::to_string(r_.feature_nodes) +
          " feature-curve nodes, " + std::to_string(r_.corner_nodes) + " corners");
@@ -147,7 +159,8 @@ class Run {
   void mean_stage(int max_passes, double min_gain) {
     const auto t0 = std::chrono::steady_clock::now();
     imp_->set_floors(0.0);
-    imp_->mark_all();
+    if (from_start_) imp_->mark_only(start_);
+    else imp_->mark_all();
     const double mean0 = imp_->mean();
     double mean = mean0;
     int passes = 0;
@@ -235,6 +248,8 @@ class Run {
   NodeKinds t_;
   std::unique_ptr<BoundaryConstraints> unhooked_;  // a copy without the projection hook, for a pillowed mesh
   std::unique_ptr<Improver> imp_;
+  bool from_start_ = false;  // ImproveOptions::optimised_at applies: passes start from start_
+  std::vector<int> start_;   // nodes of the cells changed since the input was optimised
 };
 
 double worst_of(const QualityReport& q) {
@@ -268,6 +283,9 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
                              opt.curve_neighbours.size() != opt.kinds.size()))
     throw GeometryError("node kinds given for " + std::to_string(opt.kinds.size()) + " nodes, curve neighbours for " +
                         std::to_string(opt.curve_neighbours.size()) + ", the mesh has " + std::to_string(input.num_nodes()));
+  if (opt.optimised_at.rows() > 0 && (opt.optimised_at.rows() != input.num_nodes() || opt.optimised_at.cols() != 3))
+    throw GeometryError("optimised_at has " + std::to_string(opt.optimised_at.rows()) + " x " + std::to_string(opt.optimised_at.cols()) +
+                        " entries for a mesh of " + std::to_string(input.num_nodes()) + " nodes (#V x 3 expected)");
   for (int v : opt.fixed_nodes)
     if (v < 0 || v >= input.num_nodes())
       throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
@@ -282,7 +300,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
 
   ImproveResult r;
   if (!recommended) {
-    Run run(input, opt, opt.pillow, sp, cons, log);
+    Run run(input, t0, opt, opt.pillow, sp, cons, log);
     const int smoothed = run.smooth(opt.smooth);
     const int optimised = run.stopped() ? 0 : run.optimize(opt.optimize);
     run.set_rounds(std::max(smoothed, optimised));
@@ -308,7 +326,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       if (faces && faces->empty()) continue;
       if (!runs.empty() && opt.deadline.passed()) break;
       try {
-        runs.push_back(std::make_unique<Run>(input, opt, true, sp, cons, log, faces));
+        runs.push_back(std::make_unique<Run>(input, t0, opt, true, sp, cons, log, faces));
         runs.back()->worst_stage(opt.max_rounds);
       } catch (const GeometryError& e) {
         if (opt.log) opt.log(1, std::string(faces ? "layer on the smooth regions skipped: " : "pillowing skipped: ") + e.what());
@@ -332,7 +350,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
       int rival_rounds = -1;
       for (size_t i = 0; i < runs.size(); ++i)
         if (runs[i]->inverted() == 0) rival_rounds = std::max(rival_rounds, plain_rounds[i]);
-      runs.push_back(std::make_unique<Run>(input, opt, false, sp, cons, log));
+      runs.push_back(std::make_unique<Run>(input, t0, opt, false, sp, cons, log));
       runs.back()->search_pattern();
       runs.back()->worst_stage(rival_rounds >= 0 ? std::min(opt.max_rounds, std::max(10, 2 * rival_rounds)) : opt.max_rounds);
     }

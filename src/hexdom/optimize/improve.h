@@ -68,6 +68,13 @@ struct ImproveOptions {
   /// Whether `project` may be called from several threads at once for different nodes (it reads
   /// shared data only). Otherwise the boundary nodes it places move on the calling thread.
   bool project_concurrent = false;
+  /// Where not empty (#V x 3): the node positions at which the input was optimised before (by an
+  /// earlier improve), its cells unchanged since, e.g. before the snap moved its boundary. The first
+  /// smoothing pass and the mean stage then start from the nodes of the cells whose scaled Jacobian
+  /// has changed since by more than 1e-3, not from every node (each later pass revisits the nodes
+  /// near a move of the pass before, as always): the rest is where the earlier run left it. While
+  /// cells are inverted, untangling still visits every node. Not used on a pillowed mesh.
+  Eigen::MatrixXd optimised_at;
   /// Threads of the passes (0: one per core). The mesh is the same whatever their number
   /// (Improver: nodes move colour by colour).
   int threads = 0;

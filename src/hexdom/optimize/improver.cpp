@@ -77,6 +77,7 @@ Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints&
   }
   // Greedy colouring in node order: each node takes the lowest colour no node of its cells has.
   moved_.assign(m.num_nodes(), 0);
+  touched_.assign(m.num_nodes(), 0);
   colour_.assign(m.num_nodes(), -1);
   std::vector<int> taken_by;  // per colour: the last node that found it taken
   for (int v = 0; v < m.num_nodes(); ++v) {
@@ -210,9 +211,17 @@ void Improver::mark_all() {
   std::fill(climb_.begin(), climb_.end(), 1);
 }
 
+void Improver::mark_only(const std::vector<int>& nodes) {
+  std::fill(dirty_.begin(), dirty_.end(), 0);
+  for (int v : nodes) mark_around(v);
+  for (int v = 0; v < m_.num_nodes(); ++v)
+    if (touched_[v]) mark_around(v);
+}
+
 void Improver::accept(int v, const std::vector<double>& trial) {
   for (size_t i = 0; i < trial.size(); ++i) sj_[t_.node_cells[v][i]] = trial[i];
   moved_[v] = 1;
+  touched_[v] = 1;
 }
 
 bool Improver::try_move(int v, const Vec& x, bool allow_equal) {

@@ -57,6 +57,8 @@ class Improver {
   // Nodes whose neighbourhood changed since they were last visited by a pass: only they can move.
   void mark_around(int v);
   void mark_all();
+  // Only the nodes of the cells around `nodes` and around every node moved so far.
+  void mark_only(const std::vector<int>& nodes);
   // Moves shorter than this are not worth an evaluation (and would keep converged nodes busy).
   bool negligible(int v, const Vec& x) const { return (x - m_.V.row(v).transpose()).squaredNorm() < 1e-8 * edge_[v] * edge_[v]; }
 
@@ -145,6 +147,7 @@ class Improver {
   std::vector<char> dirty_;  // nodes for the next smoothing or mean pass
   std::vector<char> climb_;  // nodes worth another optimisation step
   std::vector<char> moved_;  // nodes moved in the colour being swept
+  std::vector<char> touched_;  // nodes moved since the improver was made
   std::vector<int> colour_;  // per node
   std::vector<std::vector<int>> colours_;  // per colour: its nodes, increasing
   int threads_ = 1;

@@ -271,6 +271,45 @@ TEST(Improve, MeanAfterExplicitStagesRaisesTheMeanAndKeepsTheWorst) {
   EXPECT_GT(with_mean.mean(), plain.mean() + 0.001);  // measured 0.8654 -> 0.8673, worst 0.2903 kept
 }
 
+// optimised_at: the passes start from the cells changed since the input was optimised. With nothing
+// changed, the smoothing and the mean passes leave a jittered grid where it is (every node would move
+// otherwise); with one node moved since, the passes start there (and, the grid being far from
+// converged, spread from it).
+TEST(Improve, OptimisedAtStartsThePassesFromTheCellsChangedSince) {
+  const mesh::Mesh m = cube_grid(6, 0.3);
+  optimize::ImproveOptions opt;
+  opt.smooth = 2;
+  opt.mean_after = true;
+  auto moved = [&](const mesh::Mesh& out) {
+    int n = 0;
+    for (int v = 0; v < m.num_nodes(); ++v) n += (out.V.row(v) - m.V.row(v)).norm() > 1e-12;
+    return n;
+  };
+  const int everywhere = moved(optimize::improve(m, opt).mesh);
+  opt.optimised_at = m.V;
+  const int unchanged = moved(optimize::improve(m, opt).mesh);
+  // One interior node (the grid's node (3, 3, 3)) was elsewhere when the mesh was optimised.
+  const int centre = 3 + 7 * (3 + 7 * 3);
+  opt.optimised_at.row(centre) += Eigen::RowVector3d(0.05, 0, 0);
+  const mesh::Mesh out = optimize::improve(m, opt).mesh;
+  const int near = moved(out);
+  double farthest = 0;
+  for (int v = 0; v < m.num_nodes(); ++v)
+    if ((out.V.row(v) - m.V.row(v)).norm() > 1e-12) farthest = std::max(farthest, (m.V.row(v) - m.V.row(centre)).norm());
+  std::printf("nodes moved: %d from every node, %d with nothing changed, %d (farthest %.3f) around one node\n", everywhere,
+              unchanged, near, farthest);
+  EXPECT_GT(everywhere, 100);
+  EXPECT_EQ(unchanged, 0);
+  EXPECT_GT(near, 0);
+  EXPECT_THROW(
+      {
+        optimize::ImproveOptions bad = opt;
+        bad.optimised_at = Eigen::MatrixXd::Zero(3, 3);
+        optimize::improve(m, bad);
+      },
+      GeometryError);
+}
+
 // With its time budget passed, the improvement ends after its first round: one run, no mean pass,
 // still a valid mesh of the same box (no inverted cell, the unit volume), and the log says why.
 TEST(Improve, APassedDeadlineStopsAfterOneRoundWithAValidMesh) {
