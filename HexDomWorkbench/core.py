@@ -505,7 +505,7 @@ def _auto_polycube(r):
 
 def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
                  max_relabel_area=0.03, untangle_rounds=50, keep_widths=True,
-                 collapse_apexes=True, frame=None, stretch=None):
+                 collapse_apexes=True, frame=None, stretch=None, max_same_problem=3):
     """Polycube structure of a labelled Surface (patch = label 1..6 per triangle, e.g. from
     segment()) with no manual step: blocks are the grid cells of spacing h = size * 2^level
     (size 0: bounding-box diagonal / 30) inside the polycube the charts are flattened onto (prism
@@ -518,13 +518,15 @@ def autopolycube(labels, size=0.0, level=1, max_relabels=200, max_attempts=20,
     frame: the rotation the labels refer to (segment's frame); every result is in the input's
     coordinates. stretch: factors along the frame's axes (MeshRun.stretch): the polycube is built
     on the labels stretched so (``size`` in that space), every result mapped back. Raises
-    GeometryError naming the charts when the labelling cannot be repaired. Returns an
-    AutoPolycube."""
+    GeometryError naming the charts when the labelling cannot be repaired, also when
+    max_same_problem rounds in a row end in the very same problem (the repair is not converging).
+    Returns an AutoPolycube."""
     return _auto_polycube(_hexdom.autopolycube(labels.V, labels.F, labels.patch, float(size),
                                                int(level), int(max_relabels), int(max_attempts),
                                                float(max_relabel_area), int(untangle_rounds),
                                                bool(keep_widths), bool(collapse_apexes),
-                                               _frame_arg(frame), _stretch_arg(stretch)))
+                                               _frame_arg(frame), _stretch_arg(stretch),
+                                               int(max_same_problem)))
 
 
 MESH_STAGES = ("segment", "autopolycube", "generate", "improve")

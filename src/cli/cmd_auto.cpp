@@ -28,6 +28,10 @@ void add_autopolycube_options(CLI::App& cmd, AutoPolycubeArgs& a) {
   cmd.add_option("--max-relabels", a.opt.max_relabels, "charts the label repair may relabel")->capture_default_str();
   cmd.add_option("--max-attempts", a.opt.max_attempts, "relabel-and-retry rounds when the map folds or the cells do not match")
       ->capture_default_str();
+  cmd.add_option("--max-same-problem", a.opt.max_same_problem,
+                 "rounds in a row that may end in the very same problem (the same charts failing the same way) before "
+                 "giving up: the label repair is then not converging")
+      ->capture_default_str()->check(CLI::PositiveNumber);
   cmd.add_option("--untangle", a.opt.untangle_rounds, "rounds of local moves of interior block vertices")->capture_default_str();
   cmd.add_option("--sliver-ratio", a.opt.sliver_ratio,
                  "strip charts (1 or 2 squares wide) whose width across is at most this share of their length along "

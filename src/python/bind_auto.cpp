@@ -47,7 +47,8 @@ const char* kAutopolycubeDoc =
     "frame: a 3 x 3 rotation (cube_frame's): the labels refer to its axes, x_frame = frame @ x; every result\n"
     "is in the input's coordinates. stretch: factors along the frame's axes (mesh_surface's stretch): the\n"
     "polycube is built on the labels stretched so (size in that space), every result mapped back. Raises\n"
-    "GeometryError naming the charts when the labelling cannot be repaired.";
+    "GeometryError naming the charts when the labelling cannot be repaired, also when max_same_problem rounds in a\n"
+    "row end in the very same problem (the repair is not converging).";
 
 const char* kMeshSurfaceDoc =
     "Hex mesh of a closed surface with no manual step: segment (CVT, edge_weight) -> autopolycube (size,\n"
@@ -191,7 +192,7 @@ void bind_auto(py::module_& m) {
   m.def("autopolycube",
         [](const RefV& V, const RefF& F, const RefI& label, double size, int level, int max_relabels, int max_attempts,
            double max_relabel_area, int untangle_rounds, bool keep_widths, bool collapse_apexes,
-           std::optional<Eigen::Matrix3d> frame, std::optional<Eigen::Vector3d> stretch) {
+           std::optional<Eigen::Matrix3d> frame, std::optional<Eigen::Vector3d> stretch, int max_same_problem) {
           mesh::SurfaceMesh s = surface_of(V, F, label);
           autopolycube::AutoPolycubeOptions opt;
           if (frame) opt.frame = checked_rotation(*frame);
@@ -200,6 +201,8 @@ void bind_auto(py::module_& m) {
           opt.level = level;
           opt.max_relabels = max_relabels;
           opt.max_attempts = max_attempts;
+          if (max_same_problem < 1) throw GeometryError("max_same_problem must be at least 1");
+          opt.max_same_problem = max_same_problem;
           opt.max_relabel_area = max_relabel_area;
           opt.untangle_rounds = untangle_rounds;
           opt.keep_widths = keep_widths;
@@ -215,7 +218,7 @@ void bind_auto(py::module_& m) {
         py::arg("V"), py::arg("F"), py::arg("label"), py::arg("size") = 0.0, py::arg("level") = 1,
         py::arg("max_relabels") = 200, py::arg("max_attempts") = 20, py::arg("max_relabel_area") = 0.03,
         py::arg("untangle_rounds") = 50, py::arg("keep_widths") = true, py::arg("collapse_apexes") = true,
-        py::arg("frame") = py::none(), py::arg("stretch") = py::none(), kAutopolycubeDoc);
+        py::arg("frame") = py::none(), py::arg("stretch") = py::none(), py::arg("max_same_problem") = 3, kAutopolycubeDoc);
 
   m.def("check_surface",
         [](const RefV& V, const RefF& F, const RefI& patch, const std::string& name, bool self_intersection,

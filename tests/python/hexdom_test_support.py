@@ -10,6 +10,7 @@ modules never have to import a conftest).
 """
 
 import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -107,6 +108,21 @@ def data_params(pattern, exclude=()):
         where = HEXDOM_DATA if not HEXDOM_DATA.is_dir() else HEXDOM_DATA / pattern
         return [pytest.param(None, marks=pytest.mark.skip(reason=missing(where)), id="no-data")]
     return [pytest.param(p, id=str(p.relative_to(HEXDOM_DATA))) for p in paths]
+
+
+def segmented_corpus_part(core, out, family, index, edge_weight=0.1):
+    """Draw `index` (0-based) of a family of our own corpus (bench/make_corpus.py, default seed),
+    made by FreeCAD in `out`, tessellated and segmented with `edge_weight`; the part must be square to
+    the axes. Returns (labels, the default element size: the frame diagonal / 30)."""
+    script = REPO / "bench" / "make_corpus.py"
+    p = subprocess.run([sys.executable, str(script), str(out), "--families", family, "--count", str(index + 1), "--no-fixed"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
+    V, F, face = core.tessellate_file(str(Path(out) / f"{family}_{index:03d}.step"))
+    surface = core.Surface(V, F, face)
+    assert not core.cube_frame(surface)["turned"]  # square to the axes: no frame to pass
+    size = core.frame_diagonal(surface, [[1, 0, 0], [0, 1, 0], [0, 0, 1]]) / 30.0
+    return core.segment(surface, edge_weight=edge_weight), size
 
 
 def hexdom_bin():

@@ -13,29 +13,17 @@ rounds allowed (max_attempts), and the same run with max_attempts below that cou
 round limit instead (so the stop is the cycle's, not a limit's)."""
 
 import re
-import subprocess
-import sys
 
 import pytest
 
 import hexdom_test_support as support
-
-SCRIPT = support.REPO / "bench" / "make_corpus.py"
 
 
 @pytest.fixture(scope="module")
 def labels(freecad, core, tmp_path_factory):
     if not core.has_opencascade():
         pytest.skip("_hexdom built without OpenCASCADE")
-    out = tmp_path_factory.mktemp("counterbore")
-    p = subprocess.run([sys.executable, str(SCRIPT), str(out), "--families", "counterbore", "--count", "6", "--no-fixed"],
-                       capture_output=True, text=True, timeout=120)
-    assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
-    V, F, face = core.tessellate_file(str(out / "counterbore_005.step"))
-    surface = core.Surface(V, F, face)
-    assert not core.cube_frame(surface)["turned"]  # the part is square to the axes: no frame to pass
-    size = core.frame_diagonal(surface, [[1, 0, 0], [0, 1, 0], [0, 0, 1]]) / 30.0
-    return core.segment(surface, edge_weight=0.1), size
+    return support.segmented_corpus_part(core, tmp_path_factory.mktemp("counterbore"), "counterbore", 5)
 
 
 def test_a_label_repair_that_comes_back_to_a_labelling_stops(core, labels):

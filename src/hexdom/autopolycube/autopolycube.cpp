@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "hexdom/autopolycube/blocks/apex_blocks.h"
 #include "hexdom/autopolycube/repair/chart_graph.h"
@@ -125,6 +126,14 @@ void collapse_blocks(GridPolycube& gp, const mesh::SurfaceMesh& s, const std::ve
   }
 }
 
+// The first six of `charts` by name, for a message.
+std::string chart_names(const ChartGraph& g, const std::vector<int>& charts) {
+  std::string names;
+  for (size_t i = 0; i < charts.size() && i < 6; ++i) names += (i ? ", " : "") + chart_name(g, charts[i]);
+  if (charts.size() > 6) names += ", ...";
+  return names;
+}
+
 }  // namespace
 
 AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
@@ -145,6 +154,8 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
   std::vector<Eigen::Vector3d> apexes;
   // The labellings mapped so far: the repair is deterministic, so meeting one again means it cycles.
   std::vector<std::pair<Eigen::MatrixXi, Eigen::VectorXi>> mapped;
+  std::string last_problem;  // the problem the last round ended in, and how many rounds in a row
+  int same_problem = 0;
   for (int attempt = 0;; ++attempt) {
     opt.deadline.check("autopolycube");
     if (attempt == 0 && opt.repaired) {
@@ -233,17 +244,19 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
     }
     if (!bad.empty()) {
       std::sort(bad.begin(), bad.end(), [&](int a, int b) { return g.area[a] < g.area[b]; });
-      std::string names;
-      for (size_t i = 0; i < bad.size() && i < 6; ++i) names += (i ? ", " : "") + chart_name(g, bad[i]);
-      if (bad.size() > 6) names += ", ...";
-      double total = 0;
-      for (double x : g.area) total += x;
+      const std::string names = chart_names(g, bad);
+      const double total = std::accumulate(g.area.begin(), g.area.end(), 0.0);
       if (attempt + 1 >= opt.max_attempts || r.relabelled >= opt.max_relabels || g.area[bad.front()] > opt.max_relabel_area * total)
         throw GeometryError(why + "; charts: " + names + " (after relabelling " + std::to_string(r.relabelled) + " charts)");
       for (const auto& [F, patch] : mapped)
         if (F.rows() == s.F.rows() && patch.size() == s.patch.size() && patch == s.patch && F == s.F)
           throw GeometryError(why + "; charts: " + names + " (the label repair came back to a labelling it had mapped, after " +
                               std::to_string(attempt + 1) + " rounds: it cycles)");
+      same_problem = why == last_problem ? same_problem + 1 : 1;
+      last_problem = why;
+      if (same_problem >= opt.max_same_problem)
+        throw GeometryError(why + "; charts: " + names + " (the same problem after " + std::to_string(same_problem) +
+                            " rounds of relabelling: the label repair is not converging)");
       mapped.emplace_back(s.F, s.patch);
       log(why + ": relabelling " + chart_name(g, bad.front()));
       s.patch = relabel_chart(s, g, bad.front());

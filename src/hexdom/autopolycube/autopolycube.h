@@ -47,6 +47,10 @@ struct AutoPolycubeOptions {
   int level = 1;
   int max_relabels = 200;  ///< charts the label repair may relabel
   int max_attempts = 20;   ///< relabel-and-retry rounds when the map folds or the cells do not match
+  /// Rounds in a row that may end in the very same problem (the same charts, of the same sizes,
+  /// failing the same way) before autopolycube gives up: relabelling other charts is then not
+  /// converging (the label repair takes back most of each relabelling).
+  int max_same_problem = 3;
   /// A chart blamed for a fold or a mismatch is relabelled only when its area is at most this share
   /// of the surface's; otherwise autopolycube gives up and names it.
   double max_relabel_area = 0.03;
