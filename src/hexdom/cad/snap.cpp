@@ -451,8 +451,8 @@ class Restoration {
 
 /// The restoration kept: the direct one; the progressive snap where the direct one leaves inverted
 /// cells or ends below both the worst SJ before and `keep` (fewer inverted cells first, then the
-/// better worst cell); then, where cells stay inverted, the
-/// restoration without the floor `keep` if it does better.
+/// better worst cell); then, where cells stay inverted, the restoration without the floor `keep`
+/// if it does better.
 Restored best_restoration(Restoration& restoration, double keep, double worst_before, const SnapOptions& opt) {
   const bool restore = restoration.enabled();
   char line[320];

@@ -43,10 +43,10 @@ struct SnapOptions {
   /// better kept. Negative: no floor.
   double keep = 0.3;
   /// When the direct snap (all boundary nodes at once, then the restoration) ends with inverted
-  /// cells or below both the worst SJ before it and `keep`, the snap is made again in this many equal steps, the
-  /// interior restored with the boundary held after each but the last, so that the thin cells along
-  /// the boundary (a pillow layer) follow instead of inverting; the better result is kept (fewer
-  /// inverted cells, then the better worst cell). 1: direct only.
+  /// cells or below both the worst SJ before it and `keep`, the snap is made again in this many
+  /// equal steps, the interior restored with the boundary held after each but the last, so that
+  /// the thin cells along the boundary (a pillow layer) follow instead of inverting; the better
+  /// result is kept (fewer inverted cells, then the better worst cell). 1: direct only.
   int steps = 2;
   /// Empty, or #V of the mesh: nodes marked non-zero go onto the nearest of their CAD faces only,
   /// never onto a CAD edge or vertex (the overlay path's nodes on a smooth region, some of which it

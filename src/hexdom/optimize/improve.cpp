@@ -103,7 +103,7 @@ class Run {
       mesh::Mesh was = input;
       was.V = opt.optimised_at;
       for (int c = 0; c < m_.num_cells(); ++c)
-        if (std::abs(cell_sj(was, c) - cell_sj(m_, c)) > 1e-3)
+        if (std::abs(cell_sj(was, c) - imp_->sj(c)) > 1e-3)
           for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) start_.push_back(m_.cells(c, i));
       imp_->mark_only(start_);
       from_start_ = true;

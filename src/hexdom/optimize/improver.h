@@ -39,6 +39,7 @@ class Improver {
   double worst_hex() const;
   int inverted() const;
   double worst() const { return sj_.empty() ? 1.0 : *std::min_element(sj_.begin(), sj_.end()); }
+  double sj(int q) const { return sj_[q]; }  ///< cell q's value (cell_sj) where the nodes are now
   // " at (x, y, z)": the centroid of the worst cell, for the log.
   std::string worst_place() const;
   double local_min(int v) const;
