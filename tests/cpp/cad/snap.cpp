@@ -2,6 +2,10 @@
 // projection, on a box and a cylinder made with OCCT here and meshed with structured hexes that
 // sit slightly inside the solid (as a mesh on a tessellation's chords does).
 #ifdef HEXDOM_WITH_CAD
+#include <cmath>
+#include <cstdio>
+#include <string>
+
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 
@@ -152,6 +156,40 @@ TEST(SnapToBrep, CylinderRimNodesGoOntoTheCircles) {
   EXPECT_EQ(r.report.inverted, 0);
   // The snapped mesh's volume is that of the inscribed polygonal prism: within 2% of pi R^2 H.
   EXPECT_NEAR(r.quality.total_volume, M_PI * R * R * H, 0.02 * M_PI * R * R * H);
+}
+
+// The progressive snap (SnapOptions::steps) is a second whole restoration: made only where the
+// direct one leaves inverted cells or ends below both the worst SJ before and `keep`. A grid of
+// perfect cubes turned 4 degrees about the box's axis: the snap shears its outer cells.
+TEST(SnapToBrep, TheProgressiveSnapOnlyWhereTheDirectOneEndsBelowTheBar) {
+  const cad::Shape shape = cad::read_shape(write_part(BRepPrimAPI_MakeBox(10.0, 10.0, 10.0).Shape(), "snap_turned"));
+  const mesh::SurfaceMesh tess = cad::tessellate(shape, {});
+  const double a = 4 * M_PI / 180;
+  const mesh::Mesh m = grid(5, 5, 5, [&](double u, double v, double w) {
+    const double x = 10 * u - 5, y = 10 * v - 5;
+    return Eigen::Vector3d(5 + std::cos(a) * x - std::sin(a) * y, 5 + std::sin(a) * x + std::cos(a) * y, 10 * w);
+  });
+  auto progressive = [&](double keep, double* before, double* after) {
+    cad::SnapOptions opt;
+    opt.keep = keep;
+    std::string log;
+    opt.log = [&](int, const std::string& l) { log += l + "\n"; };
+    const cad::SnapResult r = cad::snap_to_brep(shape, m, tess, opt);
+    *before = r.report.worst_sj_before;
+    *after = r.report.worst_sj;
+    EXPECT_EQ(r.report.inverted, 0);
+    EXPECT_LT(r.report.max_after, 1e-9);
+    return log.find("in 2 steps") != std::string::npos;
+  };
+  double before = 0, after = 0;
+  const bool at_default = progressive(0.3, &before, &after);
+  std::printf("worst SJ before the snap %.4f, after %.4f\n", before, after);
+  ASSERT_GT(before, 0.999);
+  ASSERT_GE(after, 0.3);
+  EXPECT_FALSE(at_default) << "above the bar: no second restoration";
+  // With keep 1 the bar is the worst before the snap, which the direct snap does not keep.
+  ASSERT_LT(after, before - 1e-3);
+  EXPECT_TRUE(progressive(1.0, &before, &after));
 }
 
 TEST(SnapToBrep, TessellationNamingAMissingFaceIsAnInputError) {
