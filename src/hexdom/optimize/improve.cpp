@@ -102,9 +102,13 @@ class Run {
       // Where the input was optimised before: its passes start from the cells changed since.
       mesh::Mesh was = input;
       was.V = opt.optimised_at;
+      std::vector<char> listed(m_.num_nodes(), 0);  // each node once: mark_only marks around it
       for (int c = 0; c < m_.num_cells(); ++c)
         if (std::abs(cell_sj(was, c) - imp_->sj(c)) > 1e-3)
-          for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) start_.push_back(m_.cells(c, i));
+          for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) {
+            const int v = m_.cells(c, i);
+            if (!listed[v]) { listed[v] = 1; start_.push_back(v); }
+          }
       imp_->mark_only(start_);
       from_start_ = true;
     }
