@@ -74,8 +74,9 @@ struct Problem {
 };
 
 // Limited-memory BFGS with a backtracking (Armijo) line search; the energy is +inf-free for eps > 0.
-// Returns the iterations whose step was taken.
-int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations) {
+// Ends after `iterations` steps or at a step that lowers the energy by no more than `tolerance`
+// times it. Returns the iterations whose step was taken.
+int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations, double tolerance) {
   int taken = 0;
   const int m = 8;
   // The last m steps s and gradient changes y, with y . s; the vectors of a dropped pair are
@@ -154,7 +155,7 @@ int lbfgs(const Problem& P, Eigen::VectorXd& x, double eps, int iterations) {
     x.swap(xn);
     g.swap(gn);
     E = En;
-    if (dE <= 1e-12 * std::abs(E)) break;
+    if (dE <= tolerance * std::abs(E)) break;
   }
   return taken;
 }
@@ -229,7 +230,7 @@ UntangleResult untangle(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, cons
     opt.deadline.check("autopolycube (chart maps)");
     r.rounds = round + 1;
     const double E_prev = P.eval(x, eps, nullptr, nullptr, nullptr);
-    r.iterations += lbfgs(P, x, eps, opt.inner);
+    r.iterations += lbfgs(P, x, eps, opt.inner, opt.step_tolerance);
     const double E = P.eval(x, eps, nullptr, &mindet, &folded);
     if (folded < best_folded || (folded == 0)) { best = x; best_folded = folded; }
     const double sigma = std::max(1.0 - E / E_prev, 0.1);
@@ -271,7 +272,8 @@ struct Key {
 Key key_of(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const std::vector<char>& free_vertex,
            int axis, int sign, const Eigen::MatrixXd& D, const UntangleOptions& opt) {
   Key k;
-  for (double x : {double(axis), double(sign), double(opt.outer), double(opt.inner), opt.theta, double(tris.size())}) k.add(x);
+  for (double x : {double(axis), double(sign), double(opt.outer), double(opt.inner), opt.theta, opt.step_tolerance, double(tris.size())})
+    k.add(x);
   const int b = (axis + 1) % 3, c = (axis + 2) % 3;
   for (int f : tris)
     for (int i = 0; i < 3; ++i) {
