@@ -15,9 +15,9 @@ struct UntangleOptions {
   int outer = 60;    ///< rounds of the regularisation parameter epsilon
   int inner = 300;   ///< L-BFGS iterations per round
   double theta = 1.0 / 128;  ///< weight of the area term against the shape term
-  /// An L-BFGS run ends at the first step that lowers the energy by no more than this share of
-  /// it: the minimum for the round's epsilon is reached to that precision, and further steps only
-  /// polish a map the next round changes anyway.
+  /// An L-BFGS run (one round) also ends at the first step that lowers the energy by no more than
+  /// this share of it. Smaller values polish each round's map longer; the fold count after the
+  /// rounds is what the caller reads.
   double step_tolerance = 1e-7;
   /// Checked before every round: once passed, untangle_plane_map throws TimeoutError
   /// ("autopolycube (chart maps): ...").
