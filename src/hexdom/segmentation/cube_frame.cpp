@@ -1,11 +1,15 @@
 #include "hexdom/segmentation/cube_frame.h"
 
+#include "hexdom/common/hash128.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -190,9 +194,12 @@ double cube_fit(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotatio
   return ns.total > 0 ? fit_of(ns, rotation, nullptr) : 0.0;
 }
 
-CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& opt) {
+namespace {
+
+// The frame of the merged normals `raw` (normals_of), uncached.
+CubeFrame frame_of_normals(const Normals& raw, const CubeFrameOptions& opt) {
   CubeFrame out;
-  const Normals ns = planar_weighted(normals_of(surface), std::max(1.0, opt.planar_weight));
+  const Normals ns = planar_weighted(raw, std::max(1.0, opt.planar_weight));
   if (!(ns.total > 0)) return out;
   out.fit_identity = out.fit = fit_of(ns, Eigen::Matrix3d::Identity(), nullptr);
   // A few steps from every start, then the best few ascended to the end.
@@ -232,6 +239,56 @@ CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& o
   out.angle_degrees = turned.angle_degrees;
   out.axis = turned.axis;
   out.fit = fit_of(ns, out.rotation, nullptr);
+  return out;
+}
+
+// A hash of the merged normals and the options.
+using FrameKey = Hash128;
+
+FrameKey key_of(const Normals& ns, const CubeFrameOptions& opt) {
+  FrameKey k;
+  for (double x : {opt.min_gain, opt.planar_weight, double(opt.starts), double(opt.iterations), double(ns.n.size())}) k.add(x);
+  for (size_t i = 0; i < ns.n.size(); ++i)
+    for (double x : {ns.n[i](0), ns.n[i](1), ns.n[i](2), ns.area[i], double(ns.count[i])}) k.add(x);
+  return k;
+}
+
+// The last frames computed (the pipeline asks for the same surface's frame in the tessellation,
+// the polycube path and the overlay path).
+class FrameMemo {
+ public:
+  bool find(const FrameKey& k, CubeFrame* out) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [key, frame] : kept_)
+      if (key == k) { *out = frame; return true; }
+    return false;
+  }
+  void keep(const FrameKey& k, const CubeFrame& f) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    kept_.emplace_back(k, f);
+    if (kept_.size() > kKept) kept_.pop_front();
+  }
+
+ private:
+  static constexpr size_t kKept = 16;
+  std::mutex mutex_;
+  std::deque<std::pair<FrameKey, CubeFrame>> kept_;
+};
+
+FrameMemo& frame_memo() {
+  static FrameMemo m;
+  return m;
+}
+
+}  // namespace
+
+CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& opt) {
+  const Normals raw = normals_of(surface);
+  const FrameKey k = key_of(raw, opt);
+  CubeFrame out;
+  if (frame_memo().find(k, &out)) return out;
+  out = frame_of_normals(raw, opt);
+  frame_memo().keep(k, out);
   return out;
 }
 

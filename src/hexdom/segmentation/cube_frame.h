@@ -42,7 +42,10 @@ double cube_fit(const mesh::SurfaceMesh& surface, const Eigen::Matrix3d& rotatio
 /// The rotation whose frame the triangle normals fit best (maximises cube_fit by gradient ascent
 /// on the rotation group from `starts` starting rotations), or the identity when it gains less
 /// than `min_gain`; planar faces weigh planar_weight times their area in these fits. Of the 24 equivalent rotations of a cube the one with the smallest angle is
-/// returned. Deterministic. An empty surface gives the identity.
+/// returned. Deterministic. An empty surface gives the identity. The last 16 results are kept: a
+/// surface whose triangle normals and areas (merged as the fit sees them) and options are those of
+/// a kept call gets that call's frame after one pass over its triangles (the pipeline asks for the
+/// frame of one surface in the tessellation, the polycube path and the overlay path).
 CubeFrame cube_frame(const mesh::SurfaceMesh& surface, const CubeFrameOptions& options = {});
 
 /// The surface with its vertices turned into the frame (x -> rotation * x); patch ids kept.

@@ -61,6 +61,24 @@ TEST(CubeFrame, ATurnedPartIsTurnedBackIntoItsFrame) {
   }
 }
 
+// The kept results: the same surface again gives the same frame; a surface turned another way,
+// or the same one with other options, is not given the kept frame.
+TEST(CubeFrame, TheSameSurfaceAgainGetsTheSameFrameAndAnotherItsOwn) {
+  const mesh::SurfaceMesh a = rotated(l_shape(), turn(Eigen::Vector3d(1, 2, 3), 30.0));
+  const CubeFrame f1 = cube_frame(a), f2 = cube_frame(a);
+  ASSERT_TRUE(f1.turned());
+  EXPECT_TRUE(f2.rotation == f1.rotation);
+  EXPECT_EQ(f2.fit, f1.fit);
+  EXPECT_EQ(f2.angle_degrees, f1.angle_degrees);
+  const mesh::SurfaceMesh b = rotated(l_shape(), turn(Eigen::Vector3d(1, 2, 3), 20.0));
+  const CubeFrame g = cube_frame(b);
+  EXPECT_LT(frame_angle(g.rotation * turn(Eigen::Vector3d(1, 2, 3), 20.0), Eigen::Matrix3d::Identity()), 1e-4);
+  EXPECT_GT(frame_angle(g.rotation, f1.rotation), 5.0);
+  CubeFrameOptions strict;
+  strict.min_gain = 0.9;  // no turn gains that much over these axes
+  EXPECT_FALSE(cube_frame(a, strict).turned());
+}
+
 TEST(CubeFrame, ASmallTiltIsNotWorthATurn) {
   // A part 2 degrees off: the axes fit it to within min_gain, so the model's axes are kept.
   const CubeFrame f = cube_frame(rotated(l_shape(), turn(Eigen::Vector3d::UnitZ(), 2.0)));

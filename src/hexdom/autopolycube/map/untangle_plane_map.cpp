@@ -1,5 +1,6 @@
 #include "hexdom/autopolycube/map/untangle_plane_map.h"
 
+#include "hexdom/common/hash128.h"
 #include "hexdom/common/interrupt.h"
 
 #include <Eigen/Dense>
@@ -7,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <deque>
 #include <map>
 #include <mutex>
@@ -249,25 +249,8 @@ UntangleResult untangle(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, cons
   return r;
 }
 
-// Two 64-bit hashes (splitmix64 steps from two seeds) of every input untangle() reads.
-struct Key {
-  uint64_t h[2] = {0x9e3779b97f4a7c15ull, 0xd1b54a32d192ed03ull};
-  void add(uint64_t x) {
-    for (uint64_t& k : h) {
-      uint64_t z = (k ^ x) + 0x9e3779b97f4a7c15ull;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-      k = z ^ (z >> 31);
-      x = ~x;  // the second hash sees other words
-    }
-  }
-  void add(double d) {
-    uint64_t x;
-    std::memcpy(&x, &d, sizeof x);
-    add(x);
-  }
-  bool operator<(const Key& o) const { return h[0] != o.h[0] ? h[0] < o.h[0] : h[1] < o.h[1]; }
-};
+// A hash of every input untangle() reads.
+using Key = Hash128;
 
 Key key_of(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<int>& tris, const std::vector<char>& free_vertex,
            int axis, int sign, const Eigen::MatrixXd& D, const UntangleOptions& opt) {
