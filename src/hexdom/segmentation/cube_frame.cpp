@@ -247,7 +247,8 @@ using FrameKey = Hash128;
 
 FrameKey key_of(const Normals& ns, const CubeFrameOptions& opt) {
   FrameKey k;
-  for (double x : {opt.min_gain, opt.planar_weight, double(opt.starts), double(opt.iterations), double(ns.n.size())}) k.add(x);
+  for (double x : {opt.min_gain, opt.planar_weight, double(opt.starts), double(opt.iterations), ns.total, double(ns.n.size())})
+    k.add(x);
   for (size_t i = 0; i < ns.n.size(); ++i)
     for (double x : {ns.n[i](0), ns.n[i](1), ns.n[i](2), ns.area[i], double(ns.count[i])}) k.add(x);
   return k;
