@@ -22,8 +22,6 @@ import hexdom_test_support as support
 
 @pytest.fixture(scope="module")
 def labels(freecad, core, tmp_path_factory):
-    if not core.has_opencascade():
-        pytest.skip("_hexdom built without OpenCASCADE")
     return support.segmented_corpus_part(core, tmp_path_factory.mktemp("box_thin"), "box_thin", 6)
 
 
