@@ -59,6 +59,24 @@ double cell_sj(const mesh::Mesh& m, int c) {
   return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj;
 }
 
+void Improver::axis_steps(int q, int v, double h, double out[3]) const {
+  const CellPoints P = cell_points(m_, q);
+  const int n = mesh::node_count(m_.type(q));
+  int i = 0;
+  while (i < n && m_.cells(q, i) != v) ++i;
+  auto value = [](double sj) { return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj; };  // as cell_sj
+  if (m_.type(q) == CellType::Hex) {
+    quality::hex_sj_axis_steps(P, i, h, out);
+    for (int k = 0; k < 3; ++k) out[k] = value(out[k]);
+    return;
+  }
+  for (int k = 0; k < 3; ++k) {
+    CellPoints Q = P;
+    Q(i, k) += h;
+    out[k] = value(scaled_jacobian(m_.type(q), Q));
+  }
+}
+
 Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c) : m_(m), t_(t), c_(c) {
   sj_.resize(m.num_cells());
   for (int q = 0; q < m.num_cells(); ++q) sj_[q] = cell_sj(m, q);
@@ -161,16 +179,13 @@ Vec Improver::min_slopes(int v, double h) {
   // have to fall by `window` over h, a slope of 100 per edge length.
   const double window = 1e-2 * h / (1e-4 * edge_[v]);
   Vec g = Vec::Constant(2.0);
-  const Vec x0 = m_.V.row(v).transpose();
-  for (int k = 0; k < 3; ++k) {
-    Vec x = x0;
-    x(k) += h;
-    m_.V.row(v) = x.transpose();
-    for (int q : t_.node_cells[v])
-      if (sj_[q] <= f0 + window) g(k) = std::min(g(k), cell_sj(m_, q));
-    g(k) = (g(k) - f0) / h;
-  }
-  m_.V.row(v) = x0.transpose();
+  double s[3];
+  for (int q : t_.node_cells[v])
+    if (sj_[q] <= f0 + window) {
+      axis_steps(q, v, h, s);
+      for (int k = 0; k < 3; ++k) g(k) = std::min(g(k), s[k]);
+    }
+  for (int k = 0; k < 3; ++k) g(k) = (g(k) - f0) / h;
   return g;
 }
 
@@ -354,16 +369,12 @@ int Improver::mean_pass() {
     const double h = 1e-4 * edge_[v];
     if (!(h > 0)) return;
     const double f0 = local_sum(v);
-    Vec g;
-    for (int k = 0; k < 3; ++k) {
-      Vec x = x0;
-      x(k) += h;
-      m_.V.row(v) = x.transpose();
-      double f = 0;
-      for (int q : t_.node_cells[v]) f += cell_sj(m_, q);
-      g(k) = (f - f0) / h;
+    double f[3] = {0, 0, 0}, s[3];
+    for (int q : t_.node_cells[v]) {
+      axis_steps(q, v, h, s);
+      for (int k = 0; k < 3; ++k) f[k] += s[k];
     }
-    m_.V.row(v) = x0.transpose();
+    const Vec g((f[0] - f0) / h, (f[1] - f0) / h, (f[2] - f0) / h);
     if (!(g.norm() > 0)) return;
     const Vec d = g.normalized();
     for (double a : {0.1, 0.02})

@@ -50,6 +50,9 @@ class Improver {
   // or less.
   Vec min_slopes(int v, double h);
 
+  // out[k]: cell q's value (cell_sj) with its node v moved by h along axis k, the node left in place.
+  void axis_steps(int q, int v, double h, double out[3]) const;
+
   // Projects a candidate position according to the node's kind.
   Vec constrain(int v, const Vec& x) const;
 

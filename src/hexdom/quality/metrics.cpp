@@ -24,12 +24,15 @@ inline double triple(const double a[3], const double b[3], const double c[3]) {
   return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
-double hex_sj(const CellPoints& P) {
-  double p[8][3];
-  for (int i = 0; i < 8; ++i)
-    for (int k = 0; k < 3; ++k) p[i][k] = P(i, k);
-  double min_sj = kDblMax;
-  // Centre: principal axes.
+// A hex's corners in Verdict's order: corner c, its neighbours a, b, d, and the edges (kHexEdges)
+// from c to them.
+constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {0, 3}, {4, 5}, {5, 6}, {6, 7}, {4, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+constexpr int kHexCorners[8][7] = {{0, 1, 3, 4, 0, 3, 8}, {1, 2, 0, 5, 1, 0, 9}, {2, 3, 1, 6, 2, 1, 10},
+                                   {3, 0, 2, 7, 3, 2, 11}, {4, 7, 5, 0, 7, 4, 8}, {5, 4, 6, 1, 4, 5, 9},
+                                   {6, 5, 7, 2, 5, 6, 10}, {7, 6, 4, 3, 6, 7, 11}};
+
+// The centre's value (principal axes); false for a zero-length axis (an invalid cell).
+inline bool hex_centre(const double p[8][3], double* sj) {
   double x[3][3];
   for (int k = 0; k < 3; ++k) {
     x[0][k] = (p[1][k] - p[0][k]) + (p[2][k] - p[3][k]) + (p[5][k] - p[4][k]) + (p[6][k] - p[7][k]);
@@ -37,42 +40,45 @@ double hex_sj(const CellPoints& P) {
     x[2][k] = (p[4][k] - p[0][k]) + (p[5][k] - p[1][k]) + (p[6][k] - p[2][k]) + (p[7][k] - p[3][k]);
   }
   auto len2 = [](const double a[3]) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; };
-  {
-    const double la = len2(x[0]), lb = len2(x[1]), lc = len2(x[2]);
-    if (la <= kDblMin || lb <= kDblMin || lc <= kDblMin) return kDblMax;
-    min_sj = std::min(min_sj, triple(x[0], x[1], x[2]) / std::sqrt(la * lb * lc));
+  const double la = len2(x[0]), lb = len2(x[1]), lc = len2(x[2]);
+  if (la <= kDblMin || lb <= kDblMin || lc <= kDblMin) return false;
+  *sj = triple(x[0], x[1], x[2]) / std::sqrt(la * lb * lc);
+  return true;
+}
+
+// Squared length of edge j; false when it is zero (an invalid cell).
+inline bool hex_edge(const double p[8][3], int j, double* l) {
+  const double d0 = p[kHexEdges[j][1]][0] - p[kHexEdges[j][0]][0], d1 = p[kHexEdges[j][1]][1] - p[kHexEdges[j][0]][1],
+               d2 = p[kHexEdges[j][1]][2] - p[kHexEdges[j][0]][2];
+  *l = d0 * d0 + d1 * d1 + d2 * d2;
+  return !(*l <= kDblMin);
+}
+
+// Corner t of kHexCorners, given the squared edge lengths.
+inline double hex_corner(const double p[8][3], const double l[12], const int* t) {
+  double u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = p[t[1]][k] - p[t[0]][k];
+    v[k] = p[t[2]][k] - p[t[0]][k];
+    w[k] = p[t[3]][k] - p[t[0]][k];
   }
-  // The 12 squared edge lengths, computed once: each corner uses three of them.
-  double l[12];
-  {
-    static const int ke[12][2] = {{0, 1}, {1, 2}, {2, 3}, {0, 3}, {4, 5}, {5, 6},
-                                  {6, 7}, {4, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-    for (int j = 0; j < 12; ++j) {
-      const double d0 = p[ke[j][1]][0] - p[ke[j][0]][0], d1 = p[ke[j][1]][1] - p[ke[j][0]][1],
-                   d2 = p[ke[j][1]][2] - p[ke[j][0]][2];
-      l[j] = d0 * d0 + d1 * d1 + d2 * d2;
-      if (l[j] <= kDblMin) return kDblMax;
-    }
-  }
-  // Corner c with neighbours a, b, d (Verdict's order) along edges ea, eb, ed.
-  auto corner = [&](int c, int a, int b, int d, int ea, int eb, int ed) {
-    double u[3], v[3], w[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = p[a][k] - p[c][k];
-      v[k] = p[b][k] - p[c][k];
-      w[k] = p[d][k] - p[c][k];
-    }
-    min_sj = std::min(min_sj, triple(u, v, w) / std::sqrt(l[ea] * l[eb] * l[ed]));
-  };
-  corner(0, 1, 3, 4, 0, 3, 8);
-  corner(1, 2, 0, 5, 1, 0, 9);
-  corner(2, 3, 1, 6, 2, 1, 10);
-  corner(3, 0, 2, 7, 3, 2, 11);
-  corner(4, 7, 5, 0, 7, 4, 8);
-  corner(5, 4, 6, 1, 4, 5, 9);
-  corner(6, 5, 7, 2, 5, 6, 10);
-  corner(7, 6, 4, 3, 6, 7, 11);
-  return min_sj > 0 ? std::min(min_sj, kDblMax) : std::max(min_sj, -kDblMax);
+  return triple(u, v, w) / std::sqrt(l[t[4]] * l[t[5]] * l[t[6]]);
+}
+
+inline double hex_clamped(double min_sj) { return min_sj > 0 ? std::min(min_sj, kDblMax) : std::max(min_sj, -kDblMax); }
+
+double hex_sj(const CellPoints& P) {
+  double p[8][3];
+  for (int i = 0; i < 8; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = P(i, k);
+  double min_sj = kDblMax, c;
+  if (!hex_centre(p, &c)) return kDblMax;
+  min_sj = std::min(min_sj, c);
+  double l[12];  // the 12 squared edge lengths, computed once: each corner uses three of them
+  for (int j = 0; j < 12; ++j)
+    if (!hex_edge(p, j, &l[j])) return kDblMax;
+  for (const auto& t : kHexCorners) min_sj = std::min(min_sj, hex_corner(p, l, t));
+  return hex_clamped(min_sj);
 }
 
 double tet_sj(const CellPoints& P) {
@@ -120,6 +126,40 @@ double scaled_jacobian(CellType type, const CellPoints& P) {
     case CellType::Tet: return tet_sj(P);
     case CellType::Wedge: return wedge_sj(P);
     default: return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+void hex_sj_axis_steps(const CellPoints& P, int node, double h, double out[3]) {
+  double p[8][3];
+  for (int i = 0; i < 8; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = P(i, k);
+  auto touches = [&](const int* t) { return t[0] == node || t[1] == node || t[2] == node || t[3] == node; };
+  // The edges and corners away from the node are the same in the three cells.
+  double l[12];
+  for (int j = 0; j < 12; ++j)
+    if (kHexEdges[j][0] != node && kHexEdges[j][1] != node && !hex_edge(p, j, &l[j])) {
+      out[0] = out[1] = out[2] = kDblMax;
+      return;
+    }
+  double fixed = kDblMax;
+  for (const auto& t : kHexCorners)
+    if (!touches(t)) fixed = std::min(fixed, hex_corner(p, l, t));
+  const double x0[3] = {p[node][0], p[node][1], p[node][2]};
+  for (int k = 0; k < 3; ++k) {
+    p[node][0] = x0[0], p[node][1] = x0[1], p[node][2] = x0[2];
+    p[node][k] = x0[k] + h;
+    double min_sj = kDblMax, c = 0;
+    bool valid = hex_centre(p, &c);
+    min_sj = std::min(min_sj, c);
+    for (int j = 0; j < 12 && valid; ++j)
+      if (kHexEdges[j][0] == node || kHexEdges[j][1] == node) valid = hex_edge(p, j, &l[j]);
+    if (!valid) {
+      out[k] = kDblMax;
+      continue;
+    }
+    for (const auto& t : kHexCorners)
+      if (touches(t)) min_sj = std::min(min_sj, hex_corner(p, l, t));
+    out[k] = hex_clamped(std::min(min_sj, fixed));
   }
 }
 

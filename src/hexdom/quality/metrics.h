@@ -22,6 +22,11 @@ using CellPoints = Eigen::Matrix<double, 8, 3>;
 /// 2D cells: NaN.
 double scaled_jacobian(mesh::CellType type, const CellPoints& P);
 
+/// The scaled Jacobians of hex P with its node `node` (0-7) moved by h along x, y and z in turn
+/// (out[k]: P(node, k) + h): bit for bit scaled_jacobian(Hex, ...) of each moved cell, the corners
+/// away from the node computed once (a numerical gradient's three evaluations).
+void hex_sj_axis_steps(const CellPoints& P, int node, double h, double out[3]);
+
 /// Longest over shortest edge (the paper's "aspect ratio"); DBL_MAX for a zero-length edge.
 /// Hexes use all 12 edges. Verdict's hex_edge_ratio (VTK 9.1 and later) takes the longest of
 /// its first six edges only (its code overwrites the 12-edge maximum), so it can be lower.

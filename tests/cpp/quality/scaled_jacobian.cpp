@@ -111,3 +111,38 @@ TEST(ScaledJacobian, RockerarmStructureMatchesVerdict) {
   EXPECT_EQ(m.type(68), CellType::Tet);
   EXPECT_NEAR(quality::scaled_jacobian(m.type(68), quality::cell_points(m, 68)), 0.36161296646256, 1e-12);
 }
+
+TEST(ScaledJacobian, AxisStepsOfOneNodeAreTheMovedCellsValuesBitForBit) {
+  // Distorted hexes (some inverted), every node, steps large enough to flip corners, and a step
+  // that closes an edge (the invalid value): each of the three values is scaled_jacobian's on the
+  // cell with that node moved.
+  std::srand(7);
+  auto jitter = [] { return (std::rand() / static_cast<double>(RAND_MAX) - 0.5) * 0.9; };
+  int compared = 0, negative = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    quality::CellPoints P = test::unit_hex();
+    for (int i = 0; i < 8; ++i)
+      for (int k = 0; k < 3; ++k) P(i, k) += jitter();
+    for (int node = 0; node < 8; ++node)
+      for (double h : {1e-4, 0.3, -0.7}) {
+        double out[3];
+        quality::hex_sj_axis_steps(P, node, h, out);
+        for (int k = 0; k < 3; ++k) {
+          quality::CellPoints Q = P;
+          Q(node, k) += h;
+          const double expected = quality::scaled_jacobian(CellType::Hex, Q);
+          EXPECT_EQ(out[k], expected) << "trial " << trial << " node " << node << " axis " << k << " step " << h;
+          negative += expected < 0;
+          ++compared;
+        }
+      }
+  }
+  EXPECT_EQ(compared, 200 * 8 * 3 * 3);
+  EXPECT_GT(negative, 100);  // inverted corners are among the cases
+  // Node 1 of the unit cube moved onto node 0 along x: a zero-length edge, DBL_MAX on that axis only.
+  double out[3];
+  quality::hex_sj_axis_steps(test::unit_hex(), 1, -1.0, out);
+  EXPECT_EQ(out[0], 1e30);
+  EXPECT_LT(out[1], 1.0);
+  EXPECT_EQ(out[1], quality::scaled_jacobian(CellType::Hex, [] { auto Q = test::unit_hex(); Q(1, 1) -= 1.0; return Q; }()));
+}
