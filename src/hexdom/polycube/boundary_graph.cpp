@@ -187,16 +187,22 @@ void check_closed_manifold(const mesh::SurfaceMesh& s) { mesh::check_closed_mani
 
 BoundaryGraph boundary_graph(const mesh::SurfaceMesh& s) {
   mesh::check_closed_manifold(s);
+  return boundary_graph(s, mesh::triangle_adjacency(s.F));
+}
+
+BoundaryGraph boundary_graph(const mesh::SurfaceMesh& s, const Eigen::MatrixXi& TT) {
   const int nf = static_cast<int>(s.F.rows());
   if (s.patch.rows() != nf)
     throw GeometryError("the surface has " + std::to_string(nf) + " triangles but " + std::to_string(s.patch.rows()) + " patch ids");
-  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
+  if (TT.rows() != nf || TT.cols() != 3)
+    throw GeometryError("the triangle adjacency has " + std::to_string(TT.rows()) + " rows for " + std::to_string(nf) + " triangles");
   BoundaryGraph g;
   flood_regions(s, TT, g);
   find_corners(s, TT, g);
   const std::vector<Directed> directed = walk_curves(s, TT, g);
   const std::vector<int> stored = store_curves(directed, g);
   chain_loops(directed, stored, g);
+  g.adjacency = TT;
   return g;
 }
 

@@ -48,6 +48,8 @@ struct BoundaryGraph {
   /// Per region, every boundary loop (the first starts at the region's lowest corner that starts one
   /// of its curves; loops without corners last). Empty for a region that is the whole surface.
   std::vector<std::vector<BoundaryLoop>> loops;
+  /// #F x 3: the surface's mesh::triangle_adjacency, to build the graphs of its relabellings with.
+  Eigen::MatrixXi adjacency;
   int num_regions() const { return static_cast<int>(label.size()); }
 };
 
@@ -60,5 +62,11 @@ void check_closed_manifold(const mesh::SurfaceMesh& surface);
 /// surface is not closed, 2-manifold and consistently oriented (check_closed_manifold) or has not
 /// one patch id per triangle. Deterministic: the same surface gives the same numbering.
 BoundaryGraph boundary_graph(const mesh::SurfaceMesh& surface);
+
+/// The same graph for a surface that passed check_closed_manifold, given its
+/// mesh::triangle_adjacency(surface.F): many labellings of one triangulation (a repair's or a
+/// collapse's candidates) pair its edges once. Throws GeometryError when the patch ids or the
+/// adjacency do not have one row per triangle.
+BoundaryGraph boundary_graph(const mesh::SurfaceMesh& surface, const Eigen::MatrixXi& adjacency);
 
 }  // namespace hexdom::polycube

@@ -159,3 +159,33 @@ TEST(BoundaryGraph, OpenSurfaceIsRejected) {
   s.patch.conservativeResize(s.F.rows());
   EXPECT_THROW(polycube::boundary_graph(s), GeometryError);
 }
+
+// The graph of a relabelling built with the adjacency of the surface's own graph is the graph
+// built from scratch: regions, corners, curves and loops alike; a wrong-sized adjacency is refused.
+TEST(BoundaryGraph, ARelabellingWithTheGraphsAdjacencyGivesTheSameGraph) {
+  auto s = test::cell_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 2);
+  const polycube::BoundaryGraph g = polycube::boundary_graph(s);
+  ASSERT_EQ(g.adjacency.rows(), s.F.rows());
+  mesh::SurfaceMesh t = s;
+  for (int f = 0; f < t.F.rows(); ++f) t.patch(f) = 1 + (t.patch(f) + f / 7) % 4;  // other regions, other corners
+  const polycube::BoundaryGraph fresh = polycube::boundary_graph(t);
+  const polycube::BoundaryGraph reused = polycube::boundary_graph(t, g.adjacency);
+  ASSERT_NE(fresh.num_regions(), g.num_regions());
+  EXPECT_EQ(reused.region, fresh.region);
+  EXPECT_EQ(reused.label, fresh.label);
+  EXPECT_EQ(reused.triangles, fresh.triangles);
+  EXPECT_EQ(reused.corners, fresh.corners);
+  EXPECT_EQ(reused.pinches, fresh.pinches);
+  ASSERT_EQ(reused.curves.size(), fresh.curves.size());
+  for (size_t c = 0; c < fresh.curves.size(); ++c) EXPECT_EQ(reused.curves[c].vertices, fresh.curves[c].vertices);
+  ASSERT_EQ(reused.loops.size(), fresh.loops.size());
+  for (size_t r = 0; r < fresh.loops.size(); ++r) {
+    ASSERT_EQ(reused.loops[r].size(), fresh.loops[r].size());
+    for (size_t l = 0; l < fresh.loops[r].size(); ++l) {
+      EXPECT_EQ(reused.loops[r][l].corners, fresh.loops[r][l].corners);
+      EXPECT_EQ(reused.loops[r][l].curves, fresh.loops[r][l].curves);
+    }
+  }
+  expect_consistent(t, reused);
+  EXPECT_THROW(polycube::boundary_graph(t, g.adjacency.topRows(3)), GeometryError);
+}

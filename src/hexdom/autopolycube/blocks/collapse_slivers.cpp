@@ -8,6 +8,9 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
+#include "hexdom/mesh/surface_check.h"
+#include "hexdom/mesh/triangle_adjacency.h"
+#include "hexdom/polycube/boundary_graph.h"
 #include "hexdom/polycube/match_faces.h"
 #include "hexdom/polycube/patch_layout.h"
 #include "hexdom/quality/metrics.h"
@@ -137,6 +140,17 @@ struct Blocks {
   const mesh::Mesh& T;
   const mesh::SurfaceMesh& patches;
   const std::vector<int>& structure_of;  // patch vertex -> structure vertex, -1 off the grid points
+  // The patches' triangle adjacency, the surface checked closed and manifold on first use: every
+  // candidate relabels the same triangles.
+  mutable Eigen::MatrixXi adjacency;
+
+  polycube::PatchLayout layout(const mesh::SurfaceMesh& surf) const {
+    if (adjacency.size() == 0) {
+      mesh::check_closed_manifold(surf);
+      adjacency = mesh::triangle_adjacency(surf.F);
+    }
+    return polycube::patch_layout(polycube::boundary_graph(surf, adjacency));
+  }
 
   /// The block as it is under `s`: type and nodes, or false when its pattern is none of the three.
   bool shape(State& s, int b, mesh::DegenerateHex* d) const {
@@ -155,7 +169,7 @@ struct Blocks {
   bool matches(State& s, Eigen::MatrixXd& pos, std::string* why) const {
     mesh::SurfaceMesh surf = patches;
     for (int f = 0; f < surf.F.rows(); ++f) surf.patch(f) = 1 + s.owner_of(patches.patch(f) - 1);
-    const polycube::PatchLayout layout = polycube::patch_layout(surf);
+    const polycube::PatchLayout layout = this->layout(surf);
     std::map<int, int> corner_of_class;
     for (size_t c = 0; c < layout.corners.size(); ++c) {
       const int v = structure_of[layout.corners[c]];
@@ -262,7 +276,7 @@ CollapseSlivers collapse_slivers(GridPolycube& polycube, const CollapseSliversOp
   for (int q = 0; q < nsq; ++q) state.owner[q] = q;
   Eigen::MatrixXd P = T.V;  // class positions (at the representative)
 
-  const Blocks blocks{T, patches, structure_of};
+  const Blocks blocks{T, patches, structure_of, {}};
   auto block_shape = [&](State& s, int b, mesh::DegenerateHex* d) { return blocks.shape(s, b, d); };
   auto matches = [&](State& s, Eigen::MatrixXd& pos, std::string* why) { return blocks.matches(s, pos, why); };
 

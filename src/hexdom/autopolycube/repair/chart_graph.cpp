@@ -5,7 +5,9 @@
 
 namespace hexdom::autopolycube {
 
-ChartGraph chart_graph(const mesh::SurfaceMesh& s) {
+ChartGraph chart_graph(const mesh::SurfaceMesh& s) { return chart_graph(s, Eigen::MatrixXi()); }
+
+ChartGraph chart_graph(const mesh::SurfaceMesh& s, const Eigen::MatrixXi& adjacency) {
   const int nf = static_cast<int>(s.F.rows());
   if (s.patch.rows() != nf)
     throw GeometryError("the surface has " + std::to_string(nf) + " triangles but " + std::to_string(s.patch.rows()) + " labels");
@@ -14,7 +16,7 @@ ChartGraph chart_graph(const mesh::SurfaceMesh& s) {
       throw GeometryError("triangle " + std::to_string(f + 1) + " has label " + std::to_string(s.patch(f)) +
                           ": axis labels are 1..6 (+X, -X, +Y, -Y, +Z, -Z), as `hexdom segment` writes them");
   ChartGraph g;
-  static_cast<polycube::BoundaryGraph&>(g) = polycube::boundary_graph(s);
+  static_cast<polycube::BoundaryGraph&>(g) = adjacency.size() ? polycube::boundary_graph(s, adjacency) : polycube::boundary_graph(s);
   g.area.assign(g.num_charts(), 0.0);
   for (int c = 0; c < g.num_charts(); ++c)
     for (int f : g.triangles[c]) {

@@ -25,6 +25,9 @@ struct ChartGraph : polycube::BoundaryGraph {
 /// labels 1..6 (charts = edge-connected regions of one label, numbered in order of first triangle).
 /// Throws GeometryError for an open or non-manifold surface or a label outside 1..6.
 ChartGraph chart_graph(const mesh::SurfaceMesh& labels);
+/// The same for a relabelling of a surface whose graph was built (`adjacency`: that graph's, the
+/// surface checked then): its edges are not paired again. Empty: as chart_graph(labels).
+ChartGraph chart_graph(const mesh::SurfaceMesh& labels, const Eigen::MatrixXi& adjacency);
 
 /// "chart 4 (+Y, 120 triangles)"
 std::string chart_name(const ChartGraph& graph, int chart);

@@ -93,6 +93,11 @@ CurveConvexity curve_convexity(const mesh::SurfaceMesh& s, const ChartGraph& g, 
 }
 
 // Charts of the triangles around vertex v.
+// The triangle adjacency of s, whose graph g is: g's (built on s), or paired again when g carries none.
+Eigen::MatrixXi adjacency_of(const mesh::SurfaceMesh& s, const ChartGraph& g) {
+  return g.adjacency.rows() == s.F.rows() ? g.adjacency : mesh::triangle_adjacency(s.F);
+}
+
 std::vector<int> charts_at(const ChartGraph& g, const std::vector<std::vector<int>>& vt, int v) {
   std::set<int> cs;
   for (int f : vt[v]) cs.insert(g.region(f));
@@ -267,10 +272,11 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
     long best_key[3] = {problems, 0, 0};
     bool found = false;
     mesh::SurfaceMesh t = s;
+    const Eigen::MatrixXi TT = adjacency_of(s, g);
     for (int l = 1; l <= 6; ++l) {
       if (l == g.label[chart] || (!joins.count(l) && fit[l - 1] <= 0)) continue;
       for (int f = 0; f < s.F.rows(); ++f) t.patch(f) = g.region(f) == chart ? l : s.patch(f);
-      const ChartGraph tg = chart_graph(t);
+      const ChartGraph tg = chart_graph(t, TT);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
       const long key[3] = {n, joins.count(l) ? 0 : 1, -static_cast<long>(std::llround(1e6 * fit[l - 1] / std::max(g.area[chart], 1e-300)))};
       if (n < problems && (!found || std::lexicographical_compare(key, key + 3, best_key, best_key + 3))) {
@@ -289,7 +295,7 @@ Eigen::VectorXi relabel_chart(const mesh::SurfaceMesh& s, const ChartGraph& g, i
 Eigen::VectorXi relabel_band(const mesh::SurfaceMesh& s, const ChartGraph& g, int chart, const std::vector<int>& curve,
                              double width) {
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
-  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = adjacency_of(s, g);
   const int axis = (g.label[chart] - 1) / 2;
   std::set<int> on_curve(curve.begin(), curve.end());
   auto distance = [&](int f) {
@@ -354,11 +360,12 @@ Eigen::VectorXi repair_opposite_band(const mesh::SurfaceMesh& s, const ChartGrap
   long best_n = problems;
   double best_loss = 0;
   mesh::SurfaceMesh t = s;
+  const Eigen::MatrixXi TT = adjacency_of(s, g);
   for (int chart : {c.left, c.right})
     for (double w : {0.5 * width, width, 2.0 * width, 4.0 * width}) {
       deadline.check(kWhere);
       t.patch = relabel_band(s, g, chart, c.vertices, w);
-      const ChartGraph tg = chart_graph(t);
+      const ChartGraph tg = chart_graph(t, TT);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
       double area = 0;
       for (int f = 0; f < s.F.rows(); ++f)
@@ -388,7 +395,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
                                    double crease_angle, std::string* what, const std::vector<char>* only,
                                    const Deadline& deadline) {
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
-  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = adjacency_of(s, g);
   const double cos_crease = std::cos(crease_angle * M_PI / 180.0);
   const int nf = static_cast<int>(s.F.rows());
   auto crease = [&](int f, int k) {
@@ -444,7 +451,7 @@ Eigen::VectorXi repair_crease_band(const mesh::SurfaceMesh& s, const ChartGraph&
     for (double w : {0.5 * width, width, 2.0 * width}) {
       deadline.check(kWhere);
       t.patch = relabel_band(s, sg, side_chart[id], side_crease_vertices[id], w);
-      const ChartGraph tg = chart_graph(t);
+      const ChartGraph tg = chart_graph(t, TT);
       const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
       const double loss = fit_loss(s, t.patch);
       if (n < best_n || (n == best_n && best.size() && loss < best_loss)) {
@@ -478,7 +485,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
   std::sort(mixed.begin(), mixed.end());
   if (mixed.size() > kMaxBandCurves) mixed.resize(kMaxBandCurves);
   const segmentation::TriangleGeometry geo = segmentation::triangle_geometry(s);
-  const Eigen::MatrixXi TT = mesh::triangle_adjacency(s.F);
+  const Eigen::MatrixXi TT = adjacency_of(s, g);
   auto distance = [&](int f, const std::vector<int>& vs) {
     double d = std::numeric_limits<double>::infinity();
     for (int v : vs) d = std::min(d, (geo.centroid.row(f) - s.V.row(v)).norm());
@@ -524,7 +531,7 @@ Eigen::VectorXi repair_mixed_band(const mesh::SurfaceMesh& s, const ChartGraph& 
               if (d <= w && d < distance(h, others)) { seen[h] = 1; stack.push_back(h); }
             }
           }
-          const ChartGraph tg = chart_graph(t);
+          const ChartGraph tg = chart_graph(t, TT);
           const long n = static_cast<long>(chart_problems(t, tg, plane_groups(t, tg)).size());
           if (n > problems) continue;
           const long m = static_cast<long>(mixed_convexity_problems(t, tg, width).size());
