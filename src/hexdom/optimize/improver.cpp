@@ -54,26 +54,27 @@ constexpr size_t kMinConcurrent = 32;
 
 }  // namespace
 
-double cell_sj(const mesh::Mesh& m, int c) {
-  const double sj = scaled_jacobian(m.type(c), cell_points(m, c));
-  return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj;
-}
+namespace {
+// A cell's value for the optimiser from its scaled Jacobian (cell_sj).
+double value_of(double sj) { return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj; }
+}  // namespace
+
+double cell_sj(const mesh::Mesh& m, int c) { return value_of(scaled_jacobian(m.type(c), cell_points(m, c))); }
 
 void Improver::axis_steps(int q, int v, double h, double out[3]) const {
   const CellPoints P = cell_points(m_, q);
   const int n = mesh::node_count(m_.type(q));
   int i = 0;
   while (i < n && m_.cells(q, i) != v) ++i;
-  auto value = [](double sj) { return is_inverted(sj) ? (sj <= 0 ? sj - 1e-9 : -1.0) : sj; };  // as cell_sj
   if (m_.type(q) == CellType::Hex) {
     quality::hex_sj_axis_steps(P, i, h, out);
-    for (int k = 0; k < 3; ++k) out[k] = value(out[k]);
+    for (int k = 0; k < 3; ++k) out[k] = value_of(out[k]);
     return;
   }
   for (int k = 0; k < 3; ++k) {
     CellPoints Q = P;
     Q(i, k) += h;
-    out[k] = value(scaled_jacobian(m_.type(q), Q));
+    out[k] = value_of(scaled_jacobian(m_.type(q), Q));
   }
 }
 

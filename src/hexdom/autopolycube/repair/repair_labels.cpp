@@ -92,12 +92,12 @@ CurveConvexity curve_convexity(const mesh::SurfaceMesh& s, const ChartGraph& g, 
   return out;
 }
 
-// Charts of the triangles around vertex v.
 // The triangle adjacency of s, whose graph g is: g's (built on s), or paired again when g carries none.
 Eigen::MatrixXi adjacency_of(const mesh::SurfaceMesh& s, const ChartGraph& g) {
   return g.adjacency.rows() == s.F.rows() ? g.adjacency : mesh::triangle_adjacency(s.F);
 }
 
+// Charts of the triangles around vertex v.
 std::vector<int> charts_at(const ChartGraph& g, const std::vector<std::vector<int>>& vt, int v) {
   std::set<int> cs;
   for (int f : vt[v]) cs.insert(g.region(f));
