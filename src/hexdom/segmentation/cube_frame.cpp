@@ -1,6 +1,7 @@
 #include "hexdom/segmentation/cube_frame.h"
 
 #include "hexdom/common/hash128.h"
+#include "hexdom/common/kept_results.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -8,8 +9,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
-#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -254,30 +253,10 @@ FrameKey key_of(const Normals& ns, const CubeFrameOptions& opt) {
   return k;
 }
 
-// The last frames computed (the pipeline asks for the same surface's frame in the tessellation,
+// The last 16 frames computed (the pipeline asks for the same surface's frame in the tessellation,
 // the polycube path and the overlay path).
-class FrameMemo {
- public:
-  bool find(const FrameKey& k, CubeFrame* out) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& [key, frame] : kept_)
-      if (key == k) { *out = frame; return true; }
-    return false;
-  }
-  void keep(const FrameKey& k, const CubeFrame& f) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    kept_.emplace_back(k, f);
-    if (kept_.size() > kKept) kept_.pop_front();
-  }
-
- private:
-  static constexpr size_t kKept = 16;
-  std::mutex mutex_;
-  std::deque<std::pair<FrameKey, CubeFrame>> kept_;
-};
-
-FrameMemo& frame_memo() {
-  static FrameMemo m;
+KeptResults<CubeFrame>& frame_memo() {
+  static KeptResults<CubeFrame> m(16);
   return m;
 }
 

@@ -1,6 +1,7 @@
 #include "hexdom/autopolycube/map/untangle_plane_map.h"
 
 #include "hexdom/common/hash128.h"
+#include "hexdom/common/kept_results.h"
 #include "hexdom/common/interrupt.h"
 
 #include <Eigen/Dense>
@@ -10,7 +11,6 @@
 #include <cstdint>
 #include <deque>
 #include <map>
-#include <mutex>
 
 namespace hexdom::autopolycube {
 
@@ -272,40 +272,9 @@ struct Untangled {
   UntangleResult result;
 };
 
-// The results kept, oldest first dropped beyond kMemoValues coordinates in all.
-class Memo {
- public:
-  bool find(const Key& k, Untangled& out) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = kept_.find(k);
-    if (it == kept_.end()) return false;
-    out = it->second;
-    return true;
-  }
-  void keep(const Key& k, Untangled u) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (kept_.count(k)) return;
-    size_ += u.moves.size();
-    order_.push_back(k);
-    kept_.emplace(k, std::move(u));
-    while (size_ > kMemoValues && order_.size() > 1) {
-      const auto old = kept_.find(order_.front());
-      size_ -= old->second.moves.size();
-      kept_.erase(old);
-      order_.pop_front();
-    }
-  }
-
- private:
-  static constexpr size_t kMemoValues = 1 << 20;  // about 24 MB
-  std::mutex mutex_;
-  std::map<Key, Untangled> kept_;
-  std::deque<Key> order_;
-  size_t size_ = 0;
-};
-
-Memo& memo() {
-  static Memo m;
+// The results kept, the oldest dropped beyond about 24 MB of moves in all.
+KeptResults<Untangled>& memo() {
+  static KeptResults<Untangled> m(size_t(1) << 20, [](const Untangled& u) { return u.moves.size(); });
   return m;
 }
 
@@ -318,7 +287,7 @@ UntangleResult untangle_plane_map(const Eigen::MatrixXd& V, const Eigen::MatrixX
   const Key k = key_of(V, F, tris, free_vertex, axis, sign, D, opt);
   const int b = (axis + 1) % 3, c = (axis + 2) % 3;
   Untangled u;
-  if (memo().find(k, u)) {
+  if (memo().find(k, &u)) {
     for (const auto& [v, x, y] : u.moves) D(static_cast<int>(v), b) = x, D(static_cast<int>(v), c) = y;
     return u.result;
   }
