@@ -710,7 +710,8 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                  relax_sweeps=MESH_OPTIONS["relax_sweeps"], improve=MESH_OPTIONS["improve"],
                  allow_inverted=False, align=MESH_OPTIONS["align"], frame=None,
                  method=MESH_OPTIONS["method"], polycube_seconds=None, max_size=None, min_size=None,
-                 cells_across=None, face_sizes=None, growth_rate=None, order=1, time_limit=None):
+                 cells_across=None, face_sizes=None, growth_rate=None, order=1, time_limit=None,
+                 pillow_curves=MESH_OPTIONS["pillow_curves"]):
     """Hex mesh of a closed Surface with no manual step: segment -> autopolycube -> generate ->
     improve. ``size`` is the target element size (0: bounding-box diagonal / 30), blocks are cells
     of size * 2^level. align: segment and build the polycube in the frame the faces fit
@@ -729,7 +730,9 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     boundary's mid-edge nodes on the surface; `hexdom mesh --order`); time_limit: seconds the
     whole call may take (None: the core's MESH_OPTIONS["time_limit"]; 0: no limit; `hexdom mesh
     --time-limit`): past it
-    _hexdom.TimeoutError (an Error) naming the step it was in. Raises
+    _hexdom.TimeoutError (an Error) naming the step it was in. pillow_curves: the overlay path lays
+    a sheet of wedges along each curve, every boundary face then on one face of the surface
+    (`hexdom mesh --pillow-curves`). Raises
     MeshingError when inverted cells remain, unless allow_inverted (then MeshRun.inverted counts
     them). Returns a MeshRun. An Error raised carries ``run`` (a MeshRun of what the finished
     stages made, or None) and ``stage`` (the stage that failed)."""
@@ -741,7 +744,8 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
                                  **_method_args(method, polycube_seconds),
                                  **_size_args(max_size=max_size, min_size=min_size,
                                               cells_across=cells_across, growth_rate=growth_rate),
-                                 **_face_size_args(face_sizes), **_order_args(order), **_time_args(time_limit))
+                                 **_face_size_args(face_sizes), **_order_args(order), **_time_args(time_limit),
+                                 pillow_curves=bool(pillow_curves))
     except Error as e:
         _attach_partial(e, _mesh_run)
         raise
@@ -759,7 +763,9 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     faces kept for the segmentation), meshed (mesh_surface; keyword arguments edge_weight,
     max_relabels, relax_sweeps, improve, align, frame, method, polycube_seconds, max_size,
     min_size, cells_across, growth_rate, order (2: hex20 / wedge15 / tet10 with the boundary's
-    mid-edge nodes on the B-rep), time_limit (seconds for the whole call) go to it, and face_sizes, {FreeCAD face number of the
+    mid-edge nodes on the B-rep), time_limit (seconds for the whole call), pillow_curves (the overlay
+    path's wedges along the CAD edges: every boundary face on one CAD face, so that a face load in
+    FreeCAD takes them all) go to it, and face_sizes, {FreeCAD face number of the
     source's shape: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
     likewise along edges (Edge<number>, `--edge-size`); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
@@ -778,7 +784,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
         raise Error("built without OpenCASCADE: cannot mesh a CAD part")
     unknown = set(kwargs) - {"edge_weight", "max_relabels", "relax_sweeps", "improve", "align", "frame",
                              "method", "polycube_seconds", "face_sizes", "edge_sizes", "order",
-                             "time_limit"} - set(SIZE_BOUNDS)
+                             "time_limit", "pillow_curves"} - set(SIZE_BOUNDS)
     if unknown:
         raise TypeError("mesh_part() got unexpected keyword arguments: " + ", ".join(sorted(unknown)))
     text = os.fspath(source) if isinstance(source, os.PathLike) else source
@@ -789,6 +795,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     kwargs.update(_face_size_args(kwargs.pop("edge_sizes", None), "edge_sizes", "edge"))
     kwargs.update(_order_args(kwargs.pop("order", 1)))
     kwargs.update(_time_args(kwargs.pop("time_limit", None)))
+    kwargs["pillow_curves"] = bool(kwargs.pop("pillow_curves", MESH_OPTIONS["pillow_curves"]))
     try:
         r = _hexdom.mesh_cad(text, size=float(size), solid=int(solid), snap=bool(snap),
                              level=int(level),

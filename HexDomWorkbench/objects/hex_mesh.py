@@ -188,6 +188,13 @@ class HexMesh(BaseHexDomObject):
                             "the element size, per cell, in (1, 3] (`hexdom mesh --growth-rate`); "
                             "the band of small cells around the faces is wider the smaller it is")
             obj.GrowthRate = float(core.MESH_OPTIONS.get("growth_rate", 3 ** 0.25))
+        if not hasattr(obj, "PillowCurves"):
+            obj.addProperty("App::PropertyBool", "PillowCurves", "HexDom",
+                            "Overlay grid: a sheet of wedges along each CAD edge, so that every "
+                            "boundary face lies on one CAD face and FreeCAD's face loads and "
+                            "constraints take them all (`hexdom mesh --pillow-curves`); more cells, "
+                            "and on some parts a lower worst scaled Jacobian")
+            obj.PillowCurves = bool(core.MESH_OPTIONS.get("pillow_curves", False))
         if not hasattr(obj, "ElementOrder"):
             obj.addProperty("App::PropertyEnumeration", "ElementOrder", "HexDom",
                             "1st: hex8, wedge6, tet4; 2nd: hex20, wedge15, tet10 (as FreeCAD's Gmsh "
@@ -320,7 +327,8 @@ class HexMesh(BaseHexDomObject):
         with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap) + second) as bar:
             run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
                           align=align, improve=bool(obj.Improve), allow_inverted=True,
-                          face_sizes=overlay_face_sizes(obj, surface_obj), **pipeline.size_bounds(obj))
+                          face_sizes=overlay_face_sizes(obj, surface_obj),
+                          pillow_curves=bool(getattr(obj, "PillowCurves", False)), **pipeline.size_bounds(obj))
             mesh = run.mesh
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:

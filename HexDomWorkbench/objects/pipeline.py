@@ -136,6 +136,8 @@ def pipeline_options(mesh, shape=None):
         options["polycube_seconds"] = float(mesh.PolycubeSeconds)
     if hasattr(mesh, "TimeLimit"):
         options["time_limit"] = float(mesh.TimeLimit)
+    if getattr(mesh, "PillowCurves", False):
+        options["pillow_curves"] = True
     if shape is not None:
         options.update(region_sizes(mesh, shape))
     return options

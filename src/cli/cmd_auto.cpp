@@ -247,6 +247,9 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
       ->capture_default_str()->check(CLI::Range(0, 6));
   cmd.add_option("--octree-levels", opt.overlay.octree_levels, "overlay grid: cells split in 27, up to this many "
                  "times, where a wall is thinner than a cell (experimental: many cells on thin shells); 0: off")->check(CLI::Range(0, 3));
+  cmd.add_flag("--pillow-curves", opt.overlay.pillow_curves,
+               "overlay grid: a sheet of wedges along each curve (CAD edge), so that every boundary face lies on one CAD "
+               "face and a face load in FreeCAD takes them all; more cells, and on some parts a lower worst SJ");
 }
 
 // For an .inp, .msh or .k output (a .vtu one with `vtu_faces`), the boundary faces of `m` tagged with

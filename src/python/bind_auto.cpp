@@ -97,6 +97,10 @@ const char* const kOrderDoc =
     "boundary on the input surface (mesh_cad: on the B-rep), pulled back towards the edge's midpoint only where\n"
     "a cell would lose quality; the dict's second_order says how many (None for order 1).";
 
+const char* const kPillowCurvesDoc =
+    "\npillow_curves: the overlay path lays a sheet of wedges along each curve, so that every boundary face lies\n"
+    "on one face (a face load in FreeCAD takes them all), as `hexdom mesh --pillow-curves`.";
+
 const char* const kTimeLimitDoc =
     "\ntime_limit: seconds the whole call may take (0: no limit), as `hexdom mesh --time-limit`: past it the call\n"
     "stops within a fraction of a second and raises _hexdom.TimeoutError naming the step it was in.";
@@ -154,13 +158,14 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                       std::optional<double> polycube_seconds, double max_size,
                                                       double min_size, double cells_across,
                                                       const std::map<int, double>& face_sizes, double growth_rate,
-                                                      int order, double time_limit) {
+                                                      int order, double time_limit, bool pillow_curves) {
   pipeline::MeshSurfaceOptions opt;
   if (!(time_limit >= 0)) throw InputError("time_limit must be 0 (no limit) or positive");
   opt.time_limit = time_limit;
   pipeline::check_order(order);
   opt.order = order;
   opt.overlay.growth_rate = growth_rate;
+  opt.overlay.pillow_curves = pillow_curves;
   for (const auto& [face, size] : face_sizes) {
     if (face < 1 || !(size > 0))
       throw InputError(fmt("face_sizes {%.0f: %g}: the face number must be at least 1 and the size positive", double(face), size));
@@ -298,12 +303,12 @@ void bind_auto(py::module_& m) {
         [module](const RefV& V, const RefF& F, const RefI& patch, double size, int level, double edge_weight, int max_relabels,
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
-           const std::map<int, double>& face_sizes, double growth_rate, int order, double time_limit) {
+           const std::map<int, double>& face_sizes, double growth_rate, int order, double time_limit, bool pillow_curves) {
           mesh::SurfaceMesh s = surface_of(V, F, patch);
           pipeline::MeshSurfaceOptions opt =
               mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
                                    polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order,
-                                   time_limit);
+                                   time_limit, pillow_curves);
           Warnings warnings;
           opt.log = warnings.callback();
           pipeline::MeshSurfaceRun r;
@@ -327,7 +332,9 @@ void bind_auto(py::module_& m) {
         py::arg("min_size") = defaults.min_size, py::arg("cells_across") = defaults.across_thin,
         py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.overlay.growth_rate,
         py::arg("order") = defaults.order, py::arg("time_limit") = defaults.time_limit,
-        (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc + kOrderDoc + kTimeLimitDoc).c_str());
+        py::arg("pillow_curves") = defaults.overlay.pillow_curves,
+        (std::string(kMeshSurfaceDoc) + kPolycubeSecondsDoc + kSizeBoundsDoc + kOrderDoc + kTimeLimitDoc + kPillowCurvesDoc)
+            .c_str());
 }
 
 }  // namespace hexdom::python

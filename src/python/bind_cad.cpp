@@ -159,6 +159,7 @@ void bind_mesh_cad(py::module_& m) {
           d["min_size"] = o.min_size;
           d["cells_across"] = o.across_thin;
           d["growth_rate"] = o.overlay.growth_rate;
+          d["pillow_curves"] = o.overlay.pillow_curves;
           d["order"] = o.order;
           d["time_limit"] = o.time_limit;
           d["target_sj"] = o.target_sj;
@@ -176,7 +177,7 @@ void bind_mesh_cad(py::module_& m) {
            int relax_sweeps, bool improve, bool align, std::optional<Eigen::Matrix3d> frame, const std::string& method,
            std::optional<double> polycube_seconds, double max_size, double min_size, double cells_across,
            const std::map<int, double>& face_sizes, double growth_rate, const std::map<int, double>& edge_sizes, int order,
-           double time_limit) {
+           double time_limit, bool pillow_curves) {
           pipeline::MeshCadOptions opt;
           for (const auto& [edge, size] : edge_sizes) {
             if (edge < 1 || !(size > 0))
@@ -188,7 +189,7 @@ void bind_mesh_cad(py::module_& m) {
           opt.tessellation.size_in_frame = align;
           opt.mesh = mesh_surface_options(size, level, edge_weight, max_relabels, relax_sweeps, improve, align, frame, method,
                                           polycube_seconds, max_size, min_size, cells_across, face_sizes, growth_rate, order,
-                                          time_limit);
+                                          time_limit, pillow_curves);
           opt.snap = snap;
           Warnings warnings;
           opt.log = opt.mesh.log = warnings.callback();
@@ -232,10 +233,10 @@ void bind_mesh_cad(py::module_& m) {
         py::arg("min_size") = defaults.mesh.min_size, py::arg("cells_across") = defaults.mesh.across_thin,
         py::arg("face_sizes") = std::map<int, double>{}, py::arg("growth_rate") = defaults.mesh.overlay.growth_rate,
         py::arg("edge_sizes") = std::map<int, double>{}, py::arg("order") = defaults.mesh.order,
-        py::arg("time_limit") = defaults.mesh.time_limit,
+        py::arg("time_limit") = defaults.mesh.time_limit, py::arg("pillow_curves") = defaults.mesh.overlay.pillow_curves,
         (mesh_cad_doc() + kSizeBoundsDoc +
          "\nedge_sizes: {edge number: size}, cell sizes along CAD edges (FreeCAD's Edge<number>), as `hexdom mesh "
-         "--edge-size`." + kOrderDoc + kTimeLimitDoc)
+         "--edge-size`." + kOrderDoc + kTimeLimitDoc + kPillowCurvesDoc)
             .c_str());
 }
 

@@ -22,6 +22,7 @@ pybind11::dict run_dict(const pipeline::MeshSurfaceRun& r);
 /// polycube: none); a number sets it, and with method "polycube" the deadline from now.
 /// face_sizes: cell size per face number (overlay::LocalSize), checked against the part later.
 /// time_limit: seconds the whole call may take (MeshSurfaceOptions::time_limit; 0: no limit).
+/// pillow_curves: overlay::OverlayOptions::pillow_curves.
 pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double edge_weight, int max_relabels,
                                                       int relax_sweeps, bool improve, bool align,
                                                       const std::optional<Eigen::Matrix3d>& frame,
@@ -30,7 +31,7 @@ pipeline::MeshSurfaceOptions mesh_surface_options(double size, int level, double
                                                   double max_size = 0, double min_size = 0, double cells_across = 2,
                                                   const std::map<int, double>& face_sizes = {},
                                                   double growth_rate = overlay::kGrowthRate, int order = 1,
-                                                  double time_limit = 0);
+                                                  double time_limit = 0, bool pillow_curves = false);
 /// The stretch a stage's `frame` and `stretch` keywords name (stretch: the factors along the
 /// frame's axes, MeshSurfaceRun::stretch; frame none: the model's axes); none when stretch is none
 /// or all ones. InputError for a frame that is not a rotation or a factor not positive.
@@ -65,6 +66,7 @@ pybind11::dict second_order_dict(const optimize::SecondOrderReport& report);
 extern const char* const kOrderDoc;
 /// The time_limit= keyword's documentation, shared by mesh_surface and mesh_cad.
 extern const char* const kTimeLimitDoc;
+extern const char* const kPillowCurvesDoc;
 void bind_segmentation(pybind11::module_& m);
 void bind_polycube(pybind11::module_& m);
 void bind_cad(pybind11::module_& m);

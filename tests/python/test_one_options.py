@@ -22,6 +22,8 @@ CLI_OPTIONS = [("level", "--level"), ("polycube_seconds", "--polycube-seconds"),
                ("edge_weight", "--lambda"), ("max_relabels", "--max-relabels"), ("size", "--size"),
                ("method", "--method"), ("max_size", "--max-size"), ("min_size", "--min-size"),
                ("cells_across", "--cells-across"), ("growth_rate", "--growth-rate")]
+# Flags (--help shows no default): their mesh_options value is off.
+CLI_FLAGS = [("pillow_curves", "--pillow-curves")]
 
 
 def _help_defaults(hexdom_bin):
@@ -46,6 +48,10 @@ def test_mesh_options_are_the_program_defaults(core, hexdom_bin):
         else:
             # (--help prints six significant digits)
             assert float(shown[flag]) == pytest.approx(float(value), rel=1e-5), (key, shown[flag], value)
+    text = subprocess.run([str(hexdom_bin), "mesh", "--help"], capture_output=True, text=True, check=True).stdout
+    for key, flag in CLI_FLAGS:
+        assert re.search(r"^\s+" + re.escape(flag) + r"\b", text, re.M), flag
+        assert options[key] is False, key
     assert options["improve"] is True and options["snap"] is True and options["align"] is True
     assert options["target_edge_ratio"] == wb_core.TARGET_EDGE_RATIO
 

@@ -7,6 +7,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "hexdom/common/disjoint_sets.h"
 #include "hexdom/common/interrupt.h"
 #include "hexdom/mesh/edge_key.h"
 
@@ -212,7 +213,7 @@ std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::ve
 }
 
 Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& quads, const SurfaceFeatures& feat,
-                            double reach) {
+                            double reach, bool staircases) {
   const int nn = m.num_nodes();
   Placement p;
   p.kind.assign(nn, optimize::Interior);
@@ -234,7 +235,8 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
       for (int o : by_edge[mesh::undirected_edge(quads[q][i], quads[q][(i + 1) % 4])])
         if (o != static_cast<int>(q)) nbr[q][i] = o;
     }
-  const std::vector<int> region = quad_regions(m, quads, feat, nbr);
+  p.quad_region = quad_regions(m, quads, feat, nbr);
+  const std::vector<int>& region = p.quad_region;
   // Regions around each outer node, with the number of its quads in each.
   std::vector<std::map<int, int>> around(nn);
   for (size_t q = 0; q < quads.size(); ++q)
@@ -289,7 +291,7 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
   for (char done : corner_done) p.corners_missed += !done;
   // Staircases: a quad with three consecutive nodes on one curve lets the middle one go.
   auto on_curve = [&](int v, int a, int b) { return on_the_curve(p, feat, v, a, b); };
-  for (bool changed = true; changed;) {
+  for (bool changed = staircases; changed;) {
     changed = false;
     for (size_t q = 0; q < quads.size(); ++q)
       for (int i = 0; i < 4; ++i) {
@@ -342,6 +344,118 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
     p.corner += p.kind[v] == optimize::Corner;
   }
   return p;
+}
+
+CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer, Placement& p, const SurfaceFeatures& feat,
+                          double offset) {
+  const int nq = static_cast<int>(outer.size()), base = m.num_cells() - nq;
+  if (base < 0 || static_cast<int>(p.quad_region.size()) != nq)
+    throw std::logic_error("pillow_curves: the mesh's buffer hexes and the outer quads do not match");
+  for (int q = 0; q < nq; ++q)
+    for (int i = 0; i < 4; ++i)
+      if (m.type(base + q) != mesh::CellType::Hex || m.cells(base + q, 4 + i) != outer[q][i])
+        throw std::logic_error("pillow_curves: cell " + std::to_string(base + q) + " is not outer quad " +
+                               std::to_string(q) + "'s buffer hex");
+  const std::vector<int>& region = p.quad_region;
+  // Corners (q, i) of the outer quads; those of one node joined across the edges between two quads
+  // of one region: a sector is a set.
+  std::unordered_map<int64_t, std::vector<int>> by_edge;
+  for (int q = 0; q < nq; ++q)
+    for (int i = 0; i < 4; ++i) by_edge[mesh::undirected_edge(outer[q][i], outer[q][(i + 1) % 4])].push_back(q);
+  auto corner_of = [&](int q, int v) {
+    for (int i = 0; i < 4; ++i)
+      if (outer[q][i] == v) return 4 * q + i;
+    throw std::logic_error("pillow_curves: an outer edge's quads do not share its nodes");
+  };
+  auto across = [&](int q, int i) {  // the other quad on edge i of q
+    for (int o : by_edge.at(mesh::undirected_edge(outer[q][i], outer[q][(i + 1) % 4])))
+      if (o != q) return o;
+    throw std::logic_error("pillow_curves: outer edge with one quad (the buffer layer is not closed)");
+  };
+  DisjointSets sector(4 * nq);
+  for (int q = 0; q < nq; ++q)
+    for (int i = 0; i < 4; ++i) {
+      const int o = across(q, i), u = outer[q][i], w = outer[q][(i + 1) % 4];
+      if (o > q && region[o] == region[q]) {
+        sector.unite(4 * q + i, corner_of(o, u));
+        sector.unite(4 * q + (i + 1) % 4, corner_of(o, w));
+      }
+    }
+  // Nodes with two or more sectors: a copy per sector, numbered after m's nodes.
+  const int n0 = m.num_nodes();
+  std::vector<std::vector<int>> sectors_at(n0);  // per node, its sectors' representatives
+  for (int k = 0; k < 4 * nq; ++k) {
+    auto& s = sectors_at[outer[k / 4][k % 4]];
+    const int r = sector.find(k);
+    if (std::find(s.begin(), s.end(), r) == s.end()) s.push_back(r);
+  }
+  std::unordered_map<int, int> copy_of;  // sector representative -> new node
+  for (int v = 0; v < n0; ++v)
+    if (sectors_at[v].size() >= 2)
+      for (int r : sectors_at[v]) copy_of.emplace(r, n0 + static_cast<int>(copy_of.size()));
+  CurvePillow out;
+  out.copies = static_cast<int>(copy_of.size());
+  if (out.copies == 0) return out;
+  // The copies' positions: `offset` of the way to their sector's mean quad centroid, on its region.
+  std::vector<Eigen::Vector3d> towards(out.copies, Eigen::Vector3d::Zero());
+  std::vector<int> count(out.copies, 0), copy_region(out.copies, -1);
+  auto node_of = [&](int q, int i) {
+    const auto it = copy_of.find(sector.find(4 * q + i));
+    return it == copy_of.end() ? outer[q][i] : it->second;
+  };
+  for (int q = 0; q < nq; ++q) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int v : outer[q]) centroid += m.V.row(v).transpose() / 4;
+    for (int i = 0; i < 4; ++i) {
+      const int c = node_of(q, i) - n0;
+      if (c < 0) continue;
+      towards[c] += centroid;
+      ++count[c];
+      copy_region[c] = region[q];
+    }
+  }
+  Eigen::MatrixXd V(n0 + out.copies, 3);
+  V.topRows(n0) = m.V;
+  for (int q = 0; q < nq; ++q)
+    for (int i = 0; i < 4; ++i) {
+      const int c = node_of(q, i);
+      if (c < n0) continue;
+      const Eigen::Vector3d x = m.V.row(outer[q][i]).transpose();
+      V.row(c) = feat.project_region(copy_region[c - n0], x + offset * (towards[c - n0] / count[c - n0] - x)).transpose();
+    }
+  p.kind.resize(n0 + out.copies, optimize::Surface);
+  p.a.resize(n0 + out.copies, -1);
+  p.b.resize(n0 + out.copies, -1);
+  for (int c = 0; c < out.copies; ++c) p.a[n0 + c] = copy_region[c];
+  p.surface += out.copies;
+  // The cells: the core and the buffer hexes with their sectors' copies, then a wedge on each
+  // side of every outer edge between two regions. In hex q (bottom: core nodes, top: outer[q], in
+  // VTK order), the wedge at its edge i takes the core node under each end, the old outer node and
+  // its copy: {core u, u, copy u, core w, w, copy w}, which the hex's own corners orient as VTK's
+  // wedge (its first triangle faces away from the second).
+  mesh::MeshBuilder b;
+  for (int c = 0; c < base; ++c) b.add(m.type(c), m.cells.row(c).data(), m.region(c));
+  std::vector<std::array<int, 4>> strips;
+  std::vector<int> strip_region;
+  for (int q = 0; q < nq; ++q) {
+    int hex[8];
+    for (int i = 0; i < 8; ++i) hex[i] = i < 4 ? m.cells(base + q, i) : node_of(q, i - 4);
+    b.add(mesh::CellType::Hex, hex, m.region(base + q));
+    for (int i = 0; i < 4; ++i) {
+      const int j = (i + 1) % 4;
+      if (region[across(q, i)] == region[q]) continue;
+      const int wedge[6] = {hex[i], outer[q][i], hex[4 + i], hex[j], outer[q][j], hex[4 + j]};
+      b.add(mesh::CellType::Wedge, wedge, m.region(base + q));
+      strips.push_back({outer[q][i], outer[q][j], hex[4 + j], hex[4 + i]});
+      strip_region.push_back(region[q]);
+      ++out.prisms;
+    }
+    for (int i = 0; i < 4; ++i) outer[q][i] = hex[4 + i];
+  }
+  m = b.finish(std::move(V));
+  outer.insert(outer.end(), strips.begin(), strips.end());
+  p.quad_region.insert(p.quad_region.end(), strip_region.begin(), strip_region.end());
+  return out;
 }
 
 int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& feat) {

@@ -20,6 +20,8 @@ struct Placement {
   int surface = 0, curve = 0, corner = 0;
   int demoted = 0;     ///< curve nodes let off their curve where a quad would have three on it
   int corners_missed = 0;  ///< feature corners no outer node came near
+  /// Per outer quad (place_outer_nodes' `outer`, in its order): the region it took.
+  std::vector<int> quad_region;
 };
 
 /// The core (hexahedra, boundary a 2-manifold) with one more hexahedron on each boundary quad: its
@@ -49,9 +51,31 @@ int pull_inner_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer
 /// curve, and each feature corner gets the nearest node among those on two of its regions (within
 /// `reach`). Where a quad would have three consecutive nodes on one curve (a staircase of the grid
 /// along a curve, which flattens the quad's corner), the middle one leaves the curve for the region
-/// across it, so the quad follows the curve along its diagonal.
+/// across it, so the quad follows the curve along its diagonal; not with `staircases` false (for
+/// pillow_curves, which takes every curve node off the regions' quads).
 Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const SurfaceFeatures& features,
-                            double reach);
+                            double reach, bool staircases = true);
+
+/// What pillow_curves added.
+struct CurvePillow {
+  int prisms = 0;  ///< wedges, two per outer edge between two regions
+  int copies = 0;  ///< nodes added: one per region sector of each outer node where regions meet
+};
+
+/// Sheets of prisms along the region boundaries of the buffer layer, so that no outer quad of a
+/// region keeps a node on a curve (a grid's staircase along a curve otherwise flattens the quad
+/// at each of its turns, on one side or the other). At each outer node where quads of different
+/// regions (p.quad_region) meet, each sector (the quads around it of one region, consecutive)
+/// takes a copy of the node, its buffer hexes the copy; each outer edge between two regions gets
+/// a wedge on either side, between the hex's old wall and its new one, the core nodes under the
+/// edge shared. The old nodes keep their placement (curve or corner) and lie on the wedges only;
+/// each copy goes onto its sector's region (placement Surface), `offset` of the way from the old
+/// node to the mean centroid of the sector's quads. The wedges' outer quads are appended to
+/// `outer` and p.quad_region (their side's region); each wedge is valid where its hex's corners at
+/// the edge are. Requires m's last outer.size() cells to be add_buffer_layer's hexes in outer's
+/// order (std::logic_error otherwise).
+CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer, Placement& p,
+                          const SurfaceFeatures& features, double offset);
 
 /// Laplacian passes over the outer nodes with an outer edge shorter than `crowded` (the closest
 /// points crowd them onto a reflex curve): each moves to the mean of its neighbours on its region

@@ -169,9 +169,13 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   }
   r.buffer_cells = static_cast<int>(outer.size());
   check_interrupt("overlay");
-  Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff());
+  Placement place_of = place_outer_nodes(m, outer, feat, 1.5 * h.maxCoeff(), !opt.pillow_curves);
   if (opt.core_by_centres) pull_inner_nodes(m, outer, copy, feat, depth);
   spread(m, outer, place_of, feat, opt.spread_passes, 0.25 * grid.h.minCoeff());
+  if (opt.pillow_curves) {
+    const CurvePillow pc = pillow_curves(m, outer, place_of, feat, opt.pillow_offset);
+    r.prisms = pc.prisms;
+  }
   r.curve_nodes = place_of.curve;
   r.corner_nodes = place_of.corner;
   r.corners_missed = place_of.corners_missed;
@@ -235,7 +239,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
       opt.log(0, fmt("overlay: largest edge ratio %.1f: %.0f nodes on the ends of the shortest edges let off their curves or "
                      "corners, %.1f after", ratio, double(held.size()), quality::max_edge_ratio(again.after)));
     if (inverted(again.after) > 0 || !(quality::max_edge_ratio(again.after) < ratio) ||
-        again.after.hex.sj_min < std::min(ir.after.hex.sj_min, opt.refine_below_sj))
+        quality::worst_sj(again.after) < std::min(quality::worst_sj(ir.after), opt.refine_below_sj))
       break;
     ir = std::move(again);
   }
@@ -275,11 +279,11 @@ struct Ranking {
            : lost(r)          ? error(r) < error(b)
            : inverted(r.quality) != inverted(b.quality)
                ? inverted(r.quality) < inverted(b.quality)
-               : (volume_off(b) || volume_off(r) ? error(r) < error(b) : r.quality.hex.sj_min > b.quality.hex.sj_min);
+               : (volume_off(b) || volume_off(r) ? error(r) < error(b) : quality::worst_sj(r.quality) > quality::worst_sj(b.quality));
   }
   std::string summary(const OverlayResult& r) const {
     return fmt("%.0f core + %.0f buffer cells, ", double(r.core_cells), double(r.buffer_cells)) +
-           fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), r.quality.hex.sj_min,
+           fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), quality::worst_sj(r.quality),
                reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0);
   }
 };
@@ -311,7 +315,7 @@ bool halve_again(const OverlayResult& best, double cells, bool kept, bool no_loc
   }
   say(inverted(best.quality) > 0 ? "overlay: inverted cells remain; halving the spacing"
       : rank.volume_off(best)    ? "overlay: the volume is off by more than the target; halving the spacing"
-                                 : fmt("overlay: worst SJ %.3f, below %.2f; halving the spacing", best.quality.hex.sj_min,
+                                 : fmt("overlay: worst SJ %.3f, below %.2f; halving the spacing", quality::worst_sj(best.quality),
                                        opt.refine_below_sj));
   return true;
 }
@@ -578,14 +582,16 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     // The first grid left cells inverted: the grid for thin walls before any halving when it is
     // the coarser of the two (fewer cells; cheapest first).
     if (k == 0 && inverted(best.quality) > 0) walls_grid(true);
-    const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || best.quality.hex.sj_min < opt.refine_below_sj;
+    const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || quality::worst_sj(best.quality) < opt.refine_below_sj;
     if (!short_of || k == opt.refinements) break;
     if (!halve_again(best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
   }
-  // The finer grids lost more of the solid (or were not made): the one kept, mended after all.
+  // The finer grids lost more of the solid (or were not made): the one kept, mended after all;
+  // kept when better (a grid made after it, the walls' grid, may have become best since).
   if (have && unmended && inverted(best.quality) > 0) {
     try {
-      best = grid.one_grid(*unmended, opt, false);
+      OverlayResult mended = grid.one_grid(*unmended, opt, false);
+      if (rank.better(mended, best)) best = std::move(mended);
     } catch (const GeometryError&) {  // it was made once: the same again
     }
   }
@@ -605,6 +611,7 @@ std::string to_text(const OverlayResult& r) {
              double(r.core_cells), double(r.buffer_cells), double(r.dropped), double(r.parted)) +
          fmt("%.0f curve and %.0f corner nodes (%.0f corners missed, %.0f staircase nodes let off their curve), ",
              double(r.curve_nodes), double(r.corner_nodes), double(r.corners_missed), double(r.demoted)) +
+         (r.prisms > 0 ? fmt("%.0f wedges along the curves, ", double(r.prisms)) : std::string()) +
          fmt("%.0f grids, %.2f s", double(r.grids), r.seconds);
 }
 

@@ -86,6 +86,11 @@ struct OverlayOptions {
   /// Laplacian passes over the outer nodes the closest points crowded (an outer edge under a
   /// quarter of the spacing: near reflex curves), before the optimiser (overlay::spread).
   int spread_passes = 0;
+  /// Sheets of wedges along the curves (overlay::pillow_curves), so that no outer quad of a face
+  /// has a node on a curve; each copy of a curve node starts `pillow_offset` of the way into its
+  /// face's quads. Off: the grid's staircase along a curve is followed by quad diagonals.
+  bool pillow_curves = false;
+  double pillow_offset = 0.5;
   /// The optimiser's recommended sequence without pillowing (optimize::improve): worst-cell rounds
   /// until the worst stops improving, at most this many, then passes raising the mean.
   int max_rounds = 40;
@@ -131,6 +136,7 @@ struct OverlayResult {
   int core_cells = 0, buffer_cells = 0, dropped = 0;
   int parted = 0;                    ///< core cells dropped as they faced a kept neighbour across the surface
   int curve_nodes = 0, corner_nodes = 0, corners_missed = 0, demoted = 0;
+  int prisms = 0;                    ///< wedges of pillow_curves
   /// #V: what each node of `mesh` is held on (optimize::NodeKind: Corner, Curve, Surface for the
   /// outer nodes on a smooth region, Interior); a Surface node near a curve was let off it on purpose
   /// (a staircase node, a loosened one).

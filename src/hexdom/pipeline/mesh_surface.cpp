@@ -20,6 +20,7 @@ namespace hexdom::pipeline {
 
 namespace {
 using quality::inverted_cells;
+using quality::worst_sj;
 // "turned by 45.0 degrees about (0, 0, 1)"
 std::string frame_text(const segmentation::CubeFrame& f) {
   return fmt("turned by %.1f degrees about ", f.angle_degrees) + fmt("(%.3f, %.3f, %.3f)", f.axis.x(), f.axis.y(), f.axis.z());
@@ -27,14 +28,6 @@ std::string frame_text(const segmentation::CubeFrame& f) {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-
-double worst_sj(const quality::QualityReport& q) {
-  double w = 1;
-  for (const auto* t : {&q.hex, &q.prism, &q.tet})
-    if (t->count > 0) w = std::min(w, t->sj_min);
-  return w;
-}
 
 // Relative volume error of a run against the input surface's enclosed volume.
 double volume_error(const MeshSurfaceRun& r, double reference) {

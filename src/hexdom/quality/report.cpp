@@ -86,6 +86,13 @@ double max_edge_ratio(const QualityReport& q) {
   return m;
 }
 
+double worst_sj(const QualityReport& q) {
+  double w = 1;
+  for (const TypeStats* t : {&q.hex, &q.prism, &q.tet})
+    if (t->count > 0) w = std::min(w, t->sj_min);
+  return w;
+}
+
 namespace {
 std::string num(double v) {
   if (!std::isfinite(v)) return "null";

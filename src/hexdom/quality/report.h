@@ -47,6 +47,9 @@ inline int inverted_cells(const QualityReport& q) {
 /// The largest edge ratio (longest over shortest edge of a cell) over the cells of every type; 0
 /// with no cells.
 double max_edge_ratio(const QualityReport& q);
+/// The least scaled Jacobian over the cells of every type (of the straight cells: the hex, prism
+/// and tet sj_min; a NaN one passed over, as its cells count as inverted); 1 with no cells.
+double worst_sj(const QualityReport& q);
 /// Same, from metrics already computed for `mesh`.
 QualityReport quality_report(const mesh::Mesh& mesh, const CellMetrics& metrics);
 

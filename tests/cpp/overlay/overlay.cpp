@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -726,4 +727,63 @@ TEST(Overlay, CoreCellsJuttingPastAFaceLeaveTheBufferValid) {
   EXPECT_NEAR(r.quality.total_volume, volume, 1e-3 * volume);
   EXPECT_LT(boundary_distance(r.mesh, s), 1e-9 * diagonal(s));
   EXPECT_EQ(r.corner_nodes, 12);
+}
+
+// A cylinder R 10 x 30 whose patches are its three faces: the grid's staircase along each rim
+// (a circle at an angle to the grid) crosses it, and without pillow_curves some boundary quads
+// have their nodes on no common face (a face load in FreeCAD leaves such quads out). With it, the
+// rims get a sheet of wedges each side, every boundary quad lies on one face, the mesh is valid,
+// conforming (every boundary face on the surface) and keeps the volume within 1%.
+TEST(OverlayPillow, ACylindersRimsGetWedgesAndEveryBoundaryQuadLiesOnOneFace) {
+  mesh::SurfaceMesh s = test::cylinder_surface(10.0, 30.0, 64, 12, 8);
+  const double zmin = s.V.col(2).minCoeff(), zmax = s.V.col(2).maxCoeff();
+  for (int t = 0; t < s.F.rows(); ++t) {
+    const double z = (s.V(s.F(t, 0), 2) + s.V(s.F(t, 1), 2) + s.V(s.F(t, 2), 2)) / 3;
+    s.patch(t) = std::abs(z - zmin) < 1e-9 ? 1 : std::abs(z - zmax) < 1e-9 ? 2 : 3;
+  }
+  std::vector<std::unique_ptr<mesh::TriangleProjector>> face;  // per patch 1..3
+  for (int p = 1; p <= 3; ++p) {
+    std::vector<int> keep;
+    for (int t = 0; t < s.F.rows(); ++t)
+      if (s.patch(t) == p) keep.push_back(t);
+    Eigen::MatrixXi F(static_cast<int>(keep.size()), 3);
+    for (size_t i = 0; i < keep.size(); ++i) F.row(static_cast<int>(i)) = s.F.row(keep[i]);
+    face.push_back(std::make_unique<mesh::TriangleProjector>(s.V, F));
+  }
+  const double tol = 1e-9 * diagonal(s);
+  // Boundary quads of m whose nodes lie on no common face.
+  auto crossing = [&](const mesh::Mesh& m) {
+    int n = 0;
+    for (const mesh::BoundaryFace& f : mesh::boundary_faces(m)) {
+      bool on_one = false;
+      for (const auto& proj : face) {
+        bool all = true;
+        for (int i = 0; i < f.n && all; ++i) {
+          const Eigen::Vector3d x = m.V.row(f.v[i]);
+          all = (proj->project(x) - x).norm() < tol;
+        }
+        on_one = on_one || all;
+      }
+      n += !on_one;
+    }
+    return n;
+  };
+  const double volume = mesh::enclosed_volume(s.V, s.F);
+  overlay::OverlayOptions o;
+  o.size = 2.5;
+  const overlay::OverlayResult plain = overlay::overlay_mesh(s, o);
+  EXPECT_GT(plain.demoted, 0);
+  EXPECT_GT(crossing(plain.mesh), 10);
+  EXPECT_EQ(plain.mesh.count(mesh::CellType::Wedge), 0);
+  o.pillow_curves = true;
+  const overlay::OverlayResult r = overlay::overlay_mesh(s, o);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GT(r.quality.hex.sj_min, 0.3);
+  EXPECT_GT(r.quality.prism.sj_min, 0.3);
+  EXPECT_EQ(r.demoted, 0);
+  EXPECT_GT(r.prisms, 0);
+  EXPECT_EQ(r.mesh.count(mesh::CellType::Wedge), r.prisms);
+  EXPECT_EQ(crossing(r.mesh), 0);
+  EXPECT_LT(boundary_distance(r.mesh, s), tol);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
 }

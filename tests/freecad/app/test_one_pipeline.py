@@ -320,3 +320,27 @@ def test_the_time_limit_ends_the_meshing_like_a_stage_failure(doc):
         api.recompute_document(doc, [mesh])
     assert "Invalid" in mesh.State or "Error" in mesh.State
     np.testing.assert_array_equal(_fc_mesh(mesh)[0], before[0])
+
+
+def test_pillowed_curves_are_the_mesh_hexdom_mesh_pillow_curves_gives(doc, tmp_path):
+    """PillowCurves (`hexdom mesh --pillow-curves`) on the bracket with Method overlay: Mesh Part's
+    mesh is the program's, with wedges along the CAD edges; recomputed from the stages (Pipeline
+    off: the overlay grid on the Surface) it is the same mesh again."""
+    part = doc.addObject("Part::Feature", "Bracket")
+    part.Shape = Part.read(fc_testdata.example_path("bracket.step"))
+    doc.recompute()
+    cli = _cli_mesh(part.Shape, tmp_path, "--method", "overlay", "--pillow-curves")
+    objs = hexdom.mesh_part(doc, part, allow_inverted=True, polycube_seconds=0, method="overlay")
+    mesh = objs["mesh"]
+    assert mesh.PillowCurves is False and mesh.PrismCount == 0
+    mesh.PillowCurves = True
+    api.recompute_document(doc, [mesh])
+    diagonal = part.Shape.BoundBox.DiagonalLength
+    first = _fc_mesh(mesh)
+    _assert_same(first, cli, diagonal)
+    assert mesh.MeshingPath == "overlay" and mesh.PrismCount > 0 and mesh.InvertedCount == 0
+    mesh.Pipeline = False
+    mesh.touch()
+    api.recompute_document(doc, [mesh])
+    assert not mesh.Pipeline
+    _assert_same(_fc_mesh(mesh), first + (None, None), diagonal)
