@@ -22,27 +22,6 @@
 namespace hexdom::autopolycube {
 
 namespace {
-// The surface without vertices that no triangle uses (.k files may list such nodes).
-mesh::SurfaceMesh drop_unused_vertices(const mesh::SurfaceMesh& s) {
-  std::vector<int> id(s.V.rows(), -1);
-  int n = 0;
-  for (int f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (id[s.F(f, k)] < 0) id[s.F(f, k)] = n++;
-  if (n == s.V.rows()) return s;
-  mesh::SurfaceMesh out;
-  out.V.resize(n, 3);
-  for (int v = 0; v < s.V.rows(); ++v)
-    if (id[v] >= 0) out.V.row(id[v]) = s.V.row(v);
-  out.F = s.F;
-  for (int f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) out.F(f, k) = id[s.F(f, k)];
-  out.patch = s.patch;
-  return out;
-}
-}  // namespace
-
-namespace {
 
 // autopolycube of the labels turned into opt.frame; the results turned back (x = frame^T x_frame).
 AutoPolycube autopolycube_in_frame(const mesh::SurfaceMesh& labels, const AutoPolycubeOptions& opt, AutoPolycube* progress) {
@@ -149,7 +128,7 @@ AutoPolycube autopolycube(const mesh::SurfaceMesh& labels, const AutoPolycubeOpt
   r = AutoPolycube{};
   r.cell = size * std::ldexp(1.0, opt.level);
 
-  mesh::SurfaceMesh s = drop_unused_vertices(labels);
+  mesh::SurfaceMesh s = mesh::drop_unused_vertices(labels);
   r.labels = s;
   std::vector<Eigen::Vector3d> apexes;
   // The labellings mapped so far: the repair is deterministic, so meeting one again means it cycles.

@@ -176,6 +176,24 @@ SurfaceMesh to_surface(const Mesh& mesh) {
   return s;
 }
 
+SurfaceMesh drop_unused_vertices(const SurfaceMesh& s) {
+  std::vector<int> id(s.V.rows(), -1);
+  int n = 0;
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (id[s.F(f, k)] < 0) id[s.F(f, k)] = n++;
+  if (n == s.V.rows()) return s;
+  SurfaceMesh out;
+  out.V.resize(n, 3);
+  for (int v = 0; v < s.V.rows(); ++v)
+    if (id[v] >= 0) out.V.row(id[v]) = s.V.row(v);
+  out.F = s.F;
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) out.F(f, k) = id[s.F(f, k)];
+  out.patch = s.patch;
+  return out;
+}
+
 SurfaceMesh join_surfaces(const std::vector<const SurfaceMesh*>& surfaces) {
   Eigen::Index nv = 0, nf = 0;
   for (const SurfaceMesh* s : surfaces) nv += s->V.rows(), nf += s->F.rows();

@@ -101,6 +101,9 @@ Mesh from_surface(const SurfaceMesh& surface);
 /// The surfaces side by side in one SurfaceMesh (no vertex shared between them), in order; a
 /// surface without patch ids gives its triangles patch 0.
 SurfaceMesh join_surfaces(const std::vector<const SurfaceMesh*>& surfaces);
+/// The surface without the vertices no triangle uses (.k files may list such nodes), the others
+/// numbered in the order the triangles first use them; `s` itself when every vertex is used.
+SurfaceMesh drop_unused_vertices(const SurfaceMesh& s);
 /// Volume a closed triangle surface encloses (divergence theorem): positive when the triangles
 /// are counter-clockwise seen from outside, negative when they face inward.
 double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);

@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hexdom/common/disjoint_sets.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/mesh/edge_key.h"
 #include "hexdom/mesh/remesh_surface.h"
@@ -153,12 +154,7 @@ Features find_features(const SurfaceMesh& s, const std::unordered_map<EdgeKey, i
     return (b - a).cross(c - a).normalized();
   };
   std::vector<std::pair<int, int>> feature_edges;
-  std::vector<int> parent(nt);
-  for (int t = 0; t < nt; ++t) parent[t] = t;
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  DisjointSets smooth(nt);  // triangles joined across edges that are not features
   for (const auto& [k, t] : directed) {
     const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffff);
     if (a > b) continue;
@@ -166,14 +162,14 @@ Features find_features(const SurfaceMesh& s, const std::unordered_map<EdgeKey, i
     if (s.patch(t) != s.patch(u) || unit_normal(t).dot(unit_normal(u)) < cos_feature)
       feature_edges.emplace_back(a, b);
     else
-      parent[find(t)] = find(u);
+      smooth.unite(t, u);
   }
   Features ft;
   ft.face.assign(nt, -1);  // region per triangle; the input id per region
   {
     std::unordered_map<int, int> region;
     for (int t = 0; t < nt; ++t) {
-      auto [it, fresh] = region.emplace(find(t), static_cast<int>(ft.ids.size()));
+      auto [it, fresh] = region.emplace(smooth.find(t), static_cast<int>(ft.ids.size()));
       if (fresh) ft.ids.push_back(s.patch(t));
       ft.face[t] = it->second;
     }
@@ -278,15 +274,18 @@ Vertices remesh_vertices(const Eigen::MatrixXd& V, const Features& ft, const std
 
 }  // namespace
 
-SurfaceMesh remesh_triangles(const SurfaceMesh& s, const RemeshTrianglesOptions& options) {
+SurfaceMesh remesh_triangles(const SurfaceMesh& input, const RemeshTrianglesOptions& options) {
+  const int nt = static_cast<int>(input.F.rows());
+  if (nt == 0) throw InputError("remesh: the surface has no triangles");
+  if (input.patch.size() != nt)
+    throw InputError("remesh: " + std::to_string(input.patch.size()) + " face ids for " + std::to_string(nt) + " triangles");
+  // Checked as given (errors name its vertices), then without the vertices no triangle uses.
+  std::unordered_map<EdgeKey, int> directed = directed_edges(input.V, input.F);
+  const SurfaceMesh s = drop_unused_vertices(input);
+  if (s.V.rows() != input.V.rows()) directed = directed_edges(s.V, s.F);
   const Eigen::MatrixXd& V = s.V;
   const Eigen::MatrixXi& F = s.F;
-  const int nt = static_cast<int>(F.rows());
-  if (nt == 0) throw InputError("remesh: the surface has no triangles");
-  if (s.patch.size() != nt)
-    throw InputError("remesh: " + std::to_string(s.patch.size()) + " face ids for " + std::to_string(nt) + " triangles");
   const double size = target_size(V, options);
-  const std::unordered_map<EdgeKey, int> directed = directed_edges(V, F);
 
   const double cos_feature = options.feature_angle > 0 ? std::cos(options.feature_angle * 3.14159265358979323846 / 180) : -2;
   Features ft = find_features(s, directed, cos_feature);

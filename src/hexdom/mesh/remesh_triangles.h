@@ -26,8 +26,8 @@ struct RemeshTrianglesOptions {
 
 /// Remeshes `surface` (V, F counter-clockwise seen from outside, patch = face id per triangle) to
 /// edges of about `size`. Every output vertex lies on the input surface, on the input triangles of
-/// its own face id; each output triangle keeps the face id of the region it covers.
-/// Throws InputError for an open or non-manifold surface (naming the edge), a degenerate triangle
+/// its own face id; each output triangle keeps the face id of the region it covers. Vertices no
+/// triangle uses (a .k file's spare nodes) are left out. Throws InputError for an open or non-manifold surface (naming the edge), a degenerate triangle
 /// or a non-positive size.
 SurfaceMesh remesh_triangles(const SurfaceMesh& surface, const RemeshTrianglesOptions& options = {});
 

@@ -163,6 +163,22 @@ TEST(RemeshTriangles, VerticesStayOnTheInputTrianglesOfTheirFace) {
   EXPECT_GT(out.F.rows(), 4 * in.F.rows());
 }
 
+// A vertex no triangle uses (a .k file may list such a node; the paper's mount1 has one, on which
+// `hexdom remesh` used to crash) is left out: the result is the box's, closed, with its volume and
+// its six faces, as many triangles as without the vertex.
+TEST(RemeshTriangles, AVertexNoTriangleUsesIsLeftOut) {
+  const SurfaceMesh in = box(2, 1, 1);
+  SurfaceMesh spare = in;
+  spare.V.conservativeResize(in.V.rows() + 1, 3);
+  spare.V.row(in.V.rows()) << 0.5, 0.5, 0.5;
+  const SurfaceMesh a = remesh_triangles(in, with_size(0.2)), b = remesh_triangles(spare, with_size(0.2));
+  ASSERT_TRUE(closed_and_oriented(b.F));
+  EXPECT_NEAR(volume(b), 2.0, 1e-9);
+  EXPECT_EQ(b.F.rows(), a.F.rows());
+  EXPECT_EQ(std::set<int>(b.patch.data(), b.patch.data() + b.patch.size()).size(), 6u);
+  for (int v = 0; v < b.V.rows(); ++v) EXPECT_GT((b.V.row(v) - spare.V.row(in.V.rows())).norm(), 0.4) << v;
+}
+
 TEST(RemeshTriangles, OpenOrNonManifoldSurfacesAreRefused) {
   SurfaceMesh open = box(1, 1, 1);
   open.F.conservativeResize(11, 3);
