@@ -228,7 +228,8 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
   std::unordered_map<int64_t, std::vector<int>> by_edge;
   for (size_t q = 0; q < quads.size(); ++q)
     for (int i = 0; i < 4; ++i) by_edge[mesh::undirected_edge(quads[q][i], quads[q][(i + 1) % 4])].push_back(static_cast<int>(q));
-  std::vector<std::array<int, 4>> nbr(quads.size());
+  std::vector<std::array<int, 4>>& nbr = p.quad_neighbours;
+  nbr.resize(quads.size());
   for (size_t q = 0; q < quads.size(); ++q)
     for (int i = 0; i < 4; ++i) {
       nbr[q][i] = -1;
@@ -349,7 +350,7 @@ Placement place_outer_nodes(mesh::Mesh& m, const std::vector<std::array<int, 4>>
 CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer, Placement& p, const SurfaceFeatures& feat,
                           double offset) {
   const int nq = static_cast<int>(outer.size()), base = m.num_cells() - nq;
-  if (base < 0 || static_cast<int>(p.quad_region.size()) != nq)
+  if (base < 0 || static_cast<int>(p.quad_region.size()) != nq || static_cast<int>(p.quad_neighbours.size()) != nq)
     throw std::logic_error("pillow_curves: the mesh's buffer hexes and the outer quads do not match");
   for (int q = 0; q < nq; ++q)
     for (int i = 0; i < 4; ++i)
@@ -359,18 +360,15 @@ CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer,
   const std::vector<int>& region = p.quad_region;
   // Corners (q, i) of the outer quads; those of one node joined across the edges between two quads
   // of one region: a sector is a set.
-  std::unordered_map<int64_t, std::vector<int>> by_edge;
-  for (int q = 0; q < nq; ++q)
-    for (int i = 0; i < 4; ++i) by_edge[mesh::undirected_edge(outer[q][i], outer[q][(i + 1) % 4])].push_back(q);
   auto corner_of = [&](int q, int v) {
     for (int i = 0; i < 4; ++i)
       if (outer[q][i] == v) return 4 * q + i;
     throw std::logic_error("pillow_curves: an outer edge's quads do not share its nodes");
   };
   auto across = [&](int q, int i) {  // the other quad on edge i of q
-    for (int o : by_edge.at(mesh::undirected_edge(outer[q][i], outer[q][(i + 1) % 4])))
-      if (o != q) return o;
-    throw std::logic_error("pillow_curves: outer edge with one quad (the buffer layer is not closed)");
+    const int o = p.quad_neighbours[q][i];
+    if (o < 0) throw std::logic_error("pillow_curves: outer edge with one quad (the buffer layer is not closed)");
+    return o;
   };
   DisjointSets sector(4 * nq);
   for (int q = 0; q < nq; ++q)
@@ -455,6 +453,7 @@ CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer,
   m = b.finish(std::move(V));
   outer.insert(outer.end(), strips.begin(), strips.end());
   p.quad_region.insert(p.quad_region.end(), strip_region.begin(), strip_region.end());
+  p.quad_neighbours.clear();
   return out;
 }
 

@@ -22,6 +22,9 @@ struct Placement {
   int corners_missed = 0;  ///< feature corners no outer node came near
   /// Per outer quad (place_outer_nodes' `outer`, in its order): the region it took.
   std::vector<int> quad_region;
+  /// Per outer quad and edge i (its nodes i, i + 1): the other quad on it (-1: none), as
+  /// place_outer_nodes found them; pillow_curves, which adds quads, clears them.
+  std::vector<std::array<int, 4>> quad_neighbours;
 };
 
 /// The core (hexahedra, boundary a 2-manifold) with one more hexahedron on each boundary quad: its

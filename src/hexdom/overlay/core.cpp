@@ -6,6 +6,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "hexdom/common/disjoint_sets.h"
 #include "hexdom/mesh/adjacency.h"
 #include "hexdom/mesh/cell_faces.h"
 
@@ -258,24 +259,19 @@ Core manifold_core(const mesh::Mesh& m, std::vector<char> keep, const std::vecto
     for (int i = 0; i < 8; ++i) work.push_back(m.cells(worst, i));
   }
   // Face-connected pieces of the kept cells; the largest kept.
-  std::vector<int> parent(m.num_cells());
-  for (int x = 0; x < m.num_cells(); ++x) parent[x] = x;
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  DisjointSets pieces(m.num_cells());
   for (const auto& [x, y] : mesh::face_neighbours(m))
-    if (c.keep[x] && c.keep[y]) parent[find(x)] = find(y);
+    if (c.keep[x] && c.keep[y]) pieces.unite(x, y);
   std::unordered_map<int, int> size;
   for (int x = 0; x < m.num_cells(); ++x)
-    if (c.keep[x]) ++size[find(x)];
+    if (c.keep[x]) ++size[pieces.find(x)];
   c.components = static_cast<int>(size.size());
   if (size.empty()) return c;
   int largest = size.begin()->first;
   for (const auto& [root, k] : size)
     if (k > size[largest] || (k == size[largest] && root < largest)) largest = root;
   for (int x = 0; x < m.num_cells(); ++x)
-    if (c.keep[x] && find(x) != largest) {
+    if (c.keep[x] && pieces.find(x) != largest) {
       c.keep[x] = 0;
       ++c.apart;
     }

@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "hexdom/common/disjoint_sets.h"
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/surface_check.h"
@@ -38,13 +39,10 @@ struct Strip {
 };
 
 struct State {
-  std::vector<int> rep;    // union-find over structure vertices
+  DisjointSets rep{0};     // structure vertices joined into one
   std::vector<int> at;     // the vertex whose position and grid point a class takes (its corner)
   std::vector<int> owner;  // square -> the square whose patch its triangles join
-  int find(int v) {
-    while (rep[v] != v) v = rep[v] = rep[rep[v]];
-    return v;
-  }
+  int find(int v) { return rep.find(v); }
   int owner_of(int q) const {
     while (owner[q] != q) q = owner[q];
     return q;
@@ -269,9 +267,9 @@ CollapseSlivers collapse_slivers(GridPolycube& polycube, const CollapseSliversOp
   }
 
   State state;
-  state.rep.resize(nv);
+  state.rep = DisjointSets(nv);
   state.at.resize(nv);
-  for (int v = 0; v < nv; ++v) state.rep[v] = state.at[v] = v;
+  for (int v = 0; v < nv; ++v) state.at[v] = v;
   state.owner.resize(nsq);
   for (int q = 0; q < nsq; ++q) state.owner[q] = q;
   Eigen::MatrixXd P = T.V;  // class positions (at the representative)
@@ -311,7 +309,7 @@ CollapseSlivers collapse_slivers(GridPolycube& polycube, const CollapseSliversOp
         const int k = s.find(vertex_of.at(st.point(keep, l)));
         for (int t = st.t0; t <= st.t0 + st.nt; ++t) {
           const int r = s.find(vertex_of.at(st.point(t, l)));
-          if (r != k) s.rep[r] = k;
+          s.rep.unite(r, k);
         }
       }
       for (int q : st.squares) {

@@ -1,31 +1,26 @@
 #include "hexdom/autopolycube/repair/plane_groups.h"
 
-#include <numeric>
+#include "hexdom/common/disjoint_sets.h"
 
 namespace hexdom::autopolycube {
 
 PlaneGroups plane_groups(const mesh::SurfaceMesh& s, const ChartGraph& g) {
   const int nc = g.num_charts(), nv = static_cast<int>(s.V.rows());
-  std::vector<int> parent(nc);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  DisjointSets groups(nc);
   Eigen::MatrixXi first = Eigen::MatrixXi::Constant(nv, 3, -1);  // first chart met per vertex and axis
   for (int f = 0; f < s.F.rows(); ++f) {
     const int c = g.region(f), a = (g.label[c] - 1) / 2;
     for (int k = 0; k < 3; ++k) {
       int& m = first(s.F(f, k), a);
       if (m < 0) m = c;
-      else if (find(m) != find(c)) parent[find(m)] = find(c);
+      else groups.unite(m, c);
     }
   }
   PlaneGroups p;
   p.of_chart.assign(nc, -1);
   std::vector<int> id_of_root(nc, -1);
   for (int c = 0; c < nc; ++c) {
-    const int r = find(c);
+    const int r = groups.find(c);
     if (id_of_root[r] < 0) {
       id_of_root[r] = p.num_groups();
       p.axis.push_back((g.label[c] - 1) / 2);
