@@ -396,7 +396,7 @@ CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer,
   if (out.copies == 0) return out;
   // The copies' positions: `offset` of the way to their sector's mean quad centroid, on its region.
   std::vector<Eigen::Vector3d> towards(out.copies, Eigen::Vector3d::Zero());
-  std::vector<int> count(out.copies, 0), copy_region(out.copies, -1);
+  std::vector<int> count(out.copies, 0), copy_region(out.copies, -1), original(out.copies, -1);
   auto node_of = [&](int q, int i) {
     const auto it = copy_of.find(sector.find(4 * q + i));
     return it == copy_of.end() ? outer[q][i] : it->second;
@@ -410,17 +410,15 @@ CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer,
       towards[c] += centroid;
       ++count[c];
       copy_region[c] = region[q];
+      original[c] = outer[q][i];
     }
   }
   Eigen::MatrixXd V(n0 + out.copies, 3);
   V.topRows(n0) = m.V;
-  for (int q = 0; q < nq; ++q)
-    for (int i = 0; i < 4; ++i) {
-      const int c = node_of(q, i);
-      if (c < n0) continue;
-      const Eigen::Vector3d x = m.V.row(outer[q][i]).transpose();
-      V.row(c) = feat.project_region(copy_region[c - n0], x + offset * (towards[c - n0] / count[c - n0] - x)).transpose();
-    }
+  for (int c = 0; c < out.copies; ++c) {
+    const Eigen::Vector3d x = m.V.row(original[c]).transpose();
+    V.row(n0 + c) = feat.project_region(copy_region[c], x + offset * (towards[c] / count[c] - x)).transpose();
+  }
   p.kind.resize(n0 + out.copies, optimize::Surface);
   p.a.resize(n0 + out.copies, -1);
   p.b.resize(n0 + out.copies, -1);
