@@ -109,6 +109,8 @@ class Run {
             const int v = m_.cells(c, i);
             if (!listed[v]) { listed[v] = 1; start_.push_back(v); }
           }
+      for (int v : opt.changed_nodes)
+        if (!listed[v]) { listed[v] = 1; start_.push_back(v); }
       imp_->mark_only(start_);
       from_start_ = true;
     }
@@ -143,7 +145,12 @@ class Run {
     // Untangling gets one more stale round: its gains are small but decisive.
     for (int round = 0; round < max_rounds && stale < stale_limit + (imp_->inverted() > 0); ++round) {
       update_floors();
-      if (imp_->inverted() > 0) imp_->mark_all();  // untangling: every node may help
+      // Untangling: every node may help; on an input optimised before (optimised_at), the nodes
+      // around its changes and around every node moved since.
+      if (imp_->inverted() > 0) {
+        if (from_start_) imp_->mark_only(start_);
+        else imp_->mark_all();
+      }
       imp_->smooth_pass();
       const double thr = std::max(worst + 0.2, 0.3);
       for (int k = 0; k < 4; ++k) imp_->optimize_round(thr);
@@ -293,6 +300,9 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   for (int v : opt.fixed_nodes)
     if (v < 0 || v >= input.num_nodes())
       throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
+  for (int v : opt.changed_nodes)
+    if (v < 0 || v >= input.num_nodes())
+      throw GeometryError("changed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
   // The surface and feature curves come from the input, before pillowing renumbers nodes.
   const NodeKinds t0 = node_kinds(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
   BoundaryConstraints cons = boundary_constraints(input, t0, opt.surface);

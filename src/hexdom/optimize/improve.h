@@ -73,8 +73,12 @@ struct ImproveOptions {
   /// smoothing pass and the mean stage then start from the nodes of the cells whose scaled Jacobian
   /// has changed since by more than 1e-3, not from every node (each later pass revisits the nodes
   /// near a move of the pass before, as always): the rest is where the earlier run left it. While
-  /// cells are inverted, untangling still visits every node. Not used on a pillowed mesh.
+  /// cells are inverted, each untangling round visits the nodes around those and around every node
+  /// moved so far, not every node. Not used on a pillowed mesh.
   Eigen::MatrixXd optimised_at;
+  /// With optimised_at: nodes whose constraint changed since (e.g. let off a curve onto a face,
+  /// kinds), although their cells did not; the passes start from them too.
+  std::vector<int> changed_nodes;
   /// Threads of the passes (0: one per core). The mesh is the same whatever their number
   /// (Improver: nodes move colour by colour).
   int threads = 0;

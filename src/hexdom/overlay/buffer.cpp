@@ -455,14 +455,6 @@ CurvePillow pillow_curves(mesh::Mesh& m, std::vector<std::array<int, 4>>& outer,
   return out;
 }
 
-int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& feat) {
-  std::vector<int> nodes;
-  for (int c : cells)
-    for (int i = 0; i < 8; ++i)
-      if (m.cells(c, i) >= 0) nodes.push_back(m.cells(c, i));
-  return loosen_nodes(p, std::move(nodes), feat);
-}
-
 int loosen_nodes(Placement& p, std::vector<int> nodes, const SurfaceFeatures& feat) {
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());

@@ -91,13 +91,11 @@ void spread(mesh::Mesh& m, const std::vector<std::array<int, 4>>& outer, const P
 std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::vector<std::array<int, 4>>& outer,
                                                const SurfaceFeatures& features);
 
-/// Lets the nodes of `cells` of m off one level of feature: a node on a region goes anywhere on the
-/// surface (its nearest point), a node on a curve onto the first of its two regions, a corner onto
-/// one of its curves (the first pair of its regions that shares one). For cells the optimiser could
-/// not make valid with their nodes held on sharp features or on one face. Returns the number of
-/// nodes let off.
-int loosen(Placement& p, const mesh::Mesh& m, const std::vector<int>& cells, const SurfaceFeatures& features);
-/// The same for the given nodes (in any order, repeated or not).
+/// Lets `nodes` (in any order, repeated or not) off one level of feature: a node on a region goes
+/// anywhere on the surface (its nearest point), a node on a curve onto the first of its two regions,
+/// a corner onto one of its curves (the first pair of its regions that shares one). For cells the
+/// optimiser could not make valid with their nodes held on sharp features or on one face. Returns
+/// the number of nodes let off.
 int loosen_nodes(Placement& p, std::vector<int> nodes, const SurfaceFeatures& features);
 
 /// Where node v of a placement goes for a candidate position x (its region, curve or corner).

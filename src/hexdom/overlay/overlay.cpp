@@ -199,28 +199,34 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   if (!mend && inverted(ir.after) > 0 && opt.log)
     opt.log(0, fmt("overlay: spacing %g lost %.0f%% of the solid: its %.0f inverted cells are left as they are, a finer "
                    "grid follows", h.maxCoeff(), 100 * std::abs(ir.after.total_volume / enclosed - 1), double(inverted(ir.after))));
-  // The optimiser once more after nodes were let off their features (loosen, loosen_nodes).
-  auto improve_again = [&] {
+  // The optimiser once more after `nodes` were let off their features (loosen_nodes): its
+  // passes start around them, the rest of the mesh is where the run before left it.
+  auto improve_again = [&](std::vector<int> nodes) {
     io.kinds = place_of.kind;
     io.curve_neighbours = curve_neighbours(place_of, outer, feat);
+    io.optimised_at = ir.mesh.V;
+    io.changed_nodes = std::move(nodes);
     optimize::ImproveResult again = optimize::improve(ir.mesh, io);
+    io.optimised_at.resize(0, 0);
+    io.changed_nodes.clear();
     opt.deadline.check("overlay");
     return again;
   };
   // Cells the optimiser could not make valid with their nodes held on curves, corners and regions:
-  // those nodes let off one level (loosen), the optimiser again, the better kept; three times at
-  // most (a corner node can end anywhere on the surface).
+  // those nodes let off one level (loosen_nodes), the optimiser again, the better kept; three times
+  // at most (a corner node can end anywhere on the surface).
   for (int round = 0; mend && round < 3 && inverted(ir.after) > 0; ++round) {
     const quality::CellMetrics metrics = quality::compute_metrics(ir.mesh);
-    std::vector<int> bad;
+    std::vector<int> bad;  // the nodes of the cells left inverted
     for (int c = 0; c < ir.mesh.num_cells(); ++c)
-      if (!(metrics.scaled_jacobian(c) > 0)) bad.push_back(c);
-    const int freed = loosen(place_of, ir.mesh, bad, feat);
+      if (!(metrics.scaled_jacobian(c) > 0))
+        for (int i = 0; i < mesh::node_count(ir.mesh.type(c)); ++i) bad.push_back(ir.mesh.cells(c, i));
+    const int freed = loosen_nodes(place_of, bad, feat);
     if (freed == 0) break;
-    optimize::ImproveResult again = improve_again();
+    optimize::ImproveResult again = improve_again(std::move(bad));
     if (opt.log)
-      opt.log(0, fmt("overlay: %.0f inverted cells: %.0f of their nodes let off their curves or corners, ", double(bad.size()),
-                     double(freed)) + fmt("%.0f inverted after", double(inverted(again.after))));
+      opt.log(0, fmt("overlay: %.0f inverted cells: %.0f of their nodes let off their curves or corners, ",
+                     double(inverted(ir.after)), double(freed)) + fmt("%.0f inverted after", double(inverted(again.after))));
     if (inverted(again.after) > inverted(ir.after)) break;
     ir = std::move(again);
   }
@@ -234,7 +240,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     if (!(ratio > opt.max_edge_ratio)) break;
     const std::vector<int> held = held_short_edges(ir.mesh, place_of, opt.max_edge_ratio);
     if (held.empty() || loosen_nodes(place_of, held, feat) == 0) break;
-    optimize::ImproveResult again = improve_again();
+    optimize::ImproveResult again = improve_again(held);
     if (opt.log)
       opt.log(0, fmt("overlay: largest edge ratio %.1f: %.0f nodes on the ends of the shortest edges let off their curves or "
                      "corners, %.1f after", ratio, double(held.size()), quality::max_edge_ratio(again.after)));
