@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 
 namespace hexdom::optimize {
 
@@ -33,17 +32,22 @@ NodeKinds node_kinds(const mesh::Mesh& m, double feature_angle, const std::vecto
   t.faces = mesh::boundary_faces(m);
   for (int f = 0; f < static_cast<int>(t.faces.size()); ++f)
     for (int i = 0; i < t.faces[f].n; ++i) t.node_faces[t.faces[f].v[i]].push_back(f);
-  // Boundary edges and their two faces.
-  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  // Boundary edges and their faces: (lower node, higher node, face) by edge, then face order.
+  std::vector<std::array<int, 3>> edge_face;
   for (int f = 0; f < static_cast<int>(t.faces.size()); ++f)
     for (int i = 0; i < t.faces[f].n; ++i) {
       int a = t.faces[f].v[i], b = t.faces[f].v[(i + 1) % t.faces[f].n];
-      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(f);
+      edge_face.push_back({std::min(a, b), std::max(a, b), f});
     }
+  std::sort(edge_face.begin(), edge_face.end());
   t.curve_nbrs.assign(nn, {});
   const double cos_limit = std::cos(feature_angle * M_PI / 180.0);
   std::vector<std::pair<int, int>> joined;  // faces on both sides of an edge that is not sharp
-  for (const auto& [e, fs] : edge_faces) {
+  std::vector<int> fs;
+  for (size_t i = 0; i < edge_face.size();) {
+    const std::pair<int, int> e(edge_face[i][0], edge_face[i][1]);
+    fs.clear();
+    for (; i < edge_face.size() && edge_face[i][0] == e.first && edge_face[i][1] == e.second; ++i) fs.push_back(edge_face[i][2]);
     bool sharp_edge;
     if (sharp) {
       sharp_edge = (*sharp)[e.first] && (*sharp)[e.second];
