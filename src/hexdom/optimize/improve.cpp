@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
@@ -297,12 +298,11 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   if (opt.optimised_at.rows() > 0 && (opt.optimised_at.rows() != input.num_nodes() || opt.optimised_at.cols() != 3))
     throw GeometryError("optimised_at has " + std::to_string(opt.optimised_at.rows()) + " x " + std::to_string(opt.optimised_at.cols()) +
                         " entries for a mesh of " + std::to_string(input.num_nodes()) + " nodes (#V x 3 expected)");
-  for (int v : opt.fixed_nodes)
-    if (v < 0 || v >= input.num_nodes())
-      throw GeometryError("fixed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
-  for (int v : opt.changed_nodes)
-    if (v < 0 || v >= input.num_nodes())
-      throw GeometryError("changed node " + std::to_string(v) + " is outside the mesh's " + std::to_string(input.num_nodes()) + " nodes");
+  for (const auto& [nodes, what] : {std::pair(&opt.fixed_nodes, "fixed"), std::pair(&opt.changed_nodes, "changed")})
+    for (int v : *nodes)
+      if (v < 0 || v >= input.num_nodes())
+        throw GeometryError(std::string(what) + " node " + std::to_string(v) + " is outside the mesh's " +
+                            std::to_string(input.num_nodes()) + " nodes");
   // The surface and feature curves come from the input, before pillowing renumbers nodes.
   const NodeKinds t0 = node_kinds(input, opt.feature_angle, have_sharp ? &sharp : nullptr);
   BoundaryConstraints cons = boundary_constraints(input, t0, opt.surface);

@@ -29,6 +29,17 @@ TEST(FaceNeighbours, PairsTheCellsSharingAFace) {
   b.add(CellType::Hex, h3, 1);
   const mesh::Mesh m = b.finish(Eigen::MatrixXd::Zero(25, 3));
   EXPECT_EQ(mesh::face_neighbours(m), (std::vector<std::array<int, 2>>{{0, 1}, {1, 2}, {2, 3}, {3, 4}}));
+  // Node ids beyond the nodes given (a mesh not checked yet; the table sorts them another way):
+  // the same pairs and the same boundary faces.
+  mesh::Mesh unchecked = m;
+  unchecked.V = Eigen::MatrixXd::Zero(10, 3);
+  EXPECT_EQ(mesh::face_neighbours(unchecked), mesh::face_neighbours(m));
+  const auto faces = mesh::boundary_faces(m), same = mesh::boundary_faces(unchecked);
+  ASSERT_EQ(same.size(), faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    EXPECT_EQ(same[f].cell, faces[f].cell);
+    EXPECT_EQ(same[f].v, faces[f].v);
+  }
 }
 
 TEST(FaceNeighbours, AFaceOfThreeCellsIsAnError) {
