@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "hexdom/common/disjoint_sets.h"
+
 namespace hexdom::optimize {
 
 using mesh::CellType;
@@ -67,15 +69,10 @@ NodeKinds node_kinds(const mesh::Mesh& m, double feature_angle, const std::vecto
     }
   }
   {
-    std::vector<int> up(t.faces.size());
-    for (size_t f = 0; f < up.size(); ++f) up[f] = static_cast<int>(f);
-    auto root = [&](int f) {
-      while (up[f] != f) f = up[f] = up[up[f]];
-      return f;
-    };
-    for (const auto& [a, b] : joined) up[root(a)] = root(b);
+    DisjointSets regions(static_cast<int>(t.faces.size()));
+    for (const auto& [a, b] : joined) regions.unite(a, b);
     t.region.resize(t.faces.size());
-    for (size_t f = 0; f < up.size(); ++f) t.region[f] = root(static_cast<int>(f));
+    for (int f = 0; f < regions.size(); ++f) t.region[f] = regions.find(f);
   }
   t.kind.assign(nn, Interior);
   for (int v = 0; v < nn; ++v) {

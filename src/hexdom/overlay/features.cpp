@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 #include <set>
 #include <string>
 
+#include "hexdom/common/disjoint_sets.h"
 #include "hexdom/common/error.h"
 #include "hexdom/mesh/triangle_adjacency.h"
 
@@ -22,12 +22,7 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
   }
   normal_ = normal;
   const double cos_across = std::cos(opt.angle_across * M_PI / 180), cos_within = std::cos(opt.angle_within * M_PI / 180);
-  std::vector<int> up(nf);
-  std::iota(up.begin(), up.end(), 0);
-  auto root = [&](int f) {
-    while (up[f] != f) f = up[f] = up[up[f]];
-    return f;
-  };
+  DisjointSets joined(nf);  // triangles joined across edges that are no curve
   const bool given = !opt.regions.empty();
   if (given && static_cast<int>(opt.regions.size()) != nf)
     throw GeometryError("features: " + std::to_string(opt.regions.size()) + " regions given for " + std::to_string(nf) + " triangles");
@@ -56,12 +51,12 @@ SurfaceFeatures::SurfaceFeatures(const mesh::SurfaceMesh& s, const FeatureOption
       if (curve)
         sharp.push_back({s.F(f, k), s.F(f, (k + 1) % 3), f, g});
       else
-        up[root(f)] = root(g);
+        joined.unite(f, g);
     }
   std::vector<int> id(nf, -1);
   region_.resize(nf);
   for (int f = 0; f < nf; ++f) {
-    const int r = root(f);
+    const int r = joined.find(f);
     if (id[r] < 0) id[r] = regions_++;
     region_[f] = id[r];
   }
