@@ -28,6 +28,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Whether cell c, changed since the input was optimised (ImproveOptions::optimised_at: the nodes
+// were at `was`, they are at `now`), needs the smoothing: inverted, fallen below `worst_was` (the
+// worst cell of `was`: it would lower the mesh's worst), or its edge ratio risen above `max_ratio`
+// (when > 0). The optimisation rounds and the mean stage raise the others; smoothing them would
+// only undo what the mean stage reached (and cost its passes again).
+bool poor_cell(const mesh::Mesh& was, const mesh::Mesh& now, int c, double sj_now, double worst_was, double max_ratio) {
+  if (sj_now <= 0 || sj_now < worst_was) return true;
+  if (!(max_ratio > 0)) return false;
+  const double r_now = quality::edge_ratio(now.type(c), quality::cell_points(now, c));
+  return r_now > max_ratio && r_now > quality::edge_ratio(was.type(c), quality::cell_points(was, c));
+}
+
 // One candidate mesh on its way through the stages: `input`, pillowed or not, with its topology
 // and the improver working on it.
 class Run {
@@ -97,22 +109,32 @@ class Run {
       unhooked_->project = nullptr;
     }
     imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
+    std::vector<int> poor_start;  // nodes of the changed cells poor_cell finds, and changed_nodes
     imp_->set_keep(opt.floor);
     imp_->set_threads(thread_count(opt.threads));
     if (!with_pillow && opt.optimised_at.rows() > 0) {
       // Where the input was optimised before: its passes start from the cells changed since.
+      // Each node once in each list (mark_only marks around it).
       mesh::Mesh was = input;
       was.V = opt.optimised_at;
-      std::vector<char> listed(m_.num_nodes(), 0);  // each node once: mark_only marks around it
-      for (int c = 0; c < m_.num_cells(); ++c)
-        if (std::abs(cell_sj(was, c) - imp_->sj(c)) > 1e-3)
-          for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) {
-            const int v = m_.cells(c, i);
-            if (!listed[v]) { listed[v] = 1; start_.push_back(v); }
-          }
-      for (int v : opt.changed_nodes)
-        if (!listed[v]) { listed[v] = 1; start_.push_back(v); }
-      imp_->mark_only(start_);
+      std::vector<char> listed(m_.num_nodes(), 0), listed_poor(m_.num_nodes(), 0);
+      auto add = [&](int v, std::vector<char>& seen, std::vector<int>& to) {
+        if (!seen[v]) { seen[v] = 1; to.push_back(v); }
+      };
+      std::vector<double> sj_was(m_.num_cells());
+      for (int c = 0; c < m_.num_cells(); ++c) sj_was[c] = cell_sj(was, c);
+      const double worst_was = sj_was.empty() ? 1.0 : *std::min_element(sj_was.begin(), sj_was.end());
+      for (int c = 0; c < m_.num_cells(); ++c) {
+        const double sj_now = imp_->sj(c);
+        if (!(std::abs(sj_was[c] - sj_now) > 1e-3)) continue;
+        const bool poor = poor_cell(was, m_, c, sj_now, worst_was, opt.max_edge_ratio);
+        for (int i = 0; i < mesh::node_count(m_.type(c)); ++i) {
+          add(m_.cells(c, i), listed, start_);
+          if (poor) add(m_.cells(c, i), listed_poor, poor_start);
+        }
+      }
+      for (int v : opt.changed_nodes) add(v, listed, start_), add(v, listed_poor, poor_start);
+      imp_->mark_only(poor_start);  // the first smoothing pass
       from_start_ = true;
     }
     log_(name() + (with_pillow ? " (" + std::to_string(r_.pillow_cells) + " cells added)" : "") +

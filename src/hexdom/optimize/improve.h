@@ -69,15 +69,19 @@ struct ImproveOptions {
   /// shared data only). Otherwise the boundary nodes it places move on the calling thread.
   bool project_concurrent = false;
   /// Where not empty (#V x 3): the node positions at which the input was optimised before (by an
-  /// earlier improve), its cells unchanged since, e.g. before the snap moved its boundary. The first
-  /// smoothing pass and the mean stage then start from the nodes of the cells whose scaled Jacobian
-  /// has changed since by more than 1e-3, not from every node (each later pass revisits the nodes
-  /// near a move of the pass before, as always): the rest is where the earlier run left it. While
+  /// earlier improve), its cells unchanged since, e.g. before the snap moved its boundary. The mean
+  /// stage then starts from the nodes of the cells whose scaled Jacobian has changed since by more
+  /// than 1e-3, not from every node, and the first smoothing pass from those of such cells that are
+  /// inverted, below the worst cell of the mesh as optimised, or (with max_edge_ratio) above the
+  /// ratio target and worse than before: the optimisation rounds and the mean stage raise the
+  /// others, and smoothing them would only undo what the mean stage reached. Each later pass
+  /// revisits the nodes near a move of the pass before, as always: the rest is where the earlier
+  /// run left it. While
   /// cells are inverted, each untangling round visits the nodes around those and around every node
   /// moved so far, not every node. Not used on a pillowed mesh.
   Eigen::MatrixXd optimised_at;
   /// With optimised_at: nodes whose constraint changed since (e.g. let off a curve onto a face,
-  /// kinds), although their cells did not; the passes start from them too.
+  /// kinds), although their cells did not; the passes (smoothing included) start from them too.
   std::vector<int> changed_nodes;
   /// Threads of the passes (0: one per core). The mesh is the same whatever their number
   /// (Improver: nodes move colour by colour).

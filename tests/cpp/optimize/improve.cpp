@@ -382,6 +382,68 @@ TEST(Improve, ChangedNodesStartTheUntanglingAroundThem) {
       GeometryError);
 }
 
+// With optimised_at, the first smoothing pass starts from the changed cells that are inverted,
+// below the worst cell as optimised, or above the edge-ratio target (and worse than before):
+// smoothing the others only undoes what the mean stage reached. A jittered grid (far from what
+// smoothing makes of it) whose centre node moved since it was optimised: a little (its cells change
+// by more than 1e-3 and stay above the grid's worst), no node smooths, unless a ratio target lies
+// below the largest ratio the move raised; far enough for a cell to fall below the grid's worst,
+// or to invert, they smooth.
+TEST(Improve, OptimisedAtSmoothsOnlyAroundPoorCells) {
+  const mesh::Mesh m = cube_grid(6, 0.15);
+  const int centre = 3 + 7 * (3 + 7 * 3);
+  optimize::ImproveOptions opt;
+  opt.smooth = 1;
+  opt.ratio_rounds = 0;  // the ratio stage itself moves nothing: what moves is the smoothing
+  opt.optimised_at = m.V;
+  struct Moved {
+    int nodes = 0;
+    double worst_changed = 2, raised_ratio = 0;  // over the cells the move changed
+  };
+  auto after_moving_centre = [&](const Eigen::RowVector3d& d) {
+    mesh::Mesh now = m;
+    now.V.row(centre) += d;
+    const quality::CellMetrics before = quality::compute_metrics(m), after = quality::compute_metrics(now);
+    Moved r;
+    for (int c = 0; c < m.num_cells(); ++c) {
+      if (!(std::abs(after.scaled_jacobian(c) - before.scaled_jacobian(c)) > 1e-3)) continue;
+      r.worst_changed = std::min(r.worst_changed, after.scaled_jacobian(c));
+      if (after.edge_ratio(c) > before.edge_ratio(c)) r.raised_ratio = std::max(r.raised_ratio, after.edge_ratio(c));
+    }
+    const mesh::Mesh out = optimize::improve(now, opt).mesh;
+    for (int v = 0; v < m.num_nodes(); ++v) r.nodes += (out.V.row(v) - now.V.row(v)).norm() > 1e-12;
+    return r;
+  };
+  const double worst = sj_of(m).minCoeff();
+  const Eigen::RowVector3d little(0.004, 0.003, 0), far(0.15, 0.15, 0.15);
+  const Moved a = after_moving_centre(little);
+  opt.max_edge_ratio = a.raised_ratio - 1e-9;
+  const Moved b = after_moving_centre(little);
+  opt.max_edge_ratio = 0;
+  const Moved c = after_moving_centre(far);
+  Moved d;  // the shortest move along the diagonal that takes a valid cell below the grid's worst
+  for (int k = 1; k <= 30 && !(d.worst_changed > 0 && d.worst_changed < worst); ++k) d = after_moving_centre(far * k / 30.0);
+  std::printf("grid's worst %.3f; changed cells' worst %.3f: %d nodes smoothed, %d with a ratio target of %.4f; "
+              "%.3f: %d; %.3f: %d\n", worst, a.worst_changed, a.nodes, b.nodes, a.raised_ratio, d.worst_changed, d.nodes,
+              c.worst_changed, c.nodes);
+  ASSERT_LT(a.worst_changed, 2) << "the small move must change cells by more than 1e-3, or the test would not tell";
+  ASSERT_GE(a.worst_changed, worst);
+  ASSERT_GT(a.raised_ratio, 1);
+  ASSERT_LE(c.worst_changed, 0);
+  ASSERT_GT(d.worst_changed, 0);
+  ASSERT_LT(d.worst_changed, worst);
+  EXPECT_EQ(a.nodes, 0);
+  EXPECT_GT(b.nodes, 0);
+  EXPECT_GT(c.nodes, 0);
+  EXPECT_GT(d.nodes, 0);
+  // Without optimised_at the same pass smooths the whole grid.
+  opt.optimised_at.resize(0, 0);
+  const mesh::Mesh out = optimize::improve(m, opt).mesh;
+  int all = 0;
+  for (int v = 0; v < m.num_nodes(); ++v) all += (out.V.row(v) - m.V.row(v)).norm() > 1e-12;
+  EXPECT_GT(all, 100);
+}
+
 // With its time budget passed, the improvement ends after its first round: one run, no mean pass,
 // still a valid mesh of the same box (no inverted cell, the unit volume), and the log says why.
 TEST(Improve, APassedDeadlineStopsAfterOneRoundWithAValidMesh) {
