@@ -382,6 +382,29 @@ TEST(Improve, ChangedNodesStartTheUntanglingAroundThem) {
       GeometryError);
 }
 
+// The recommended sequence: a pillowed run below the bar goes on with the pattern search only when
+// the run without a layer misses the bar too. A nearly regular grid of cubes (worst SJ near 1, the
+// bar): the layer's cells at the cube's edges stay far below it, the run without a layer keeps it,
+// so the pillowed run makes its gradient rounds alone (one log line of its worst stage, not two).
+TEST(Improve, APillowedRunBelowTheBarSkipsThePatternWhenTheRunWithoutALayerReachesIt) {
+  const mesh::Mesh m = cube_grid(4, 0.02);
+  optimize::ImproveOptions opt;
+  std::vector<std::string> lines;
+  opt.log = [&](int, const std::string& s) { lines.push_back(s); };
+  const optimize::ImproveResult r = optimize::improve(m, opt);
+  int pillowed_stages = 0;
+  bool kept_without = false;
+  for (const std::string& s : lines) {
+    std::printf("%s\n", s.c_str());
+    pillowed_stages += s.rfind("pillowed: worst scaled Jacobian", 0) == 0 && s.find(" rounds (") != std::string::npos;
+    kept_without |= s.find("kept the result without pillowing") != std::string::npos;
+  }
+  EXPECT_EQ(r.pillow_cells, 0);
+  EXPECT_TRUE(kept_without);
+  EXPECT_EQ(pillowed_stages, 1);
+  EXPECT_GE(r.after.hex.sj_min, r.before.hex.sj_min);
+}
+
 // With optimised_at, the first smoothing pass starts from the changed cells that are inverted,
 // below the worst cell as optimised, or above the edge-ratio target (and worse than before):
 // smoothing the others only undoes what the mean stage reached. A jittered grid (far from what
