@@ -510,6 +510,13 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   std::exception_ptr first_error;
   mesh::SurfaceMesh first_labels;
   autopolycube::AutoPolycube first_polycube;
+  std::vector<std::pair<double, Eigen::VectorXi>> defeated;  // labellings that failed, by edge weight
+  auto fail_as_first = [&] {  // no weight left: the first failure, with its labels and polycube
+    r.labels = std::move(first_labels);
+    r.polycube = std::move(first_polycube);
+    r.stage = "autopolycube";
+    std::rethrow_exception(first_error);
+  };
   for (size_t attempt = 0; attempt < weights.size(); ++attempt) {
     r.stage = "segment";
     opt.deadline.check("segment");  // also between the retries: each is a whole segmentation and polycube
@@ -524,6 +531,16 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     r.edge_weight = weights[attempt];
     say(fmt("segment: %.0f triangles labelled (lambda %g) in %.2f s", static_cast<double>(surface.F.rows()), weights[attempt],
             since(t)));
+    // A labelling that an earlier weight gave and the polycube failed on fails the same way again
+    // (autopolycube depends on the labels alone): not built twice.
+    const auto same = std::find_if(defeated.begin(), defeated.end(), [&](const auto& d) { return d.second == r.labels.patch; });
+    if (same != defeated.end()) {
+      const bool last = attempt + 1 == weights.size();
+      say(fmt("autopolycube: lambda %g labels the triangles as lambda %g did", weights[attempt], same->first) +
+          (last ? std::string("; no further edge weight") : fmt("; segmenting again with lambda %g", weights[attempt + 1])));
+      if (!last) continue;
+      fail_as_first();
+    }
 
     r.stage = "autopolycube";
     t = Clock::now();
@@ -542,12 +559,8 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
         first_labels = r.labels;
         first_polycube = r.polycube;
       }
-      if (attempt + 1 == weights.size()) {
-        r.labels = std::move(first_labels);
-        r.polycube = std::move(first_polycube);
-        r.stage = "autopolycube";
-        std::rethrow_exception(first_error);
-      }
+      defeated.emplace_back(weights[attempt], r.labels.patch);
+      if (attempt + 1 == weights.size()) fail_as_first();
       say(std::string("autopolycube: ") + e.what() + "; segmenting again with lambda " + fmt("%g", weights[attempt + 1]));
       continue;
     }
