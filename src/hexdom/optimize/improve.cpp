@@ -109,7 +109,6 @@ class Run {
       unhooked_->project = nullptr;
     }
     imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
-    std::vector<int> poor_start;  // nodes of the changed cells poor_cell finds, and changed_nodes
     imp_->set_keep(opt.floor);
     imp_->set_threads(thread_count(opt.threads));
     if (!with_pillow && opt.optimised_at.rows() > 0) {
@@ -118,6 +117,7 @@ class Run {
       mesh::Mesh was = input;
       was.V = opt.optimised_at;
       std::vector<char> listed(m_.num_nodes(), 0), listed_poor(m_.num_nodes(), 0);
+      std::vector<int> poor_start;  // nodes of the changed cells poor_cell finds, and changed_nodes
       auto add = [&](int v, std::vector<char>& seen, std::vector<int>& to) {
         if (!seen[v]) { seen[v] = 1; to.push_back(v); }
       };
@@ -389,11 +389,10 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
     // Below the bar, a pillowed run goes on with the pattern search (Improver::optimize_round).
     // Where a polycube corner lies on a round edge of a face under the layer, the layer cell's
     // corner there is capped by the angle between the face's two edges on the arc, which the
-    // gradient alone does not open and the pattern does. What it reaches does not end the sequence
-    // (a pillowed run lifted past the bar would stop it before a better run without a layer); it
-    // takes part in the final choice. Figures: docs/tuning-notes.md. It is made only when the run
-    // without a layer misses the bar too: otherwise the pillowed run would have to climb from below
-    // the bar to within 0.02 of a run above it to be kept.
+    // gradient alone does not open and the pattern does; it takes part in the final choice. It is
+    // made after the run without a layer, and only when that one misses the bar too: otherwise the
+    // pillowed run would have to climb from below the bar to within 0.02 of a run above it to be
+    // kept. Figures: docs/tuning-notes.md.
     for (Run* x : pattern_later) {
       if ((without_layer && good_enough(*without_layer)) || opt.deadline.passed()) break;
       x->search_pattern();

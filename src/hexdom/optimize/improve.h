@@ -76,9 +76,8 @@ struct ImproveOptions {
   /// ratio target and worse than before: the optimisation rounds and the mean stage raise the
   /// others, and smoothing them would only undo what the mean stage reached. Each later pass
   /// revisits the nodes near a move of the pass before, as always: the rest is where the earlier
-  /// run left it. While
-  /// cells are inverted, each untangling round visits the nodes around those and around every node
-  /// moved so far, not every node. Not used on a pillowed mesh.
+  /// run left it. While cells are inverted, each untangling round visits the nodes around those and
+  /// around every node moved so far, not every node. Not used on a pillowed mesh.
   Eigen::MatrixXd optimised_at;
   /// With optimised_at: nodes whose constraint changed since (e.g. let off a curve onto a face,
   /// kinds), although their cells did not; the passes (smoothing included) start from them too.
