@@ -12,7 +12,7 @@ the share of mean edges within 20% of it; neighbour size ratio (cube roots of vo
 sharing a face) at the 99th percentile and its largest.
 
 Run: /usr/bin/python3 bench/bench_local_size.py [--hexdom build/bin/hexdom] [--corpus DIR]
-     [--limit 12] [--divisions 2,3,5]
+     [--limit 12] [--divisions 2,3,5] [--method auto|overlay|polycube]
 Prints; never asserts.
 """
 
@@ -140,6 +140,9 @@ def main(argv):
     ap.add_argument("--corpus", help="folder of make_corpus.py's STEP files")
     ap.add_argument("--limit", type=int, default=12)
     ap.add_argument("--divisions", default="2,3,5")
+    ap.add_argument("--method", default="auto", choices=("auto", "overlay", "polycube"),
+                    help="the path asked for with the local size (auto: the overlay's, which meets them); the "
+                         "plain mesh is that path's without it (auto: the overlay's)")
     a = ap.parse_args(argv)
     import FreeCAD  # noqa: F401
     import Part
@@ -160,12 +163,13 @@ def main(argv):
         face_no = 10 if name == "bracket" else chosen_face(shape)
         face = shape.Solids[0].Faces[face_no - 1]
         H = shape.Solids[0].BoundBox.DiagonalLength / 30
-        base, _, err = run(a.hexdom, part, os.path.join(work, name + "_plain.vtu"), ["--method", "overlay"])
+        plain_method = "overlay" if a.method == "auto" else a.method
+        base, _, err = run(a.hexdom, part, os.path.join(work, name + "_plain.vtu"), ["--method", plain_method])
         plain = counts(base)[0] if base else 0
         for d in divisions:
             size = H / d
             out = os.path.join(work, "%s_%g.vtu" % (name, d))
-            rep, seconds, err = run(a.hexdom, part, out, ["--face-size", "%d=%.6g" % (face_no, size)])
+            rep, seconds, err = run(a.hexdom, part, out, ["--face-size", "%d=%.6g" % (face_no, size), "--method", a.method])
             if rep is None:
                 print("%-26s %5d %7.3g  failed: %s" % (name, face_no, size, err[0][:80]))
                 rows.append(None)

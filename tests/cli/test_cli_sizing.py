@@ -131,6 +131,21 @@ def _cell_sizes_and_centres(g):
     return np.cbrt(np.abs(oracles.signed_volumes(g))), np.array([P[c].mean(axis=0) for c in conn])
 
 
+def _valid_whole_and_as_before_far_away(g0, g, run):
+    """Asserts the bracket's mesh g with a local size on its hole: worst SJ above 0.3 (Verdict),
+    the B-rep's volume within 1%, and far from the hole (the upright, x < 10 and z > 20) the cell
+    sizes of g0, its mesh without it. Returns g's cell sizes (cube roots of volumes)."""
+    sj, _ = oracles.verdict_metrics(g)
+    assert sj.min() > 0.3, sj.min()
+    brep = float(re.search(r"B-rep volume ([\d.eE+-]+)", run.stdout).group(1))
+    assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(brep, rel=0.01)
+    s0, c0 = _cell_sizes_and_centres(g0)
+    s, c = _cell_sizes_and_centres(g)
+    far0, far = (c0[:, 0] < 10) & (c0[:, 2] > 20), (c[:, 0] < 10) & (c[:, 2] > 20)
+    assert np.median(s[far]) == pytest.approx(np.median(s0[far0]), rel=0.2)
+    return s
+
+
 def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_bin, tmp_path):
     # Face10 of the bundled bracket is its hole (radius 6 through the 10 mm base at x 40, y 20).
     # Asked 1 there (the default size is about 2.9): the overlay path, its grid refined by thirds
@@ -147,18 +162,15 @@ def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_b
     assert len(q) > 5 * len(q0), (len(q), len(q0))
     assert abs(np.median(q) - 1.0) <= 0.2, np.median(q)
     assert 0.7 <= np.percentile(q, 10) and np.percentile(q, 90) <= 1.3, np.percentile(q, [10, 90])
-    sj, _ = oracles.verdict_metrics(g)
-    assert sj.min() > 0.3, sj.min()
-    brep = float(re.search(r"B-rep volume ([\d.eE+-]+)", run.stdout).group(1))
-    assert float(np.sum(oracles.signed_volumes(g))) == pytest.approx(brep, rel=0.01)
-    # Far from the hole (the upright, x < 10 and z > 20): the sizes of the mesh without it.
-    s0, c0 = _cell_sizes_and_centres(g0)
-    s, c = _cell_sizes_and_centres(g)
-    far0, far = (c0[:, 0] < 10) & (c0[:, 2] > 20), (c[:, 0] < 10) & (c[:, 2] > 20)
-    assert np.median(s[far]) == pytest.approx(np.median(s0[far0]), rel=0.2)
-    # Neighbours (cells sharing a face) graded: sizes (cube roots of volumes) within a factor 2
-    # for 99% of the pairs; the 3-refinement templates' pieces reach about 2.05 times the small
-    # cubes beside them, 2.35 after smoothing here.
+    s = _valid_whole_and_as_before_far_away(g0, g, run)
+    # Neighbours graded: the 3-refinement templates' pieces reach about 2.05 times the small cubes
+    # beside them, 2.35 after smoothing here.
+    ratios = _neighbour_ratios(g, s)
+    assert np.percentile(ratios, 99) <= 2.0 and max(ratios) < 2.6, (np.percentile(ratios, 99), max(ratios))
+
+
+def _neighbour_ratios(g, sizes):
+    """Per pair of hexes sharing a face: the larger size over the smaller (sizes per cell)."""
     P, types, conn = oracles.grid_arrays(g)
     owner = {}
     ratios = []
@@ -166,10 +178,32 @@ def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_b
         for f in ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)):
             key = tuple(sorted(cell[k] for k in f))
             if key in owner:
-                a, b = s[owner[key]], s[i]
+                a, b = sizes[owner[key]], sizes[i]
                 ratios.append(max(a, b) / min(a, b))
             else:
                 owner[key] = i
+    return np.array(ratios)
+
+
+def test_a_local_size_refines_the_polycube_mesh_by_thirds(hexdom_bin, tmp_path):
+    # --method polycube, the hole (Face10) at 0.5: the polycube's cell made 1.8 (a third of it
+    # within 1.2 of 0.5), its hexes near the hole split in 27 and their neighbours given the
+    # transition templates; the quads on the hole about 0.5, the rest of the mesh as the polycube
+    # path's mesh of that cell without the local size.
+    assert BRACKET.is_file(), BRACKET
+    plain, local = tmp_path / "plain.vtu", tmp_path / "local.vtu"
+    run0 = _mesh_default(hexdom_bin, BRACKET, plain, "--method", "polycube", "--size", "1.8")
+    run = _mesh_default(hexdom_bin, BRACKET, local, "--method", "polycube", "--face-size", "10=0.5")
+    assert run0.returncode == 0 and run.returncode == 0, (run0.stderr, run.stderr)
+    assert "local sizes: the polycube's cell 2.92499 made 1.8" in run.stderr, run.stderr
+    assert re.search(r"local sizes: 1 levels by thirds \(\d+ cells split, \d+ transition templates\)", run.stderr), run.stderr
+    assert "kept: polycube path" in run.stderr, run.stderr
+    g0, g = oracles.read_vtu(str(plain)), oracles.read_vtu(str(local))
+    q = _quads_on_hole(g)
+    assert abs(np.median(q) - 0.5) <= 0.1, np.median(q)
+    assert g.GetNumberOfCells() > 3 * g0.GetNumberOfCells()
+    s = _valid_whole_and_as_before_far_away(g0, g, run)
+    ratios = _neighbour_ratios(g, s)
     assert np.percentile(ratios, 99) <= 2.0 and max(ratios) < 2.6, (np.percentile(ratios, 99), max(ratios))
 
 
@@ -179,7 +213,6 @@ def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_b
         (["--face-size", "11=1"], "local size on face 11: the part has no such face (its faces are numbered 1 to 10)"),
         (["--face-size", "10"], "--face-size 10: expected FACE=SIZE"),
         (["--face-size", "Face10=0"], "the face number must be at least 1 and the size positive"),
-        (["--face-size", "10=1", "--method", "polycube"], "local sizes on faces and edges are met by the overlay path only"),
         (["--face-size", "10=1", "--growth-rate", "1"], "growth rate 1: it must be above 1 and at most 3"),
         (["--edge-size", "Edge99=1"], "Edge99 does not exist (the solid has 24 edges)"),
         (["--edge-size", "20"], "--edge-size 20: expected EDGE=SIZE"),

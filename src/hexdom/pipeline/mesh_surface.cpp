@@ -14,6 +14,7 @@
 #include "hexdom/generation/generate.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
+#include "hexdom/pipeline/local_refinement.h"
 #include "hexdom/pipeline/stretch.h"
 
 namespace hexdom::pipeline {
@@ -267,10 +268,7 @@ void check_size_bounds(const MeshSurfaceOptions& opt) {
 Method local_size_method(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh* surface, const std::string& what) {
   if (opt.overlay.local_sizes.empty()) return opt.method;
   if (surface) overlay::check_local_sizes(opt.overlay.local_sizes, *surface, what);
-  if (opt.method == Method::Polycube)
-    throw InputError("local sizes on faces and edges are met by the overlay path only: the polycube path's blocks do not refine "
-                     "locally (use the auto or overlay method)");
-  return Method::Overlay;
+  return opt.method == Method::Polycube ? Method::Polycube : Method::Overlay;
 }
 
 double bounded_size(double size, const MeshSurfaceOptions& opt) {
@@ -482,20 +480,11 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
 
 /// "worst hex SJ 0.307, prism 0.306, tet 0.118, 0 inverted": the types present only (a mesh with
 /// tet and prism blocks may have no hex, whose minimum is then NaN).
-std::string worst_by_type(const quality::QualityReport& q) {
-  std::string s;
-  const std::pair<const char*, const quality::TypeStats*> types[] = {{"hex", &q.hex}, {"prism", &q.prism}, {"tet", &q.tet}};
-  for (const auto& [name, t] : types)
-    if (t->count > 0) s += (s.empty() ? std::string("worst ") + name + " SJ" : std::string(", ") + name) + fmt(" %.3f", t->sj_min);
-  if (s.empty()) s = "no cells";
-  return s + fmt(", %.0f inverted", quality::inverted_cells(q));
-}
-
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   const LogCallback inner = opt.verbose ? opt.log : LogCallback();
   const double diag = surface.V.rows() ? (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() : 0.0;
-  const double size = opt.size > 0 ? opt.size : diag / 30.0;
+  const double size = cell_for_local_sizes(surface, opt.size > 0 ? opt.size : diag / 30.0, opt);
 
   // Segment, then build the polycube; when the labelling defeats autopolycube, segment again with
   // the next edge weight. The first failure is the one reported when none succeeds.
@@ -582,8 +571,10 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     patches.V = through_model(patches.V);
     structure.V = through_model(structure.V);
     generate_and_improve(patches, structure, opt, r);
+    refine_to_local_sizes(surface, patches, opt, r);
   } else {
     generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
+    refine_to_local_sizes(surface, r.polycube.patches, opt, r);
   }
   r.keep_widths = opt.polycube.keep_widths;
   r.collapse_apexes = opt.polycube.collapse_apexes;
@@ -591,6 +582,16 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
 }
 
 }  // namespace
+
+std::string worst_by_type(const quality::QualityReport& q) {
+  std::string s;
+  const std::pair<const char*, const quality::TypeStats*> types[] = {{"hex", &q.hex}, {"prism", &q.prism}, {"tet", &q.tet}};
+  for (const auto& [name, t] : types)
+    if (t->count > 0) s += (s.empty() ? std::string("worst ") + name + " SJ" : std::string(", ") + name) + fmt(" %.3f", t->sj_min);
+  if (s.empty()) s = "no cells";
+  return s + fmt(", %.0f inverted", quality::inverted_cells(q));
+}
+
 
 void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const MeshSurfaceOptions& opt,
                           MeshSurfaceRun& r) {
@@ -614,13 +615,7 @@ void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& st
   t = Clock::now();
   bool stopped = false;
   if (opt.improve) {
-    optimize::ImproveOptions io = opt.improvement;
-    io.max_edge_ratio = opt.target_edge_ratio;
-    io.surface = patches;
-    io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
-    io.threads = opt.threads;
-    io.log = inner;
-    optimize::ImproveResult ir = optimize::improve(r.generated, io);
+    optimize::ImproveResult ir = optimize::improve(r.generated, polycube_improvement(patches, opt));
     r.mesh = std::move(ir.mesh);
     r.quality = ir.after;
     stopped = ir.stopped;

@@ -305,6 +305,9 @@ std::string run_summary(const MeshSurfaceRun& r, double reference);
 /// kept candidate's options (choice_text).
 std::string to_text(const MeshSurfaceRun& run);
 
+/// "worst hex SJ 0.620, prism 0.400, 2 inverted": each cell type's worst, then the inverted cells.
+std::string worst_by_type(const quality::QualityReport& q);
+
 /// "second order: 1200 boundary mid-edge nodes (80 on CAD edges, 1120 on faces), moved up to 0.05
 /// off their edges; 1190 placed, 6 halfway or less, 4 kept straight; worst SJ 0.4, 0 inverted".
 std::string second_order_text(const optimize::SecondOrderReport& report);

@@ -130,6 +130,28 @@ def test_a_mesh_region_on_an_edge_refines_along_it(doc):
 
 
 @needs_cad
+def test_a_mesh_region_refines_the_polycube_mesh_when_that_path_is_asked_for(doc):
+    # Method Polycube with a region on the hole at 0.5: the polycube path's mesh refined by
+    # thirds there (the program's mesh with --method polycube --face-size), many more nodes on
+    # the hole, none inverted.
+    part = _bracket(doc)
+    hole = _face(part.Shape, _hole)
+    objs = hexdom.mesh_part(doc, part, level=1)
+    mesh = objs["mesh"]
+    mesh.Method = "polycube"
+    api.recompute_document(doc, [mesh])
+    plain = len(mesh.FemMesh.getNodesByFace(part.Shape.getElement(hole)))
+    region = ObjectsFem.makeMeshRegion(doc, mesh, 0.5, "HoleRegion")
+    region.References = [(part, hole)]
+    api.recompute_document(doc, [mesh])
+    assert mesh.MeshingPath == "polycube" and mesh.InvertedCount == 0, (mesh.MeshingPath, mesh.InvertedCount)
+    run = core.mesh_part(part.Shape.exportBrepToString(), level=1, face_sizes={int(hole[4:]): 0.5}, method="polycube")
+    assert mesh.FemMesh.VolumeCount == len(run.mesh.types)
+    on_hole = len(mesh.FemMesh.getNodesByFace(part.Shape.getElement(hole)))
+    assert on_hole > 10 * plain, (on_hole, plain)
+
+
+@needs_cad
 def test_a_mesh_region_on_a_vertex_or_another_part_is_refused_naming_it(doc):
     part = _bracket(doc)
     other = doc.addObject("Part::Box", "Other")

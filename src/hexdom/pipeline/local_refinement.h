@@ -1,0 +1,33 @@
+// The polycube path's meshes where local sizes ask for smaller cells than its grid: the cell chosen
+// for them, and the mesh refined by thirds near the faces (and polylines) that ask.
+#pragma once
+
+#include "hexdom/mesh/mesh.h"
+#include "hexdom/optimize/improve.h"
+#include "hexdom/pipeline/mesh_surface.h"
+
+namespace hexdom::pipeline {
+
+/// The optimiser's options for the polycube path's meshes over its patches (`patches`, the
+/// polycube's charts on the surface): opt.improvement with its edge-ratio target, deadline,
+/// threads and log.
+optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt);
+
+/// The polycube's cell for the default or asked `size` when opt.overlay.local_sizes has sizes on
+/// `surface`'s patches: made such that some level by thirds lands within 1.2 of the smallest
+/// (overlay::local_levels, as the overlay's grid is made); `size` otherwise. Says so in the log.
+double cell_for_local_sizes(const mesh::SurfaceMesh& surface, double size, const MeshSurfaceOptions& opt);
+
+/// r.mesh refined where opt.overlay.local_sizes (on the patches of `surface`, whose space the mesh
+/// is in; real lengths measured through opt.stretched_by) ask for smaller cells: a hexahedron is
+/// split in 27 where the overlay's octree would split a cell of its box and mean edge
+/// (overlay::LocalSizeField::split), its neighbours get the transition templates
+/// (mesh::refine_by_thirds); again on the cubes of the split cells (never on a template's piece),
+/// up to 4 levels; the new boundary nodes put on the nearest point of `patches` (they lie on the
+/// coarse cells' faces); then the optimiser again over `patches` (polycube_improvement), r.mesh and
+/// r.quality replaced. Nothing changes when no size applies or no cell asks. Prisms and
+/// tetrahedra are not cut.
+void refine_to_local_sizes(const mesh::SurfaceMesh& surface, const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt,
+                           MeshSurfaceRun& r);
+
+}  // namespace hexdom::pipeline
