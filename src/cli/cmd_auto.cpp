@@ -229,7 +229,8 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
          },
          "cell size on one face, as FACE=SIZE (FACE: the face's number, FreeCAD's Face<number>, or Face<number>); "
          "repeat for more faces. The overlay path then meshes the part (its grid refined by thirds near those faces, "
-         "graded back to the size): the smallest size within 20%, others within a factor 1.7")
+         "graded back to the size): the smallest size within 20%, others within a factor 1.7; with --method polycube, "
+         "the polycube path's mesh refined by thirds there")
       ->allow_extra_args(false);
   cmd.add_option_function<std::vector<std::string>>(
          "--edge-size",

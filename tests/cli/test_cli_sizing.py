@@ -148,15 +148,15 @@ def _valid_whole_and_as_before_far_away(g0, g, run):
 
 def test_a_local_size_on_the_bracket_hole_refines_there_and_grades_back(hexdom_bin, tmp_path):
     # Face10 of the bundled bracket is its hole (radius 6 through the 10 mm base at x 40, y 20).
-    # Asked 1 there (the default size is about 2.9): the overlay path, its grid refined by thirds
-    # near the hole. The quads on the hole are about 1; neighbours grade; far from the hole the
-    # cells are as in the overlay mesh without it.
+    # Asked 1 there (the default size is about 2.9) of the overlay path: its grid refined by
+    # thirds near the hole. The quads on the hole are about 1; neighbours grade; far from the hole
+    # the cells are as in the overlay mesh without it.
     assert BRACKET.is_file(), BRACKET
     plain, local = tmp_path / "plain.vtu", tmp_path / "local.vtu"
     run0 = _mesh_default(hexdom_bin, BRACKET, plain, "--method", "overlay")
-    run = _mesh_default(hexdom_bin, BRACKET, local, "--face-size", "10=1")
+    run = _mesh_default(hexdom_bin, BRACKET, local, "--face-size", "10=1", "--method", "overlay")
     assert run0.returncode == 0 and run.returncode == 0, (run0.stderr, run.stderr)
-    assert "local sizes: the overlay path" in run.stderr, run.stderr
+    assert "spacing 2.94118 (thinnest 0.952381, 1 octree levels)" in run.stderr, run.stderr
     g0, g = oracles.read_vtu(str(plain)), oracles.read_vtu(str(local))
     q0, q = _quads_on_hole(g0), _quads_on_hole(g)
     assert len(q) > 5 * len(q0), (len(q), len(q0))
@@ -232,7 +232,7 @@ def test_a_faster_growth_rate_gives_a_narrower_refined_band(hexdom_bin, tmp_path
     runs = {}
     for growth in ("1.15", "3"):
         out = tmp_path / ("g" + growth + ".vtu")
-        run = _mesh_default(hexdom_bin, BRACKET, out, "--face-size", "10=1", "--growth-rate", growth)
+        run = _mesh_default(hexdom_bin, BRACKET, out, "--face-size", "10=1", "--growth-rate", growth, "--method", "overlay")
         assert run.returncode == 0, run.stderr
         g = oracles.read_vtu(str(out))
         runs[growth] = (g.GetNumberOfCells(), np.median(_quads_on_hole(g)))
@@ -246,7 +246,7 @@ def test_a_local_size_along_the_hole_s_rim(hexdom_bin, tmp_path):
     # where the grid's staircase meets the curve, 30 here); without it, the overlay mesh's 12.
     # A triangle surface has no edges: refused.
     counts = {}
-    for name, extra in (("plain", ["--method", "overlay"]), ("rim", ["--edge-size", "Edge20=1"])):
+    for name, extra in (("plain", ["--method", "overlay"]), ("rim", ["--edge-size", "Edge20=1", "--method", "overlay"])):
         out = tmp_path / (name + ".vtu")
         run = _mesh_default(hexdom_bin, BRACKET, out, *extra)
         assert run.returncode == 0, run.stderr
