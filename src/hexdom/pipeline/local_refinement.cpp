@@ -80,7 +80,14 @@ void refine_to_local_sizes(const mesh::SurfaceMesh& surface, const mesh::Surface
   for (const mesh::BoundaryFace& f : mesh::boundary_faces(r.mesh))
     for (int v : mesh::face_nodes(r.mesh, f))
       if (v >= old_nodes) r.mesh.V.row(v) = onto.project(r.mesh.V.row(v).transpose()).transpose();
-  optimize::ImproveResult ir = optimize::improve(r.mesh, polycube_improvement(patches, opt));
+  // The mesh was pillowed (or not) and optimised before it was refined: the optimiser's stages
+  // alone now, not the recommended sequence, which would lay a second layer over the first.
+  optimize::ImproveOptions io = polycube_improvement(patches, opt);
+  io.pillow = false;
+  io.smooth = 1;
+  io.optimize = io.max_rounds;
+  io.mean_after = true;
+  optimize::ImproveResult ir = optimize::improve(r.mesh, io);
   r.mesh = std::move(ir.mesh);
   r.quality = ir.after;
   r.budget_passed = r.budget_passed || ir.stopped;

@@ -24,7 +24,8 @@ double cell_for_local_sizes(const mesh::SurfaceMesh& surface, double size, const
 /// (overlay::LocalSizeField::split), its neighbours get the transition templates
 /// (mesh::refine_by_thirds); again on the cubes of the split cells (never on a template's piece),
 /// up to 4 levels; the new boundary nodes put on the nearest point of `patches` (they lie on the
-/// coarse cells' faces); then the optimiser again over `patches` (polycube_improvement), r.mesh and
+/// coarse cells' faces); then the optimiser's stages again over `patches` (polycube_improvement
+/// with one smoothing pass, its worst-cell rounds and mean passes; no second pillow layer), r.mesh and
 /// r.quality replaced. Nothing changes when no size applies or no cell asks. Prisms and
 /// tetrahedra are not cut.
 void refine_to_local_sizes(const mesh::SurfaceMesh& surface, const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt,
