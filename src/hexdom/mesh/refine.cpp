@@ -7,9 +7,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "hexdom/common/error.h"
-#include "hexdom/common/format.h"
-
 namespace hexdom::mesh {
 
 const int kCubeCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
@@ -188,9 +185,9 @@ Refinement refine_by_thirds(const Mesh& m, std::vector<char> marked, const std::
     throw std::invalid_argument("refine_by_thirds: one mark per node expected");
   const RefinementTemplates& tt = refinement_templates();
   const int nc = m.num_cells();
-  // Nodes that may not be marked: those of the cells that are not hexahedra.
   if (fixed_nodes && static_cast<int>(fixed_nodes->size()) != m.num_nodes())
     throw std::invalid_argument("refine_by_thirds: one fixed flag per node expected");
+  // Nodes that may not be marked: the fixed ones and those of the cells that are not hexahedra.
   std::vector<char> fixed = fixed_nodes ? *fixed_nodes : std::vector<char>(m.num_nodes(), 0);
   std::vector<std::vector<int>> node_cells(m.num_nodes());
   for (int c = 0; c < nc; ++c)

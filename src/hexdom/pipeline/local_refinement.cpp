@@ -12,8 +12,7 @@
 
 namespace hexdom::pipeline {
 
-double cell_for_local_sizes(const mesh::SurfaceMesh& surface, double size, const MeshSurfaceOptions& opt) {
-  const overlay::LocalSizeField field(surface, opt.overlay.local_sizes, opt.overlay.growth_rate);
+double cell_for_local_sizes(const overlay::LocalSizeField& field, double size, const MeshSurfaceOptions& opt) {
   if (field.empty()) return size;
   const overlay::LocalLevels l = overlay::local_levels(size, {overlay::LocalSize{0, field.smallest(), {}}}, opt.min_size);
   if (l.factor != 1 && opt.log) opt.log(0, fmt("local sizes: the polycube's cell %g made %g", size, size * l.factor));
@@ -30,10 +29,9 @@ optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, 
   return io;
 }
 
-void refine_to_local_sizes(const mesh::SurfaceMesh& surface, const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt,
-                           MeshSurfaceRun& r) {
+void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::SurfaceMesh& patches,
+                           const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
   constexpr int kMaxLocalLevels = 4;  // as overlay::local_levels'
-  const overlay::LocalSizeField field(surface, opt.overlay.local_sizes, opt.overlay.growth_rate);
   if (field.empty()) return;
   r.stage = "refine";
   const auto t = std::chrono::steady_clock::now();

@@ -4,6 +4,7 @@
 
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
+#include "hexdom/overlay/local_size.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::pipeline {
@@ -13,13 +14,13 @@ namespace hexdom::pipeline {
 /// threads and log.
 optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt);
 
-/// The polycube's cell for the default or asked `size` when opt.overlay.local_sizes has sizes on
-/// `surface`'s patches: made such that some level by thirds lands within 1.2 of the smallest
+/// The polycube's cell for the default or asked `size` when `field` (opt.overlay.local_sizes on the
+/// surface meshed) has sizes: made such that some level by thirds lands within 1.2 of the smallest
 /// (overlay::local_levels, as the overlay's grid is made); `size` otherwise. Says so in the log.
-double cell_for_local_sizes(const mesh::SurfaceMesh& surface, double size, const MeshSurfaceOptions& opt);
+double cell_for_local_sizes(const overlay::LocalSizeField& field, double size, const MeshSurfaceOptions& opt);
 
-/// r.mesh refined where opt.overlay.local_sizes (on the patches of `surface`, whose space the mesh
-/// is in; real lengths measured through opt.stretched_by) ask for smaller cells: a hexahedron is
+/// r.mesh refined where `field` (opt.overlay.local_sizes on the surface meshed, in the mesh's
+/// space; real lengths measured through opt.stretched_by) asks for smaller cells: a hexahedron is
 /// split in 27 where the overlay's octree would split a cell of its box and mean edge
 /// (overlay::LocalSizeField::split), its neighbours get the transition templates
 /// (mesh::refine_by_thirds); again on the cubes of the split cells (never on a template's piece),
@@ -28,7 +29,7 @@ double cell_for_local_sizes(const mesh::SurfaceMesh& surface, double size, const
 /// with one smoothing pass, its worst-cell rounds and mean passes; no second pillow layer), r.mesh and
 /// r.quality replaced. Nothing changes when no size applies or no cell asks. Prisms and
 /// tetrahedra are not cut.
-void refine_to_local_sizes(const mesh::SurfaceMesh& surface, const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt,
-                           MeshSurfaceRun& r);
+void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::SurfaceMesh& patches,
+                           const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
 
 }  // namespace hexdom::pipeline

@@ -484,7 +484,9 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   const LogCallback inner = opt.verbose ? opt.log : LogCallback();
   const double diag = surface.V.rows() ? (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() : 0.0;
-  const double size = cell_for_local_sizes(surface, opt.size > 0 ? opt.size : diag / 30.0, opt);
+  // Local sizes on the surface's faces: the polycube's cell chosen for them, its mesh refined there.
+  const overlay::LocalSizeField field(surface, opt.overlay.local_sizes, opt.overlay.growth_rate);
+  const double size = cell_for_local_sizes(field, opt.size > 0 ? opt.size : diag / 30.0, opt);
 
   // Segment, then build the polycube; when the labelling defeats autopolycube, segment again with
   // the next edge weight. The first failure is the one reported when none succeeds.
@@ -571,10 +573,10 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     patches.V = through_model(patches.V);
     structure.V = through_model(structure.V);
     generate_and_improve(patches, structure, opt, r);
-    refine_to_local_sizes(surface, patches, opt, r);
+    refine_to_local_sizes(field, patches, opt, r);
   } else {
     generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
-    refine_to_local_sizes(surface, r.polycube.patches, opt, r);
+    refine_to_local_sizes(field, r.polycube.patches, opt, r);
   }
   r.keep_widths = opt.polycube.keep_widths;
   r.collapse_apexes = opt.polycube.collapse_apexes;
