@@ -1,9 +1,7 @@
 #include "hexdom/mesh/refine.h"
 
 #include <algorithm>
-#include <bitset>
 #include <map>
-#include <queue>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -204,52 +202,24 @@ Refinement refine_by_thirds(const Mesh& m, std::vector<char> marked, const std::
       if (marked[m.cells(c, b)]) mask |= 1 << b;
     return mask;
   };
-  auto count = [](int mask) { return static_cast<int>(std::bitset<8>(mask).count()); };
-  // Completion, the cells with the most marks first (as the overlay's octree does).
-  {
-    std::priority_queue<std::pair<int, int>> heap;  // (marks, -cell)
-    auto push = [&](int c) {
-      const int mask = mask_of(c);
-      if (tt.kind[mask] < 0) heap.emplace(count(mask), -c);
-    };
-    for (int c = 0; c < nc; ++c) push(c);
-    while (!heap.empty()) {
-      const auto [n, neg] = heap.top();
-      heap.pop();
-      const int c = -neg, mask = mask_of(c);
-      if (tt.kind[mask] >= 0) continue;
-      if (count(mask) != n) {
-        heap.emplace(count(mask), neg);
-        continue;
-      }
-      bool free = true;
-      for (int b = 0; b < 8 && free; ++b) free = !fixed[m.cells(c, b)];
-      if (!free) continue;  // left to the cut below
-      for (int b = 0; b < 8; ++b) {
-        const int v = m.cells(c, b);
-        if (marked[v]) continue;
-        marked[v] = 1;
-        for (int q : node_cells[v]) push(q);
-      }
-    }
-  }
-  // The cut: each cell's marks to their largest valid subset, until all are valid.
-  {
-    std::vector<int> work(nc);
-    for (int c = 0; c < nc; ++c) work[c] = c;
-    while (!work.empty()) {
-      const int c = work.back();
-      work.pop_back();
-      const int mask = mask_of(c);
-      if (tt.kind[mask] >= 0) continue;
-      const int keep = tt.largest_valid_subset[mask];
-      for (int b = 0; b < 8; ++b)
-        if ((mask & ~keep) & (1 << b)) {
-          marked[m.cells(c, b)] = 0;
-          for (int q : node_cells[m.cells(c, b)]) work.push_back(q);
-        }
-    }
-  }
+  settle_marks(
+      nc, mask_of,
+      [&](int c) {
+        for (int b = 0; b < 8; ++b)
+          if (fixed[m.cells(c, b)]) return false;
+        return true;
+      },
+      [&](int c, int b) {
+        char& x = marked[m.cells(c, b)];
+        const bool was = x != 0;
+        x = 1;
+        return !was;
+      },
+      [&](int c, int b) { marked[m.cells(c, b)] = 0; },
+      [&](int c, int b, std::vector<int>& out) {
+        const auto& around = node_cells[m.cells(c, b)];
+        out.insert(out.end(), around.begin(), around.end());
+      });
   Refinement out;
   for (char x : marked) out.marked += x != 0;
   // Nodes: the old ones, then the new, each keyed by the parent nodes it is a combination of (in

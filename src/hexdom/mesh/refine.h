@@ -4,6 +4,9 @@
 #pragma once
 
 #include <array>
+#include <bitset>
+#include <queue>
+#include <utility>
 #include <vector>
 
 #include "hexdom/mesh/mesh.h"
@@ -44,6 +47,57 @@ struct RefinementTemplates {
 
 /// The table, built once.
 const RefinementTemplates& refinement_templates();
+
+/// Makes the marks of `cells` cells valid patterns (RefinementTemplates::kind >= 0), for the
+/// octree's lattice and for refine_by_thirds alike. Completion first, the cells with the most marks
+/// first (a cell in a concavity of the marked region before one beside its staircase, which, split
+/// first, would grow the region outwards cell by cell): a cell whose marks are not valid gets all 8
+/// when may_split(c); then the cut: each cell's marks cut to their largest valid subset, until every
+/// cell's are valid (marks only go, so it ends). Callbacks: mask(c), the cell's mask of marked
+/// corners; may_split(c); mark(c, b), marking corner b of cell c, true when it was not marked;
+/// unmark(c, b); cells_at(c, b, out), appending to `out` the cells that have that corner.
+template <class Mask, class MaySplit, class Mark, class Unmark, class CellsAt>
+void settle_marks(int cells, Mask&& mask, MaySplit&& may_split, Mark&& mark, Unmark&& unmark, CellsAt&& cells_at) {
+  const RefinementTemplates& tt = refinement_templates();
+  auto count = [](int m) { return static_cast<int>(std::bitset<8>(m).count()); };
+  std::vector<int> work;
+  {
+    std::priority_queue<std::pair<int, int>> heap;  // (marks, -cell): most marks, then lowest index
+    auto push = [&](int c) {
+      const int m = mask(c);
+      if (tt.kind[m] < 0) heap.emplace(count(m), -c);
+    };
+    for (int c = 0; c < cells; ++c) push(c);
+    while (!heap.empty()) {
+      const auto [n, neg] = heap.top();
+      heap.pop();
+      const int c = -neg, m = mask(c);
+      if (tt.kind[m] >= 0) continue;
+      if (count(m) != n) {  // marked since: in its place again
+        heap.emplace(count(m), neg);
+        continue;
+      }
+      if (!may_split(c)) continue;  // left to the cut below
+      for (int b = 0; b < 8; ++b)
+        if (mark(c, b)) cells_at(c, b, work);
+      for (int w : work) push(w);
+      work.clear();
+    }
+  }
+  for (int c = 0; c < cells; ++c) work.push_back(c);
+  while (!work.empty()) {
+    const int c = work.back();
+    work.pop_back();
+    const int m = mask(c);
+    if (tt.kind[m] >= 0) continue;
+    const int keep = tt.largest_valid_subset[m];
+    for (int b = 0; b < 8; ++b)
+      if ((m & ~keep) & (1 << b)) {
+        unmark(c, b);
+        cells_at(c, b, work);
+      }
+  }
+}
 
 /// What refine_by_thirds made.
 struct Refinement {

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bitset>
-#include <queue>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
@@ -96,7 +94,6 @@ void build_mesh(const Grid& grid, const std::vector<std::pair<OctreeCell, int>>&
 }  // namespace
 
 OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool(const OctreeCell&)>& refine) {
-  const mesh::RefinementTemplates& tt = mesh::refinement_templates();
   const int longest = std::max({grid.nx, grid.ny, grid.nz}) + 1;
   while (max_level > 0 && double(longest) * std::pow(3.0, max_level) >= double(1 << 21)) --max_level;
   OctreeMesh out;
@@ -130,15 +127,14 @@ OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool
         if (marked.count(corner_key(c, b))) m |= 1 << b;
       return m;
     };
-    // The cells of this level around node key n (to look at again when its mark changes).
-    std::vector<int> work;
-    auto around = [&](uint64_t n) {
+    // The cells of this level around node key n (to look at again when its mark changes), into out.
+    auto around = [&](uint64_t n, std::vector<int>& out) {
       const int64_t I = n & 0x1FFFFF, J = (n >> 21) & 0x1FFFFF, K = n >> 42;
       for (int d = 0; d < 8; ++d) {
         const int64_t i = I - 1 + kCubeCorner[d][0], j = J - 1 + kCubeCorner[d][1], k = K - 1 + kCubeCorner[d][2];
         if (i < 0 || j < 0 || k < 0) continue;
         auto it = index.find(pack(i, j, k));
-        if (it != index.end()) work.push_back(it->second);
+        if (it != index.end()) out.push_back(it->second);
       }
     };
     if (level < max_level)
@@ -146,54 +142,17 @@ OctreeMesh octree_mesh(const Grid& grid, int max_level, const std::function<bool
         if (refine(c))
           for (int b = 0; b < 8; ++b)
             if (may_mark(c, b)) marked.insert(corner_key(c, b));
-    // Marks made valid: completed where a cell may have all 8, then cut to the largest valid subset.
-    // `fix` is called for each cell whose marks are not a valid pattern, until none is left to look at.
-    auto settle = [&](auto&& fix) {
-      for (size_t c = 0; c < cells.size(); ++c) work.push_back(static_cast<int>(c));
-      while (!work.empty()) {
-        const OctreeCell c = cells[work.back()];
-        work.pop_back();
-        const int m = mask_of(c);
-        if (tt.kind[m] < 0) fix(c, m);
-      }
-    };
-    // Completion, the cells with the most marks first: a cell in a concavity of the marked region
-    // (marked on several sides) is split before one beside its staircase, which sees marks on one
-    // face only and would, split first, grow the region outwards cell by cell without end.
-    {
-      std::priority_queue<std::pair<int, int>> heap;  // (marks, -cell): most marks, then lowest index
-      auto push = [&](int c) {
-        const int m = mask_of(cells[c]);
-        if (tt.kind[m] < 0) heap.emplace(static_cast<int>(std::bitset<8>(m).count()), -c);
-      };
-      for (size_t c = 0; c < cells.size(); ++c) push(static_cast<int>(c));
-      while (!heap.empty()) {
-        const auto [count, neg] = heap.top();
-        heap.pop();
-        const OctreeCell c = cells[-neg];
-        const int m = mask_of(c);
-        if (tt.kind[m] >= 0) continue;
-        if (static_cast<int>(std::bitset<8>(m).count()) != count) {  // marked since: in its place again
-          heap.emplace(static_cast<int>(std::bitset<8>(m).count()), neg);
-          continue;
-        }
-        bool all = true;
-        for (int b = 0; b < 8 && all; ++b) all = may_mark(c, b);
-        if (!all) continue;  // left to the cut below
-        for (int b = 0; b < 8; ++b)
-          if (marked.insert(corner_key(c, b)).second) around(corner_key(c, b));
-        for (int w : work) push(w);
-        work.clear();
-      }
-    }
-    settle([&](const OctreeCell& c, int m) {
-      const int keep = tt.largest_valid_subset[m];
-      for (int b = 0; b < 8; ++b)
-        if ((m & ~keep) & (1 << b)) {
-          marked.erase(corner_key(c, b));
-          around(corner_key(c, b));
-        }
-    });
+    // Marks made valid: completed where a cell may have all 8, then cut (mesh::settle_marks).
+    mesh::settle_marks(
+        static_cast<int>(cells.size()), [&](int c) { return mask_of(cells[c]); },
+        [&](int c) {
+          for (int b = 0; b < 8; ++b)
+            if (!may_mark(cells[c], b)) return false;
+          return true;
+        },
+        [&](int c, int b) { return marked.insert(corner_key(cells[c], b)).second; },
+        [&](int c, int b) { marked.erase(corner_key(cells[c], b)); },
+        [&](int c, int b, std::vector<int>& out) { around(corner_key(cells[c], b), out); });
     std::vector<OctreeCell> next;
     for (const OctreeCell& c : cells) {
       const int m = mask_of(c);
