@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "hexdom/mesh/adjacency.h"
+
 namespace hexdom::mesh {
 
 const int kCubeCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
@@ -187,12 +189,10 @@ Refinement refine_by_thirds(const Mesh& m, std::vector<char> marked, const std::
     throw std::invalid_argument("refine_by_thirds: one fixed flag per node expected");
   // Nodes that may not be marked: the fixed ones and those of the cells that are not hexahedra.
   std::vector<char> fixed = fixed_nodes ? *fixed_nodes : std::vector<char>(m.num_nodes(), 0);
-  std::vector<std::vector<int>> node_cells(m.num_nodes());
   for (int c = 0; c < nc; ++c)
-    for (int i = 0; i < node_count(m.type(c)); ++i) {
-      node_cells[m.cells(c, i)].push_back(c);
-      if (m.type(c) != CellType::Hex) fixed[m.cells(c, i)] = 1;
-    }
+    if (m.type(c) != CellType::Hex)
+      for (int i = 0; i < node_count(m.type(c)); ++i) fixed[m.cells(c, i)] = 1;
+  const NodeCells cells_of = node_cells(m);
   for (int v = 0; v < m.num_nodes(); ++v)
     if (fixed[v]) marked[v] = 0;
   auto mask_of = [&](int c) {
@@ -217,7 +217,7 @@ Refinement refine_by_thirds(const Mesh& m, std::vector<char> marked, const std::
       },
       [&](int c, int b) { marked[m.cells(c, b)] = 0; },
       [&](int c, int b, std::vector<int>& out) {
-        const auto& around = node_cells[m.cells(c, b)];
+        const NodeCells::Range around = cells_of[m.cells(c, b)];
         out.insert(out.end(), around.begin(), around.end());
       });
   Refinement out;

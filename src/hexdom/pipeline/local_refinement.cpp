@@ -38,6 +38,7 @@ void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::Sur
   const int old_nodes = r.mesh.num_nodes();  // refine_by_thirds keeps them first, in their order
   std::vector<char> plain(r.mesh.num_cells(), 1);  // cells that may be split again (no template's piece)
   int levels = 0, split = 0, templates = 0;
+  const auto [edges, ne] = mesh::cell_edges(mesh::CellType::Hex);
   for (; levels < kMaxLocalLevels; ++levels) {
     const mesh::Mesh& m = r.mesh;
     std::vector<char> marked(m.num_nodes(), 0), fixed(m.num_nodes(), 0);
@@ -52,10 +53,9 @@ void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::Sur
       const Eigen::Vector3d lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
       // The cell's side: its mean edge in real lengths (a stretched run measures positions
       // stretched); the longest would count a cell the map shears as a larger one.
-      const Eigen::MatrixXd R = opt.stretched_by ? unstretched(P, *opt.stretched_by) : Eigen::MatrixXd(P);
+      if (opt.stretched_by) P = unstretched(P, *opt.stretched_by);
       double side = 0;
-      const auto [edges, ne] = mesh::cell_edges(mesh::CellType::Hex);
-      for (int e = 0; e < ne; ++e) side += (R.row(edges[e][0]) - R.row(edges[e][1])).norm() / ne;
+      for (int e = 0; e < ne; ++e) side += (P.row(edges[e][0]) - P.row(edges[e][1])).norm() / ne;
       if (!field.split(lo, hi - lo, side)) continue;
       for (int b = 0; b < 8; ++b)
         if (!fixed[m.cells(c, b)]) marked[m.cells(c, b)] = any = true;
