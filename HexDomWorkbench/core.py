@@ -581,6 +581,9 @@ class MeshRun:
     touching: list = None     # several solids: the pairs (1-based) that touch (meshes not conforming there)
     warnings: list = None     # what the run warned of (`hexdom mesh`'s warning lines: shells turned, solids touching)
     second_order: dict = None  # order 2: how the mid-edge nodes were placed (_hexdom.mesh_surface's)
+    # face_sizes / edge_sizes: per size (faces first, then edges, each by number), the median cell
+    # size there over the size asked (0: no cell there); auto prefers the path within 20% on more
+    local_size_ratios: list = None
 
     @property
     def inverted(self):
@@ -601,7 +604,8 @@ def _mesh_run(r):
                    face_only=list(r.get("face_only", [])), solids=int(r.get("solids", 1)),
                    touching=[tuple(int(k) for k in pair) for pair in r.get("touching", [])],
                    warnings=[str(w) for w in r.get("warnings", [])],
-                   second_order=None if r.get("second_order") is None else dict(r["second_order"]))
+                   second_order=None if r.get("second_order") is None else dict(r["second_order"]),
+                   local_size_ratios=[float(x) for x in r.get("local_size_ratios", [])])
 
 
 def _cad_run(r):
@@ -724,8 +728,8 @@ def mesh_surface(surface, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"]
     "polycube", _hexdom.TimeoutError (an Error) when it passes before there is a mesh.
     max_size, min_size: bounds on the element size (None or 0: none; `hexdom mesh --max-size /
     --min-size`); cells_across: cells across a thin part (None: the core's 2); face_sizes:
-    {patch id: size}, cell sizes on those patches (`hexdom mesh --face-size`; the overlay path
-    then meshes the surface); growth_rate: how fast cells grow from those sizes back (None: the
+    {patch id: size}, cell sizes on those patches (`hexdom mesh --face-size`; either path refines
+    there, MeshRun.local_size_ratios says how near the sizes its cells are); growth_rate: how fast cells grow from those sizes back (None: the
     core's 3^(1/4); `hexdom mesh --growth-rate`); order: 1 or 2 (hex20 / wedge15 / tet10, the
     boundary's mid-edge nodes on the surface; `hexdom mesh --order`); time_limit: seconds the
     whole call may take (None: the core's MESH_OPTIONS["time_limit"]; 0: no limit; `hexdom mesh
@@ -766,7 +770,7 @@ def mesh_part(source, size=MESH_OPTIONS["size"], level=MESH_OPTIONS["level"], so
     mid-edge nodes on the B-rep), time_limit (seconds for the whole call), pillow_curves (the overlay
     path's wedges along the CAD edges: every boundary face on one CAD face, so that a face load in
     FreeCAD takes them all) go to it, and face_sizes, {FreeCAD face number of the
-    source's shape: size}, cell sizes on those faces (`hexdom mesh --face-size`: the overlay path), and edge_sizes
+    source's shape: size}, cell sizes on those faces (`hexdom mesh --face-size`: either path), and edge_sizes
     likewise along edges (Edge<number>, `--edge-size`); the time
     budget covers every tessellation's polycube), and (``snap``) its boundary nodes
     are put exactly on the B-rep; when that tessellation's labelling defeats the automatic polycube

@@ -180,8 +180,8 @@ class HexMesh(BaseHexDomObject):
             obj.addProperty("App::PropertyLinkList", "MeshRegionList", "HexDom",
                             "Pipeline: FreeCAD FEM mesh regions (ObjectsFem.makeMeshRegion(doc, "
                             "this mesh, length), as for Gmsh): cells of their CharacteristicLength "
-                            "on the faces they reference (`hexdom mesh --face-size`); the overlay "
-                            "grid then meshes the part, refined by thirds near those faces")
+                            "on the faces they reference (`hexdom mesh --face-size`); both paths "
+                            "refine by thirds near those faces, auto keeps the mesh nearer the lengths")
         if not hasattr(obj, "GrowthRate"):
             obj.addProperty("App::PropertyFloat", "GrowthRate", "HexDom",
                             "With mesh regions: how fast cells grow from a region's length back to "
@@ -202,13 +202,18 @@ class HexMesh(BaseHexDomObject):
                             "faces and edges (`hexdom mesh --order 2`)")
             obj.ElementOrder = ELEMENT_ORDERS
             obj.ElementOrder = "1st"
+        if not hasattr(obj, "LocalSizes"):
+            obj.addProperty("App::PropertyStringList", "LocalSizes", "HexDom",
+                            "Per face or edge of the mesh regions (MeshRegionList): how near their "
+                            "length the cells there are, the median cell over the length "
+                            "(\"Face10: cells 0.84 of 1 (within 20%)\"); empty without regions")
         if not hasattr(obj, "Region"):
             obj.addProperty("App::PropertyIntegerList", "Region", "HexDom",
                             "Region (block) id of each cell, in cell-id order")
         for name, prop_type, doc in _QUALITY:
             if not hasattr(obj, name):
                 obj.addProperty(prop_type, name, "Quality", doc)
-        set_read_only(obj, ["SourceFile", "BrepDistance", "MeshingPath", "PolycubeNote"]
+        set_read_only(obj, ["SourceFile", "BrepDistance", "MeshingPath", "PolycubeNote", "LocalSizes"]
                       + QUALITY_PROPERTIES)
         obj.setEditorMode("Region", 2)  # hidden: one entry per cell
 
@@ -239,6 +244,7 @@ class HexMesh(BaseHexDomObject):
                 return run.mesh
             pipeline.leave_pipeline(objs)
         self.path = meshing_path(obj)
+        self.local_sizes = []  # the stages' polycube mesh has no regions; the overlay's says below
         if self.path == "overlay":
             return self.overlay(obj)
         if getattr(obj, "MeshRegionList", None):
@@ -330,6 +336,8 @@ class HexMesh(BaseHexDomObject):
                           face_sizes=overlay_face_sizes(obj, surface_obj),
                           pillow_curves=bool(getattr(obj, "PillowCurves", False)), **pipeline.size_bounds(obj))
             mesh = run.mesh
+            self.local_sizes = pipeline.local_size_lines(
+                {"face_sizes": overlay_face_sizes(obj, surface_obj) or {}}, run.local_size_ratios)
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:
                 brep, cad_surface = snap
@@ -348,6 +356,7 @@ class HexMesh(BaseHexDomObject):
     def execute(self, obj):
         self.brep_distance = -1.0
         self.path = None
+        self.local_sizes = None  # the stages' LocalSizes (the pipeline sets its own)
         self.node_faces = None  # the snap's CAD faces of each node, when it ran
         mesh = self.generate(obj)
         if mesh is not None:
@@ -361,6 +370,9 @@ class HexMesh(BaseHexDomObject):
                 # The note is the automatic choice's: a forced path has none.
                 if getattr(obj, "Method", "auto") != "auto" and obj.PolycubeNote:
                     obj.PolycubeNote = ""
+            lines = self.local_sizes
+            if lines is not None and hasattr(obj, "LocalSizes") and list(obj.LocalSizes) != lines:
+                obj.LocalSizes = lines
         else:
             update_quality(obj)
 

@@ -228,9 +228,9 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
            }
          },
          "cell size on one face, as FACE=SIZE (FACE: the face's number, FreeCAD's Face<number>, or Face<number>); "
-         "repeat for more faces. The overlay path then meshes the part (its grid refined by thirds near those faces, "
-         "graded back to the size): the smallest size within 20%, others within a factor 1.7; with --method polycube, "
-         "the polycube path's mesh refined by thirds there")
+         "repeat for more faces. Both paths refine by thirds near those faces, graded back to the size (the overlay "
+         "its grid, the polycube its mesh): the smallest size within 20%, others within a factor 1.7; auto keeps the "
+         "mesh within 20% of more sizes (median cell on each face), after the quality targets")
       ->allow_extra_args(false);
   cmd.add_option_function<std::vector<std::string>>(
          "--edge-size",
@@ -238,7 +238,7 @@ void add_size_options(CLI::App& cmd, pipeline::MeshSurfaceOptions& opt, std::vec
            for (const std::string& item : items) edge_sizes.push_back(parse_local_size(item, "--edge-size", "Edge"));
          },
          "CAD files: cell size along one edge, as EDGE=SIZE (EDGE: FreeCAD's Edge<number>, or Edge<number>); repeat "
-         "for more edges. As --face-size: the overlay path, its grid refined near the edge")
+         "for more edges. As --face-size: both paths refine near the edge")
       ->allow_extra_args(false);
   cmd.add_option("--growth-rate", opt.overlay.growth_rate,
                  "with --face-size / --edge-size: how fast cells grow from their size back to the element size, per cell "

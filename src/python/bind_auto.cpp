@@ -86,8 +86,8 @@ const char* const kSizeBoundsDoc =
     "size (given or default) is brought within them, and cells made thinner for a thin part are not made\n"
     "shorter than min_size. cells_across: cells across a part thin along an axis (0: cubic cells).\n"
     "face_sizes: {face number: size}, cell sizes on faces (FreeCAD's Face<number>; for a surface, its patch\n"
-    "ids), as `hexdom mesh --face-size`: the overlay path meshes the part, its grid refined by thirds near\n"
-    "those faces (auto; the polycube method refuses them with InputError, as a face the part lacks).\n"
+    "ids), as `hexdom mesh --face-size`: each path refines by thirds near those faces (auto keeps the mesh\n"
+    "within 20% of more sizes; run['local_size_ratios']); InputError for a face the part lacks.\n"
     "growth_rate: how fast the cells grow from those sizes back to the element size, per cell, in (1, 3]\n"
     "(`hexdom mesh --growth-rate`).";
 
@@ -138,6 +138,7 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["choice"] = pipeline::choice_text(r);
   d["method"] = pipeline::method_name(r.method);
   d["polycube_note"] = r.polycube_note;
+  d["local_size_ratios"] = r.local_fit.ratio;
   const std::vector<char> face_only = pipeline::snap_face_only(r);
   d["face_only"] = std::vector<int>(face_only.begin(), face_only.end());
   d["budget_passed"] = r.budget_passed;

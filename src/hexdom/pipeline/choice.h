@@ -123,10 +123,23 @@ inline std::string overlay_met(const MeshSurfaceRun& grid, double reference, con
   return std::string("the overlay mesh meets every target") + (meets_path_targets(grid, reference, mo) ? "" : " but the edge ratio");
 }
 
+/// Why step 1's mesh `first` (see choose_path) did not end the choice: it misses a target, or (`met`)
+/// it meets every one but local sizes are asked for; and when its time budget passed, whether it
+/// was stopped at the cut (`stopped`, the overlay's mesh `grid` meeting the targets) or not.
+inline std::string step1_note(bool met, const MeshSurfaceRun& first, double reference, const MeshSurfaceOptions& mo,
+                              bool stopped, const MeshSurfaceRun& grid, double budget) {
+  return std::string(met ? "local sizes: the polycube mesh meets every target (" : "the polycube mesh misses a target (") +
+         run_summary(first, reference) + ")" +
+         (!first.budget_passed ? std::string()
+          : stopped ? fmt(" (stopped after %g s: ", mo.polycube_seconds_overlay_met) + overlay_met(grid, reference, mo) + ")"
+                    : fmt(" (its time budget of %g s passed)", budget));
+}
+
 /// Method::Auto on one surface, cheapest first:
 ///  1. the polycube path with its first candidate only (no further candidate: without the widths of
 ///     holes, hex blocks under apex caps, a finer level), within the options' deadline. A mesh that
-///     meets every target (meets_path_targets) is kept; the overlay's run is called off.
+///     meets every target (meets_path_targets) is kept, unless local sizes are asked for (both
+///     paths' meshes are then weighed); the overlay's run is called off.
 ///  2. the overlay path, run beside step 1 on a thread of its own (the machine's second core; its
 ///     messages are said after step 1's, as if it had run after it). The better of the two
 ///     (better_run) is kept. When its mesh meets every target, the edge ratio aside (meets_targets),
@@ -215,14 +228,13 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
       mesh_path(quick, r);
     }
     have = true;
-    if (meets_path_targets(run_of(r), reference, mo)) {
+    // With local sizes both paths' meshes are made and measured (the sizes met, then the quality).
+    const bool met = meets_path_targets(run_of(r), reference, mo);
+    if (met && mo.overlay.local_sizes.empty()) {
       run_of(r).polycube_meshed = true;
       return;  // the overlay's run called off
     }
-    note = "the polycube mesh misses a target (" + run_summary(run_of(r), reference) + ")" +
-           (!run_of(r).budget_passed ? std::string()
-            : cut.step1_stopped.load()   ? fmt(" (stopped after %g s: ", mo.polycube_seconds_overlay_met) + overlay_met(run_of(grid), reference, mo) + ")"
-                                     : fmt(" (its time budget of %g s passed)", quick.deadline.budget()));
+    note = step1_note(met, run_of(r), reference, mo, cut.step1_stopped.load(), run_of(grid), quick.deadline.budget());
   } catch (const TimeoutError& e) {  // the polycube path ran out of its time: no retry
     note = cut.step1_stopped.load() ? fmt("the polycube path was stopped after %g s at stage ", mo.polycube_seconds_overlay_met) +
                                       run_of(r).stage + ": " + overlay_met(run_of(grid), reference, mo)

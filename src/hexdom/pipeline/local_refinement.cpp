@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <set>
+#include <utility>
 
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
@@ -93,6 +96,68 @@ void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::Sur
     opt.log(0, fmt("local sizes: %.0f levels by thirds (%.0f cells split, ", double(levels), double(split)) +
                    fmt("%.0f transition templates), %.0f cells, ", double(templates), double(r.mesh.num_cells())) +
                    worst_by_type(r.quality) + fmt(", in %.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()));
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const size_t k = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+LocalSizeFit local_size_fit(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface,
+                            const std::vector<overlay::LocalSize>& sizes) {
+  LocalSizeFit fit;
+  if (sizes.empty()) return fit;
+  const std::vector<mesh::BoundaryFace> faces = mesh::boundary_faces(mesh);
+  auto corner = [&](int v) -> Eigen::Vector3d { return mesh.V.row(v).transpose(); };
+  std::vector<int> patch;  // per boundary face, its nearest triangle's patch
+  std::set<std::pair<int, int>> edges;  // the boundary edges, (low, high) node
+  for (const auto& f : faces)
+    for (int i = 0; i < f.n; ++i) edges.emplace(std::min(f.v[i], f.v[(i + 1) % f.n]), std::max(f.v[i], f.v[(i + 1) % f.n]));
+  for (const overlay::LocalSize& l : sizes) {
+    std::vector<double> measured;
+    if (l.polyline.rows() > 0) {
+      std::vector<std::array<int, 2>> segments;
+      for (int i = 0; i + 1 < l.polyline.rows(); ++i) segments.push_back({i, i + 1});
+      const mesh::TriangleProjector line = mesh::segment_projector(l.polyline, segments);
+      const double near = 0.1 * l.size;
+      auto on_line = [&](const Eigen::Vector3d& x) { return (line.project(x) - x).norm() <= near; };
+      for (const auto& [a, b] : edges)
+        if (on_line(corner(a)) && on_line(corner(b)) && on_line(0.5 * (corner(a) + corner(b))))
+          measured.push_back((corner(a) - corner(b)).norm());
+    } else {
+      if (patch.empty()) {
+        const std::vector<int> t = mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), mesh.V, faces);
+        patch.resize(faces.size(), -1);
+        for (size_t k = 0; k < faces.size(); ++k)
+          if (t[k] >= 0 && surface.patch.size() > t[k]) patch[k] = surface.patch(t[k]);
+      }
+      for (size_t k = 0; k < faces.size(); ++k) {
+        if (patch[k] != l.patch) continue;
+        const auto& f = faces[k];
+        double sum = 0;
+        for (int i = 0; i < f.n; ++i) sum += (corner(f.v[i]) - corner(f.v[(i + 1) % f.n])).norm();
+        measured.push_back(sum / f.n);
+      }
+    }
+    const double ratio = median(std::move(measured)) / l.size;
+    fit.ratio.push_back(ratio);
+    if (std::abs(ratio - 1) <= 0.2) ++fit.met;
+  }
+  return fit;
+}
+
+std::string local_fit_text(const LocalSizeFit& fit, const std::vector<overlay::LocalSize>& sizes) {
+  std::string text = "local sizes: cells";
+  for (size_t k = 0; k < fit.ratio.size() && k < sizes.size(); ++k)
+    text += (k ? ", " : " ") + fmt("%.2f of the size ", fit.ratio[k]) +
+            (sizes[k].polyline.rows() > 0 ? std::string("along an edge") : fmt("on Face%.0f", double(sizes[k].patch)));
+  return text + fmt(" (%.0f of ", double(fit.met)) + fmt("%.0f within 20%%)", double(fit.ratio.size()));
 }
 
 }  // namespace hexdom::pipeline

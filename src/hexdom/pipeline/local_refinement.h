@@ -1,6 +1,10 @@
 // The polycube path's meshes where local sizes ask for smaller cells than its grid: the cell chosen
-// for them, and the mesh refined by thirds near the faces (and polylines) that ask.
+// for them, and the mesh refined by thirds near the faces (and polylines) that ask; and how any
+// mesh meets the local sizes (the automatic choice between the paths weighs it).
 #pragma once
+
+#include <string>
+#include <vector>
 
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
@@ -31,5 +35,16 @@ double cell_for_local_sizes(const overlay::LocalSizeField& field, double size, c
 /// tetrahedra are not cut.
 void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::SurfaceMesh& patches,
                            const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
+
+/// How `mesh` meets `sizes` on `surface` (the surface it was made from; its patches are the faces
+/// the sizes name). A size on a patch: the boundary faces whose centre is nearest a triangle of the
+/// patch, each measured by its mean edge. A size along a polyline: the boundary edges whose ends and
+/// midpoint lie within a tenth of the size of it, by their length. Each ratio is the median of
+/// those over the size (0 when none lies there); met when within 20% of 1.
+LocalSizeFit local_size_fit(const mesh::Mesh& mesh, const mesh::SurfaceMesh& surface,
+                            const std::vector<overlay::LocalSize>& sizes);
+
+/// "local sizes: cells 0.87 of the size on Face10 (1 of 1 within 20%)"-style line.
+std::string local_fit_text(const LocalSizeFit& fit, const std::vector<overlay::LocalSize>& sizes);
 
 }  // namespace hexdom::pipeline

@@ -185,8 +185,8 @@ MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& o
   MeshCadRun& r = progress ? *progress : local;
   r = MeshCadRun{};
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
-  // Local sizes: the edges' as polylines among them, and the overlay path that meets them.
-  if (!opt.edge_sizes.empty() || local_size_method(opt.mesh) != opt.mesh.method) {
+  // Local sizes along edges: polylines among the local sizes.
+  if (!opt.edge_sizes.empty()) {
     MeshCadOptions o = opt;
     o.edge_sizes.clear();
     for (const auto& [edge, size] : opt.edge_sizes) {
@@ -196,10 +196,6 @@ MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& o
       l.size = size;
       l.polyline = cad::edge_points(shape, edge, size / 4);
       o.mesh.overlay.local_sizes.push_back(std::move(l));
-    }
-    if (local_size_method(o.mesh) != o.mesh.method) {
-      say("local sizes: the overlay path (its octree refines there)");
-      o.mesh.method = Method::Overlay;
     }
     return mesh_cad_first_order(shape, o, progress);
   }
@@ -241,7 +237,7 @@ MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& o
   }
   r.tessellations = 1;
   say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
-  local_size_method(opt.mesh, &r.surface, "the part");  // each face asked for is one of the part's
+  check_local_sizes(opt.mesh, r.surface, "the part");  // each face asked for is one of the part's
   reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
   // One time budget for the polycube path over every tessellation of this call, from here: the first
   // tessellation serves both paths (on a part with many small faces it alone can take longer than

@@ -50,6 +50,7 @@ bool better(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, 
   if (sb != sa) return sb;
   const bool vb = volume_error(b, reference) <= opt.target_volume, va = volume_error(a, reference) <= opt.target_volume;
   if (vb != va) return vb;
+  if (b.local_fit.met != a.local_fit.met) return b.local_fit.met > a.local_fit.met;
   const bool eb = edge_ratio_met(b, opt), ea = edge_ratio_met(a, opt);
   if (eb != ea) return eb;
   if (!eb && sb) {
@@ -189,11 +190,14 @@ std::string run_summary(const MeshSurfaceRun& r, double reference) {
   return (r.method == Method::Overlay ? std::string("overlay") : fmt("level %.0f", r.level)) +
          fmt(": worst SJ %.3f, %.0f inverted, volume %+.2f%%", worst_sj(r.quality), inverted_cells(r.quality),
              100.0 * (r.quality.total_volume - reference) / (reference != 0 ? reference : 1.0)) +
-         fmt(", max edge ratio %.1f", quality::max_edge_ratio(r.quality));
+         fmt(", max edge ratio %.1f", quality::max_edge_ratio(r.quality)) +
+         (r.local_fit.ratio.empty() ? std::string()
+                                    : fmt(", local sizes met %.0f of ", double(r.local_fit.met)) +
+                                          fmt("%.0f", double(r.local_fit.ratio.size())));
 }
 
 bool meets_path_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& opt) {
-  return meets_targets(r, reference, opt) && edge_ratio_met(r, opt);
+  return meets_targets(r, reference, opt) && edge_ratio_met(r, opt) && r.local_fit.all_met();
 }
 
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options) {
@@ -265,10 +269,8 @@ void check_size_bounds(const MeshSurfaceOptions& opt) {
   overlay::check_growth_rate(opt.overlay.growth_rate);
 }
 
-Method local_size_method(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh* surface, const std::string& what) {
-  if (opt.overlay.local_sizes.empty()) return opt.method;
-  if (surface) overlay::check_local_sizes(opt.overlay.local_sizes, *surface, what);
-  return opt.method == Method::Polycube ? Method::Polycube : Method::Overlay;
+void check_local_sizes(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh& surface, const std::string& what) {
+  overlay::check_local_sizes(opt.overlay.local_sizes, surface, what);
 }
 
 double bounded_size(double size, const MeshSurfaceOptions& opt) {
@@ -345,7 +347,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
     for (const std::string& w : check.warnings)
       if (opt.log) opt.log(1, w);
     if (check.solids > 1) {
-      local_size_method(opt, &checked, opt.input_name);  // the faces asked for are on some solid
+      check_local_sizes(opt, checked, opt.input_name);  // the faces asked for are on some solid
       // Each solid on its own, then put together; the checks are done.
       MeshSurfaceOptions so = opt;
       so.check_input = false;
@@ -369,27 +371,31 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
     }
   }
   const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
-  MeshSurfaceOptions so = opt;  // the element size fixed within its bounds, the method within the local sizes
-  so.method = local_size_method(opt, opt.check_input ? &surface : nullptr, opt.input_name);
-  if (so.method != opt.method && opt.log) opt.log(0, "local sizes: the overlay path (its octree refines there)");
+  MeshSurfaceOptions so = opt;  // the element size fixed within its bounds
+  if (opt.check_input) check_local_sizes(opt, surface, opt.input_name);
   if (opt.max_size != 0 || opt.min_size != 0) {
     so.size = element_size(surface, opt);
     if (opt.log) opt.log(0, fmt("size: %g (min size %g, max size %g; 0: none)", so.size, opt.min_size, opt.max_size));
   }
   MeshSurfaceOptions po = so;  // the polycube path's options: its deadline fixed now
   po.deadline = polycube_deadline(so);
+  // One path into `run`, with how it meets the local sizes.
+  auto mesh_path = [&](const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
+    if (o.method == Method::Overlay) run_overlay(surface, o, run);
+    else mesh_polycube(surface, o, &run);
+    if (!o.overlay.local_sizes.empty()) {
+      run.local_fit = local_size_fit(run.mesh, surface, o.overlay.local_sizes);
+      if (o.log) o.log(0, local_fit_text(run.local_fit, o.overlay.local_sizes));
+    }
+  };
   if (so.method == Method::Overlay) {
-    run_overlay(surface, so, r);
+    mesh_path(so, r);
   } else if (so.method == Method::Polycube) {
-    mesh_polycube(surface, po, &r);
+    mesh_path(po, r);
   } else {
     const double reference = mesh::enclosed_volume(surface.V, surface.F);
     choose_path(
-        so, reference,
-        [&](const MeshSurfaceOptions& o, MeshSurfaceRun& run) {
-          if (o.method == Method::Overlay) run_overlay(surface, o, run);
-          else mesh_polycube(surface, o, &run);
-        },
+        so, reference, mesh_path,
         [](MeshSurfaceRun& run) -> MeshSurfaceRun& { return run; }, [](const MeshSurfaceRun&) { return MeshSurfaceRun{}; },
         [](const MeshSurfaceRun& run) { return run; }, r);
   }

@@ -68,7 +68,8 @@ struct MeshSurfaceOptions {
   /// cancelled (auto runs the overlay with a cancellable one of its own, no time limit).
   Deadline deadline;
   /// The overlay path's options; its size, alignment and log are taken from here. Its local_sizes
-  /// (cell sizes on faces) make Method::Auto the overlay path (local_size_method).
+  /// (cell sizes on faces) are met by both paths: the overlay's octree, the polycube's refinement by
+  /// thirds (local_refinement.h).
   overlay::OverlayOptions overlay;
   double size = 0;  ///< target element size H; 0: the bounding-box diagonal / 30 (see max_size, min_size)
   /// Bounds on the element size (0: none), as FreeCAD's Gmsh mesher's CharacteristicLengthMax / Min:
@@ -163,11 +164,21 @@ struct MeshSurfaceOptions {
 /// `keep_widths` and `collapse_apexes` are the polycube path's attempt (what its finished stages
 /// made, possibly nothing), so that a front end can show the stages the overlay mesh was preferred
 /// to; `generated`, `mesh` and the qualities are the overlay's.
+/// How a mesh's cells compare with the local sizes asked (local_size_fit, local_refinement.h).
+struct LocalSizeFit {
+  /// Per local size, in the options' order: the median size of the mesh's cells on its face (or
+  /// along its polyline) over the size asked; 0 where no cell lies there.
+  std::vector<double> ratio;
+  int met = 0;  ///< of them, those within 20% of 1
+  bool all_met() const { return met == static_cast<int>(ratio.size()); }
+};
+
 struct MeshSurfaceRun {
   Method method = Method::Polycube;   ///< the path that made `mesh` (Polycube or Overlay)
   overlay::OverlayResult overlay;     ///< the overlay path's figures when it made `mesh` (its mesh moved out)
   /// In auto mode: the first line of the polycube path's error when it gave no mesh, or what its mesh
-  /// missed when the overlay was tried too; empty otherwise.
+  /// missed when the overlay was tried too (with local sizes the overlay is always tried: then its
+  /// figures); empty otherwise.
   std::string polycube_note;
   mesh::SurfaceMesh labels;   ///< the segmentation (label 1..6 per triangle of the input)
   autopolycube::AutoPolycube polycube;      ///< structure, patch surface, repaired labels, polycube surface
@@ -213,6 +224,9 @@ struct MeshSurfaceRun {
   std::vector<std::array<int, 2>> touching;
   /// Order 2: how the mid-edge nodes were placed (`mesh` and `quality` are the second-order mesh's).
   optimize::SecondOrderReport second_order;
+  /// With local sizes (options.overlay.local_sizes): how the mesh meets them, measured on the path's
+  /// mesh before any snap; empty otherwise. Method::Auto prefers the path that meets more of them.
+  LocalSizeFit local_fit;
 };
 
 /// InputError for an element order other than 1 or 2.
@@ -222,12 +236,12 @@ void check_order(int order);
 /// rate (overlay.growth_rate) not in (1, 3].
 void check_size_bounds(const MeshSurfaceOptions& options);
 
-/// The method that meets options.overlay.local_sizes (cell sizes asked on faces): with none, the
-/// one asked; with some, the overlay path (only its octree refines locally), Method::Auto turned
-/// into Method::Overlay; Method::Polycube then is an InputError saying so. Also checks each local
-/// size against `surface` (overlay::check_local_sizes, `what` naming it) when that is given.
-Method local_size_method(const MeshSurfaceOptions& options, const mesh::SurfaceMesh* surface = nullptr,
-                         const std::string& what = "the surface");
+/// Checks each of options.overlay.local_sizes (cell sizes asked on faces or along polylines)
+/// against `surface` (overlay::check_local_sizes, `what` naming it): InputError for a size not
+/// positive, a face the surface lacks, a polyline of fewer than 2 points. Every method meets them
+/// (the overlay's octree, the polycube's refinement by thirds); auto weighs how well (LocalSizeFit).
+void check_local_sizes(const MeshSurfaceOptions& options, const mesh::SurfaceMesh& surface,
+                       const std::string& what = "the surface");
 
 /// `size` (> 0) within [options.min_size, options.max_size], each bound when > 0; checks them first
 /// (check_size_bounds).
@@ -286,6 +300,7 @@ std::string polycube_failure_note(const Error& error, const std::string& stage);
 
 /// Whether run b is better than run a by the candidates' order (see try_without_widths): fewer
 /// inverted cells, then a worst SJ >= target_sj, then a volume within target_volume of `reference`,
+/// then more of the local sizes met (local_fit; runs measured alike: both with them or both without),
 /// then a largest edge ratio within target_edge_ratio (when both miss it and meet target_sj: the
 /// smaller largest edge ratio), then the higher worst SJ.
 bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double reference, const MeshSurfaceOptions& options);
@@ -293,8 +308,8 @@ bool better_run(const MeshSurfaceRun& b, const MeshSurfaceRun& a, double referen
 /// Whether a run meets every target: no inverted cell, worst SJ >= target_sj, volume within
 /// target_volume of `reference`.
 bool meets_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& options);
-/// meets_targets and a largest edge ratio within target_edge_ratio: the test after which Method::Auto
-/// keeps the polycube mesh without running the overlay path.
+/// meets_targets, a largest edge ratio within target_edge_ratio and every local size met (local_fit):
+/// the test after which Method::Auto keeps the polycube mesh without running the overlay path.
 bool meets_path_targets(const MeshSurfaceRun& r, double reference, const MeshSurfaceOptions& options);
 
 /// "level 1: worst SJ 0.190, 0 inverted, volume -1.18%" (the overlay's: "overlay: ..."), for the

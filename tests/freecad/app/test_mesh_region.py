@@ -8,6 +8,7 @@ Oracles: `_hexdom`'s pipeline on the shape FreeCAD holds (core.mesh_part on its 
 CalculiX through FreeCAD's FEM workbench."""
 
 import os
+import re
 import shutil
 
 import numpy as np
@@ -66,18 +67,29 @@ def test_a_mesh_region_on_the_hole_refines_there_and_the_fem_set_up_solves(doc, 
     region.References = [(part, hole)]
     assert list(mesh.MeshRegionList) == [region]
     api.recompute_document(doc, [mesh])
-    assert mesh.MeshingPath == "overlay" and mesh.InvertedCount == 0, (mesh.MeshingPath, mesh.InvertedCount)
+    # Either path may keep it (the polycube's cells on the hole are 0.76 to 0.81 of the length
+    # depending on the tessellation, the overlay's 0.84): the Mesh says how near the length its
+    # cells on the hole are (the core's measure: the median boundary face's mean edge), the median
+    # nearest-node spacing below measuring it too.
+    assert mesh.InvertedCount == 0 and mesh.MeshingPath in ("polycube", "overlay"), (mesh.MeshingPath,
+                                                                                    mesh.InvertedCount)
+    assert len(mesh.LocalSizes) == 1, list(mesh.LocalSizes)
+    m = re.fullmatch(hole + r": cells ([\d.]+) of 1 \(within 20%\)", mesh.LocalSizes[0])
+    assert m and 0.8 <= float(m.group(1)) <= 1.2, list(mesh.LocalSizes)
     # The program's mesh with the same face size.
     number = int(hole[4:])
     run = core.mesh_part(part.Shape.exportBrepToString(), level=1, face_sizes={number: 1.0})
     assert mesh.FemMesh.VolumeCount == len(run.mesh.types)
     on_hole = mesh.FemMesh.getNodesByFace(part.Shape.getElement(hole))
     assert len(on_hole) > 5 * plain, (len(on_hole), plain)
-    # Node spacing on the hole about 1: nearest neighbours among the hole's nodes.
+    # Node spacing on the hole about 1: the second nearest of each node's neighbours among the
+    # hole's nodes (a node of a quad grid has its along-row and across-row neighbours near the
+    # cell size; the nearest alone is the thin pillow row along a rim on the polycube's mesh).
     P = _points(mesh.FemMesh, on_hole)
     d = np.sqrt(((P[:, None, :] - P[None, :, :]) ** 2).sum(axis=2))
     np.fill_diagonal(d, np.inf)
-    assert 0.6 <= np.median(d.min(axis=1)) <= 1.2, np.median(d.min(axis=1))
+    second = np.median(np.sort(d, axis=1)[:, 1])
+    assert 0.75 <= second <= 1.2, second
     # A faster growth (3: only the cells touching the hole refined): fewer cells, the program's.
     hexes = mesh.HexCount
     mesh.GrowthRate = 3.0
@@ -171,4 +183,4 @@ def test_a_mesh_region_on_a_vertex_or_another_part_is_refused_naming_it(doc):
         api.recompute_document(doc, [mesh])
     region.CharacteristicLength = 2.0
     api.recompute_document(doc, [mesh])
-    assert mesh.InvertedCount == 0 and mesh.MeshingPath == "overlay"
+    assert mesh.InvertedCount == 0 and mesh.HexCount > 0

@@ -164,9 +164,10 @@ def mesh_region(doc, part, mesh):
     mesh.Pipeline = True  # (the Polycube was edited above: the Mesh had left the pipeline)
     doc.recompute()
     g.process_events()
-    check(mesh.MeshingPath == "overlay" and mesh.InvertedCount == 0 and mesh.HexCount > 3 * hexes,
-          "with the region on {}: {} hex ({} before), {} inverted, path {}".format(
-              hole, mesh.HexCount, hexes, mesh.InvertedCount, mesh.MeshingPath))
+    check(mesh.InvertedCount == 0 and mesh.HexCount > 3 * hexes and len(mesh.LocalSizes) == 1
+          and "(within 20%)" in mesh.LocalSizes[0],
+          "with the region on {}: {} hex ({} before), {} inverted, path {}, {}".format(
+              hole, mesh.HexCount, hexes, mesh.InvertedCount, mesh.MeshingPath, list(mesh.LocalSizes)))
     path = screenshot("mesh_region_bracket.png", [mesh])
     drawn, _ = colour_shares(path, {})
     check(drawn > 0.05, "the refined mesh shows")
