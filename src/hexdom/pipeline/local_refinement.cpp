@@ -33,17 +33,16 @@ optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, 
 }
 
 void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::SurfaceMesh& patches,
-                           const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
+                           const MeshSurfaceOptions& opt, mesh::Mesh& generated) {
   constexpr int kMaxLocalLevels = 4;  // as overlay::local_levels'
   if (field.empty()) return;
-  r.stage = "refine";
   const auto t = std::chrono::steady_clock::now();
-  const int old_nodes = r.mesh.num_nodes();  // refine_by_thirds keeps them first, in their order
-  std::vector<char> plain(r.mesh.num_cells(), 1);  // cells that may be split again (no template's piece)
+  const int old_nodes = generated.num_nodes();  // refine_by_thirds keeps them first, in their order
+  std::vector<char> plain(generated.num_cells(), 1);  // cells that may be split again (no template's piece)
   int levels = 0, split = 0, templates = 0;
   const auto [edges, ne] = mesh::cell_edges(mesh::CellType::Hex);
   for (; levels < kMaxLocalLevels; ++levels) {
-    const mesh::Mesh& m = r.mesh;
+    const mesh::Mesh& m = generated;
     std::vector<char> marked(m.num_nodes(), 0), fixed(m.num_nodes(), 0);
     for (int c = 0; c < m.num_cells(); ++c)
       if (!plain[c])
@@ -69,7 +68,7 @@ void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::Sur
     std::vector<char> next(ref.mesh.num_cells());
     for (int c = 0; c < ref.mesh.num_cells(); ++c) next[c] = plain[ref.parent[c]] && ref.plain[c];
     plain = std::move(next);
-    r.mesh = std::move(ref.mesh);
+    generated = std::move(ref.mesh);
     split += ref.split;
     templates += ref.templates;
   }
@@ -78,24 +77,13 @@ void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::Sur
   // cell of its diameter): put on the surface before the optimiser, which then keeps them there,
   // rather than left to the snap's one move.
   const mesh::TriangleProjector onto(patches.V, patches.F);
-  for (const mesh::BoundaryFace& f : mesh::boundary_faces(r.mesh))
-    for (int v : mesh::face_nodes(r.mesh, f))
-      if (v >= old_nodes) r.mesh.V.row(v) = onto.project(r.mesh.V.row(v).transpose()).transpose();
-  // The mesh was pillowed (or not) and optimised before it was refined: the optimiser's stages
-  // alone now, not the recommended sequence, which would lay a second layer over the first.
-  optimize::ImproveOptions io = polycube_improvement(patches, opt);
-  io.pillow = false;
-  io.smooth = 1;
-  io.optimize = io.max_rounds;
-  io.mean_after = true;
-  optimize::ImproveResult ir = optimize::improve(r.mesh, io);
-  r.mesh = std::move(ir.mesh);
-  r.quality = ir.after;
-  r.budget_passed = r.budget_passed || ir.stopped;
+  for (const mesh::BoundaryFace& f : mesh::boundary_faces(generated))
+    for (int v : mesh::face_nodes(generated, f))
+      if (v >= old_nodes) generated.V.row(v) = onto.project(generated.V.row(v).transpose()).transpose();
   if (opt.log)
     opt.log(0, fmt("local sizes: %.0f levels by thirds (%.0f cells split, ", double(levels), double(split)) +
-                   fmt("%.0f transition templates), %.0f cells, ", double(templates), double(r.mesh.num_cells())) +
-                   worst_by_type(r.quality) + fmt(", in %.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()));
+                   fmt("%.0f transition templates), %.0f cells", double(templates), double(generated.num_cells())) +
+                   fmt(", in %.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()));
 }
 
 namespace {

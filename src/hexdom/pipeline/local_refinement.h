@@ -23,18 +23,17 @@ optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, 
 /// (overlay::local_levels, as the overlay's grid is made); `size` otherwise. Says so in the log.
 double cell_for_local_sizes(const overlay::LocalSizeField& field, double size, const MeshSurfaceOptions& opt);
 
-/// r.mesh refined where `field` (opt.overlay.local_sizes on the surface meshed, in the mesh's
-/// space; real lengths measured through opt.stretched_by) asks for smaller cells: a hexahedron is
-/// split in 27 where the overlay's octree would split a cell of its box and mean edge
-/// (overlay::LocalSizeField::split), its neighbours get the transition templates
-/// (mesh::refine_by_thirds); again on the cubes of the split cells (never on a template's piece),
-/// up to 4 levels; the new boundary nodes put on the nearest point of `patches` (they lie on the
-/// coarse cells' faces); then the optimiser's stages again over `patches` (polycube_improvement
-/// with one smoothing pass, its worst-cell rounds and mean passes; no second pillow layer), r.mesh and
-/// r.quality replaced. Nothing changes when no size applies or no cell asks. Prisms and
-/// tetrahedra are not cut.
+/// The generated mesh `generated` (before its improvement: no pillow layer yet) refined where `field`
+/// (opt.overlay.local_sizes on the surface meshed, in the mesh's space; real lengths measured
+/// through opt.stretched_by) asks for smaller cells: a hexahedron is split in 27 where the
+/// overlay's octree would split a cell of its box and mean edge (overlay::LocalSizeField::split),
+/// its neighbours get the transition templates (mesh::refine_by_thirds); again on the cubes of the
+/// split cells (never on a template's piece), up to 4 levels; the new boundary nodes put on the
+/// nearest point of `patches` (they lie on the coarse cells' faces). The improvement that follows
+/// (pillow layer included) then works on the refined cells. Nothing changes when no size applies
+/// or no cell asks; prisms and tetrahedra are not cut. Says what it did in the log.
 void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::SurfaceMesh& patches,
-                           const MeshSurfaceOptions& opt, MeshSurfaceRun& r);
+                           const MeshSurfaceOptions& opt, mesh::Mesh& generated);
 
 /// How `mesh` meets `sizes` on `surface` (the surface it was made from; its patches are the faces
 /// the sizes name). A size on a patch: the boundary faces whose centre is nearest a triangle of the

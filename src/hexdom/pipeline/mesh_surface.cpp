@@ -578,11 +578,9 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     mesh::Mesh structure = r.polycube.structure;
     patches.V = through_model(patches.V);
     structure.V = through_model(structure.V);
-    generate_and_improve(patches, structure, opt, r);
-    refine_to_local_sizes(field, patches, opt, r);
+    generate_and_improve(patches, structure, opt, r, &field);
   } else {
-    generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r);
-    refine_to_local_sizes(field, r.polycube.patches, opt, r);
+    generate_and_improve(r.polycube.patches, r.polycube.structure, opt, r, &field);
   }
   r.keep_widths = opt.polycube.keep_widths;
   r.collapse_apexes = opt.polycube.collapse_apexes;
@@ -602,7 +600,7 @@ std::string worst_by_type(const quality::QualityReport& q) {
 
 
 void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const MeshSurfaceOptions& opt,
-                          MeshSurfaceRun& r) {
+                          MeshSurfaceRun& r, const overlay::LocalSizeField* local) {
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   const LogCallback inner = opt.verbose ? opt.log : LogCallback();
   r.stage = "generate";
@@ -614,6 +612,7 @@ void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& st
   go.threads = opt.threads;
   go.log = inner;
   r.generated = generation::generate(patches, structure, go);
+  if (local) refine_to_local_sizes(*local, patches, opt, r.generated);
   r.generated_quality = quality::quality_report(r.generated);
   r.seconds[2] = since(t);
   say(fmt("generate: %.0f cells, ", r.generated.num_cells()) + worst_by_type(r.generated_quality) +

@@ -271,9 +271,11 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& surface, const MeshSurfaceO
 /// improvement (opt.improvement with `patches` as the surface, target_edge_ratio, deadline: it
 /// stops early with its best so far). Sets r.generated, generated_quality, mesh, quality,
 /// seconds[2..3], level, budget_passed and stage ("done"; "generate" or "improve" when it throws).
-/// Logs one line per stage to opt.log.
+/// With `local` (the local sizes' field over the surface meshed), the generated mesh is refined
+/// by thirds where it asks for smaller cells before the improvement (refine_to_local_sizes,
+/// local_refinement.h). Logs one line per stage to opt.log.
 void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& structure, const MeshSurfaceOptions& opt,
-                          MeshSurfaceRun& r);
+                          MeshSurfaceRun& r, const overlay::LocalSizeField* local = nullptr);
 
 /// The solids' runs `runs` (each made by mesh_surface on one solid) as one run (see
 /// MeshSurfaceRun::solids), moved into `r`.
