@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <array>
 #include <cmath>
-#include <set>
-#include <utility>
 
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
+#include "hexdom/mesh/edge_key.h"
 #include "hexdom/mesh/refine.h"
 #include "hexdom/overlay/local_size.h"
 #include "hexdom/pipeline/stretch.h"
@@ -20,16 +20,6 @@ double cell_for_local_sizes(const overlay::LocalSizeField& field, double size, c
   const overlay::LocalLevels l = overlay::local_levels(size, {overlay::LocalSize{0, field.smallest(), {}}}, opt.min_size);
   if (l.factor != 1 && opt.log) opt.log(0, fmt("local sizes: the polycube's cell %g made %g", size, size * l.factor));
   return size * l.factor;
-}
-
-optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt) {
-  optimize::ImproveOptions io = opt.improvement;
-  io.max_edge_ratio = opt.target_edge_ratio;
-  io.surface = patches;
-  io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
-  io.threads = opt.threads;
-  io.log = opt.verbose ? opt.log : LogCallback();
-  return io;
 }
 
 void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::SurfaceMesh& patches,
@@ -103,21 +93,26 @@ LocalSizeFit local_size_fit(const mesh::Mesh& mesh, const mesh::SurfaceMesh& sur
   if (sizes.empty()) return fit;
   const std::vector<mesh::BoundaryFace> faces = mesh::boundary_faces(mesh);
   auto corner = [&](int v) -> Eigen::Vector3d { return mesh.V.row(v).transpose(); };
-  std::vector<int> patch;  // per boundary face, its nearest triangle's patch
-  std::set<std::pair<int, int>> edges;  // the boundary edges, (low, high) node
-  for (const auto& f : faces)
-    for (int i = 0; i < f.n; ++i) edges.emplace(std::min(f.v[i], f.v[(i + 1) % f.n]), std::max(f.v[i], f.v[(i + 1) % f.n]));
+  std::vector<int> patch;              // per boundary face, its nearest triangle's patch (when asked)
+  std::vector<mesh::EdgeKey> edges;    // the boundary edges, each once (when asked)
   for (const overlay::LocalSize& l : sizes) {
     std::vector<double> measured;
     if (l.polyline.rows() > 0) {
+      if (edges.empty()) {
+        for (const auto& f : faces)
+          for (int i = 0; i < f.n; ++i) edges.push_back(mesh::undirected_edge(f.v[i], f.v[(i + 1) % f.n]));
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      }
       std::vector<std::array<int, 2>> segments;
       for (int i = 0; i + 1 < l.polyline.rows(); ++i) segments.push_back({i, i + 1});
       const mesh::TriangleProjector line = mesh::segment_projector(l.polyline, segments);
       const double near = 0.1 * l.size;
       auto on_line = [&](const Eigen::Vector3d& x) { return (line.project(x) - x).norm() <= near; };
-      for (const auto& [a, b] : edges)
-        if (on_line(corner(a)) && on_line(corner(b)) && on_line(0.5 * (corner(a) + corner(b))))
-          measured.push_back((corner(a) - corner(b)).norm());
+      for (const mesh::EdgeKey e : edges) {
+        const Eigen::Vector3d a = corner(mesh::edge_from(e)), b = corner(mesh::edge_to(e));
+        if (on_line(a) && on_line(b) && on_line(0.5 * (a + b))) measured.push_back((a - b).norm());
+      }
     } else {
       if (patch.empty()) {
         const std::vector<int> t = mesh::nearest_triangles(mesh::TriangleProjector(surface.V, surface.F), mesh.V, faces);

@@ -7,16 +7,10 @@
 #include <vector>
 
 #include "hexdom/mesh/mesh.h"
-#include "hexdom/optimize/improve.h"
 #include "hexdom/overlay/local_size.h"
 #include "hexdom/pipeline/mesh_surface.h"
 
 namespace hexdom::pipeline {
-
-/// The optimiser's options for the polycube path's meshes over its patches (`patches`, the
-/// polycube's charts on the surface): opt.improvement with its edge-ratio target, deadline,
-/// threads and log.
-optimize::ImproveOptions polycube_improvement(const mesh::SurfaceMesh& patches, const MeshSurfaceOptions& opt);
 
 /// The polycube's cell for the default or asked `size` when `field` (opt.overlay.local_sizes on the
 /// surface meshed) has sizes: made such that some level by thirds lands within 1.2 of the smallest

@@ -237,7 +237,7 @@ MeshCadRun mesh_cad_first_order(const cad::Shape& shape, const MeshCadOptions& o
   }
   r.tessellations = 1;
   say(fmt("tessellate: %.0f triangles on %.0f CAD faces in %.2f s", r.stats.triangles, r.stats.faces, r.stats.seconds));
-  check_local_sizes(opt.mesh, r.surface, "the part");  // each face asked for is one of the part's
+  overlay::check_local_sizes(opt.mesh.overlay.local_sizes, r.surface, "the part");  // each face asked for is one of the part's
   reference = r.stats.brep_volume != 0 ? r.stats.brep_volume : mesh::enclosed_volume(r.surface.V, r.surface.F);
   // One time budget for the polycube path over every tessellation of this call, from here: the first
   // tessellation serves both paths (on a part with many small faces it alone can take longer than

@@ -269,10 +269,6 @@ void check_size_bounds(const MeshSurfaceOptions& opt) {
   overlay::check_growth_rate(opt.overlay.growth_rate);
 }
 
-void check_local_sizes(const MeshSurfaceOptions& opt, const mesh::SurfaceMesh& surface, const std::string& what) {
-  overlay::check_local_sizes(opt.overlay.local_sizes, surface, what);
-}
-
 double bounded_size(double size, const MeshSurfaceOptions& opt) {
   check_size_bounds(opt);
   if (opt.max_size > 0) size = std::min(size, opt.max_size);
@@ -347,7 +343,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
     for (const std::string& w : check.warnings)
       if (opt.log) opt.log(1, w);
     if (check.solids > 1) {
-      check_local_sizes(opt, checked, opt.input_name);  // the faces asked for are on some solid
+      overlay::check_local_sizes(opt.overlay.local_sizes, checked, opt.input_name);  // the faces asked for are on some solid
       // Each solid on its own, then put together; the checks are done.
       MeshSurfaceOptions so = opt;
       so.check_input = false;
@@ -372,7 +368,7 @@ MeshSurfaceRun mesh_surface(const mesh::SurfaceMesh& input, const MeshSurfaceOpt
   }
   const mesh::SurfaceMesh& surface = opt.check_input ? checked : input;
   MeshSurfaceOptions so = opt;  // the element size fixed within its bounds
-  if (opt.check_input) check_local_sizes(opt, surface, opt.input_name);
+  if (opt.check_input) overlay::check_local_sizes(opt.overlay.local_sizes, surface, opt.input_name);
   if (opt.max_size != 0 || opt.min_size != 0) {
     so.size = element_size(surface, opt);
     if (opt.log) opt.log(0, fmt("size: %g (min size %g, max size %g; 0: none)", so.size, opt.min_size, opt.max_size));
@@ -622,7 +618,13 @@ void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& st
   t = Clock::now();
   bool stopped = false;
   if (opt.improve) {
-    optimize::ImproveResult ir = optimize::improve(r.generated, polycube_improvement(patches, opt));
+    optimize::ImproveOptions io = opt.improvement;
+    io.max_edge_ratio = opt.target_edge_ratio;
+    io.surface = patches;
+    io.deadline = opt.deadline;  // stops early with its best so far: the generated mesh is a result
+    io.threads = opt.threads;
+    io.log = inner;
+    optimize::ImproveResult ir = optimize::improve(r.generated, io);
     r.mesh = std::move(ir.mesh);
     r.quality = ir.after;
     stopped = ir.stopped;

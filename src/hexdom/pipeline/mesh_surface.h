@@ -236,13 +236,6 @@ void check_order(int order);
 /// rate (overlay.growth_rate) not in (1, 3].
 void check_size_bounds(const MeshSurfaceOptions& options);
 
-/// Checks each of options.overlay.local_sizes (cell sizes asked on faces or along polylines)
-/// against `surface` (overlay::check_local_sizes, `what` naming it): InputError for a size not
-/// positive, a face the surface lacks, a polyline of fewer than 2 points. Every method meets them
-/// (the overlay's octree, the polycube's refinement by thirds); auto weighs how well (LocalSizeFit).
-void check_local_sizes(const MeshSurfaceOptions& options, const mesh::SurfaceMesh& surface,
-                       const std::string& what = "the surface");
-
 /// `size` (> 0) within [options.min_size, options.max_size], each bound when > 0; checks them first
 /// (check_size_bounds).
 double bounded_size(double size, const MeshSurfaceOptions& options);
