@@ -480,8 +480,6 @@ MeshSurfaceRun mesh_polycube(const mesh::SurfaceMesh& surface, const MeshSurface
   return r;
 }
 
-/// "worst hex SJ 0.307, prism 0.306, tet 0.118, 0 inverted": the types present only (a mesh with
-/// tet and prism blocks may have no hex, whose minimum is then NaN).
 void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, MeshSurfaceRun& r) {
   auto say = [&](const std::string& m) { if (opt.log) opt.log(0, m); };
   const LogCallback inner = opt.verbose ? opt.log : LogCallback();
