@@ -584,6 +584,7 @@ class MeshRun:
     # face_sizes / edge_sizes: per size (faces first, then edges, each by number), the median cell
     # size there over the size asked (0: no cell there); auto prefers the path within 20% on more
     local_size_ratios: list = None
+    local_size_met: list = None  # per size, whether the core counts it as met (within 20%)
 
     @property
     def inverted(self):
@@ -605,7 +606,8 @@ def _mesh_run(r):
                    touching=[tuple(int(k) for k in pair) for pair in r.get("touching", [])],
                    warnings=[str(w) for w in r.get("warnings", [])],
                    second_order=None if r.get("second_order") is None else dict(r["second_order"]),
-                   local_size_ratios=[float(x) for x in r.get("local_size_ratios", [])])
+                   local_size_ratios=[float(x) for x in r.get("local_size_ratios", [])],
+                   local_size_met=[bool(x) for x in r.get("local_size_met", [])])
 
 
 def _cad_run(r):

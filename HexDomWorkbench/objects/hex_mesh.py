@@ -330,14 +330,14 @@ class HexMesh(BaseHexDomObject):
         align = segmentation.frame_matrix(seg) is not None
         snap = snap_source(obj)
         second = element_order(obj) == 2
+        face_sizes = overlay_face_sizes(obj, surface_obj)
         with Progress("Meshing " + obj.Label + " (overlay grid)", 1 + bool(snap) + second) as bar:
             run = bar.run("overlay grid", core.mesh_surface, surface, size=size, method="overlay",
                           align=align, improve=bool(obj.Improve), allow_inverted=True,
-                          face_sizes=overlay_face_sizes(obj, surface_obj),
+                          face_sizes=face_sizes,
                           pillow_curves=bool(getattr(obj, "PillowCurves", False)), **pipeline.size_bounds(obj))
             mesh = run.mesh
-            self.local_sizes = pipeline.local_size_lines(
-                {"face_sizes": overlay_face_sizes(obj, surface_obj) or {}}, run.local_size_ratios)
+            self.local_sizes = pipeline.local_size_lines({"face_sizes": face_sizes or {}}, run)
             bar.step("overlay grid: {hex} hex, {prism} prism, {tet} tet".format(**mesh.counts))
             if snap:
                 brep, cad_surface = snap

@@ -122,17 +122,18 @@ def region_sizes(mesh, shape):
             if sizes[kind]}
 
 
-def local_size_lines(options, ratios):
+def local_size_lines(options, run):
     """The HexDom Mesh's LocalSizes: one line per face or edge size of ``options`` (face_sizes, then
-    edge_sizes, each by number, the order the core measures them in) with the run's
-    local_size_ratios, "Face10: cells 0.84 of 1 (within 20%)"; empty when the run measured none."""
+    edge_sizes, each by number, the order the core measures them in) with the core.MeshRun
+    ``run``'s local_size_ratios and whether the core counts each as met, "Face10: cells 0.84 of 1
+    (within 20%)"; empty when the run measured none."""
     named = [("Face{}".format(k), s) for k, s in sorted(options.get("face_sizes", {}).items())]
     named += [("Edge{}".format(k), s) for k, s in sorted(options.get("edge_sizes", {}).items())]
-    if not ratios or len(ratios) != len(named):
+    ratios, met = run.local_size_ratios or [], run.local_size_met or []
+    if not ratios or len(ratios) != len(named) or len(met) != len(named):
         return []
-    return ["{}: cells {:.2f} of {:g} ({})".format(name, r, size, "within 20%" if abs(r - 1) <= 0.2
-                                                   else "not within 20%")
-            for (name, size), r in zip(named, ratios)]
+    return ["{}: cells {:.2f} of {:g} ({})".format(name, r, size, "within 20%" if ok else "not within 20%")
+            for (name, size), r, ok in zip(named, ratios, met)]
 
 
 def pipeline_options(mesh, shape=None):
@@ -202,7 +203,7 @@ def run_pipeline(objs, store_mesh=None, run=None):
         result.surface, result.tessellation_size = surface, size
     say_warnings(mesh, result)
     fill_mesh_part(objs, result, store_mesh=store_mesh)
-    lines = local_size_lines(options, result.local_size_ratios)
+    lines = local_size_lines(options, result)
     if hasattr(mesh, "LocalSizes") and list(mesh.LocalSizes) != lines:
         mesh.LocalSizes = lines
     return result

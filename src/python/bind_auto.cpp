@@ -139,6 +139,9 @@ py::dict run_dict(const pipeline::MeshSurfaceRun& r) {
   d["method"] = pipeline::method_name(r.method);
   d["polycube_note"] = r.polycube_note;
   d["local_size_ratios"] = r.local_fit.ratio;
+  std::vector<bool> met;
+  for (double x : r.local_fit.ratio) met.push_back(pipeline::LocalSizeFit::within(x));
+  d["local_size_met"] = met;
   const std::vector<char> face_only = pipeline::snap_face_only(r);
   d["face_only"] = std::vector<int>(face_only.begin(), face_only.end());
   d["budget_passed"] = r.budget_passed;

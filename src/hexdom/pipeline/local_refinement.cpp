@@ -1,9 +1,8 @@
 #include "hexdom/pipeline/local_refinement.h"
 
 #include <algorithm>
-#include <chrono>
 #include <array>
-#include <cmath>
+#include <chrono>
 
 #include "hexdom/common/format.h"
 #include "hexdom/mesh/cell_faces.h"
@@ -130,7 +129,7 @@ LocalSizeFit local_size_fit(const mesh::Mesh& mesh, const mesh::SurfaceMesh& sur
     }
     const double ratio = median(std::move(measured)) / l.size;
     fit.ratio.push_back(ratio);
-    if (std::abs(ratio - 1) <= 0.2) ++fit.met;
+    if (LocalSizeFit::within(ratio)) ++fit.met;
   }
   return fit;
 }

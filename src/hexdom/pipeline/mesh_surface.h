@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -169,8 +170,10 @@ struct LocalSizeFit {
   /// Per local size, in the options' order: the median size of the mesh's cells on its face (or
   /// along its polyline) over the size asked; 0 where no cell lies there.
   std::vector<double> ratio;
-  int met = 0;  ///< of them, those within 20% of 1
+  int met = 0;  ///< of them, those met (within)
   bool all_met() const { return met == static_cast<int>(ratio.size()); }
+  /// A size is met when the cells there are within 20% of it.
+  static bool within(double ratio) { return std::abs(ratio - 1) <= 0.2; }
 };
 
 struct MeshSurfaceRun {
