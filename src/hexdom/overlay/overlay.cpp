@@ -290,7 +290,8 @@ struct Ranking {
   std::string summary(const OverlayResult& r) const {
     return fmt("%.0f core + %.0f buffer cells, ", double(r.core_cells), double(r.buffer_cells)) +
            fmt("%.0f inverted, worst SJ %.3f, volume %+.2f%%", double(inverted(r.quality)), quality::worst_sj(r.quality),
-               reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0);
+               reference != 0 ? 100 * (r.quality.total_volume - reference) / reference : 0.0) +
+           fmt(", %.2f s", r.seconds);
   }
 };
 
@@ -430,14 +431,20 @@ class Grids {
   OverlayResult features_grid(Eigen::Vector3d& h, const OverlayOptions& o, const SurfaceFeatures& f,
                               const SurfaceFeatures* sf, bool unmended_if_lost) {
     ++grids_;
+    const auto t0 = std::chrono::steady_clock::now();
     const Local local = local_refinement(h, o, field_);
     const double lost_at = unmended_if_lost ? o.lost_volume : 0.0;
-    if (!stretched_) return mesh_with_grid(s_, f, h, o, nullptr, local, lost_at);
-    const Stretch st{stretch_, &s_, &f};
-    OverlayResult r = mesh_with_grid(ss_, *sf, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local, lost_at);
-    const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch_);
-    r.spacing = spacing.maxCoeff();
-    r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
+    OverlayResult r;
+    if (!stretched_) {
+      r = mesh_with_grid(s_, f, h, o, nullptr, local, lost_at);
+    } else {
+      const Stretch st{stretch_, &s_, &f};
+      r = mesh_with_grid(ss_, *sf, Eigen::Vector3d::Constant(h.maxCoeff()), o, &st, local, lost_at);
+      const Eigen::Vector3d spacing = Eigen::Vector3d::Constant(r.spacing).cwiseQuotient(stretch_);
+      r.spacing = spacing.maxCoeff();
+      r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // this grid's
     return r;
   }
 
@@ -531,21 +538,28 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   // at 1 / max_wall_refinement, a power of 2) would be the same mesh again.
   std::vector<Eigen::Vector3d> halvings;
   // Cells left inverted on a part with thin walls: one more grid, whose spacing gives the walls
-  // wall_fallback cells across (wall_f times h0, measured once), the better kept; made once, and
-  // before any halving only when it is the coarser.
+  // wall_fallback cells across (wall_f times h0, measured once), the better kept; made once. With
+  // `next` (the spacing of the halving that would follow), only when it is finer than that
+  // halving by at most kWallsFirst (the halving would leave the walls fewer cells across for a
+  // saving of at most kWallsFirst^3 in cells), or, before the first halving (`first`), coarser.
+  // Returns whether it was made (or had been, as a halving).
   double wall_f = 0;
   bool walls_made = false;
-  auto walls_grid = [&](bool before_halving) {
+  constexpr double kWallsFirst = 0.75;
+  auto walls_grid = [&](double next, bool first) {
     if (wall_f == 0) wall_f = opt.wall_across == 0 && opt.wall_fallback > 0 ? wall_factor(opt.wall_fallback) : 1.0;
-    if (walls_made || wall_f >= 1 || (before_halving && wall_f <= 0.5)) return;
+    const double hw = wall_f * h0.maxCoeff();
+    if (walls_made || wall_f >= 1 || (next > 0 && (hw < kWallsFirst * next || (hw > (1 + 1e-9) * next && !first))))
+      return false;
     walls_made = true;
     const Eigen::Vector3d h = h0 * wall_f;
     for (const Eigen::Vector3d& made : halvings)
       if ((made - h).norm() <= 1e-9 * h.norm()) {
         say(fmt("overlay: the grid for the walls has the spacing %g, already meshed", h.maxCoeff()));
-        return;
+        return true;
       }
     grid.extra_grid(h, opt, " for the walls", best);
+    return true;
   };
   std::optional<Eigen::Vector3d> unmended;  // the spacing of `best` when it was not mended
   auto above_min_size = [&](const Eigen::Vector3d& x) { return x.minCoeff() >= opt.min_size * (1 - 1e-9); };
@@ -585,16 +599,20 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       best = std::move(r);
       have = true;
     }
-    // The first grid left cells inverted: the grid for thin walls before any halving when it is
-    // the coarser of the two (fewer cells; cheapest first).
-    if (k == 0 && inverted(best.quality) > 0) walls_grid(true);
+    // The grid kept left cells inverted: the grid for thin walls before the next halving when it
+    // is not much finer, or, before the first halving, coarser (fewer cells; cheapest first); in
+    // place of the halvings when finer (the last grid, as when it follows them).
+    if (inverted(best.quality) > 0 && k < opt.refinements && walls_grid(h.maxCoeff() / 2, k == 0) &&
+        wall_f * h0.maxCoeff() <= (1 + 1e-9) * h.maxCoeff() / 2)
+      break;
     const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || quality::worst_sj(best.quality) < opt.refine_below_sj;
     if (!short_of || k == opt.refinements) break;
     if (!halve_again(best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
   }
   // The finer grids lost more of the solid (or were not made): the one kept, mended after all;
-  // kept when better (a grid made after it, the walls' grid, may have become best since).
-  if (have && unmended && inverted(best.quality) > 0) {
+  // kept when better. Not when the mesh kept is whole (the walls' grid, made after it, may be):
+  // a mesh that lost part of the solid never outranks it.
+  if (have && unmended && inverted(best.quality) > 0 && rank.lost(best)) {
     try {
       OverlayResult mended = grid.one_grid(*unmended, opt, false);
       if (rank.better(mended, best)) best = std::move(mended);
@@ -602,7 +620,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     }
   }
   // Cells still inverted after the halvings: the grid for thin walls, finer than a halving.
-  if (have && inverted(best.quality) > 0) walls_grid(false);
+  if (have && inverted(best.quality) > 0) walls_grid(0, false);
   if (!have) throw GeometryError("overlay: " + why);
   best.grids = grid.made();
   best.frame = frame;

@@ -148,7 +148,7 @@ struct OverlayResult {
   bool patch_edges = false;
   int octree_levels = 0;             ///< levels of octree refinement in the result's grid (0: none)
   segmentation::CubeFrame frame;
-  double seconds = 0;
+  double seconds = 0;  ///< the whole run (a grid's own while overlay_mesh ranks the grids)
 };
 
 /// A hex mesh of `surface` (closed, 2-manifold, oriented outward; its patch ids CAD faces, or

@@ -423,6 +423,26 @@ TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
   EXPECT_GT(halved.mesh.num_cells(), 2 * walls.mesh.num_cells());
 }
 
+// Not much finer than a halving, the grid for the walls takes its place: on the hollow sphere
+// (wall 1) at size 1.2 the first grid keeps inverted cells; the walls' grid (spacing 0.5, 0.83 of
+// the halving's 0.6) is made next and no halving at all (a halving would leave the wall 1.7 cells
+// across, for 1.7 times fewer cells). Valid, the volume within 1%.
+TEST(OverlayWalls, TheGridForTheWallsTakesTheHalvingsPlaceWhenNotMuchFiner) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  overlay::OverlayOptions o;
+  o.size = 1.2;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult walls = overlay::overlay_mesh(shell, o);
+  EXPECT_NE(log.find("for the walls"), std::string::npos) << log;
+  EXPECT_EQ(log.find("halving"), std::string::npos) << log;
+  EXPECT_EQ(walls.grids, 2) << log;
+  EXPECT_NEAR(walls.spacing, 0.5, 0.01);
+  EXPECT_EQ(inverted(walls.quality), 0);
+  EXPECT_NEAR(walls.quality.total_volume, volume, 0.01 * volume);
+}
+
 // Local sizes: the spacing as asked when one of its levels is within 1.2 of the smallest size,
 // else the nearest that gives one (at most 1.2 coarser); none for sizes at the spacing or above;
 // the min size bounds them.
