@@ -542,7 +542,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   // `next` (the spacing of the halving that would follow), only when it is finer than that
   // halving by at most kWallsFirst (the halving would leave the walls fewer cells across for a
   // saving of at most kWallsFirst^3 in cells), or, before the first halving (`first`), coarser.
-  // Returns whether it was made (or had been, as a halving).
+  // Returns its longest spacing when it was made (or had been, as a halving), else 0.
   double wall_f = 0;
   bool walls_made = false;
   constexpr double kWallsFirst = 0.75;
@@ -550,16 +550,16 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     if (wall_f == 0) wall_f = opt.wall_across == 0 && opt.wall_fallback > 0 ? wall_factor(opt.wall_fallback) : 1.0;
     const double hw = wall_f * h0.maxCoeff();
     if (walls_made || wall_f >= 1 || (next > 0 && (hw < kWallsFirst * next || (hw > (1 + 1e-9) * next && !first))))
-      return false;
+      return 0.0;
     walls_made = true;
     const Eigen::Vector3d h = h0 * wall_f;
     for (const Eigen::Vector3d& made : halvings)
       if ((made - h).norm() <= 1e-9 * h.norm()) {
         say(fmt("overlay: the grid for the walls has the spacing %g, already meshed", h.maxCoeff()));
-        return true;
+        return hw;
       }
     grid.extra_grid(h, opt, " for the walls", best);
-    return true;
+    return hw;
   };
   std::optional<Eigen::Vector3d> unmended;  // the spacing of `best` when it was not mended
   auto above_min_size = [&](const Eigen::Vector3d& x) { return x.minCoeff() >= opt.min_size * (1 - 1e-9); };
@@ -602,9 +602,10 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     // The grid kept left cells inverted: the grid for thin walls before the next halving when it
     // is not much finer, or, before the first halving, coarser (fewer cells; cheapest first); in
     // place of the halvings when finer (the last grid, as when it follows them).
-    if (inverted(best.quality) > 0 && k < opt.refinements && walls_grid(h.maxCoeff() / 2, k == 0) &&
-        wall_f * h0.maxCoeff() <= (1 + 1e-9) * h.maxCoeff() / 2)
-      break;
+    if (inverted(best.quality) > 0 && k < opt.refinements) {
+      const double next = h.maxCoeff() / 2, hw = walls_grid(next, k == 0);
+      if (hw > 0 && hw <= (1 + 1e-9) * next) break;
+    }
     const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || quality::worst_sj(best.quality) < opt.refine_below_sj;
     if (!short_of || k == opt.refinements) break;
     if (!halve_again(best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;

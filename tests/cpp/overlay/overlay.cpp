@@ -398,49 +398,45 @@ TEST(OverlayWalls, InvertedCellsOnThinWallsGetOneMoreGridForThem) {
   EXPECT_LT(boundary_distance(with.mesh, shell), 1e-9 * diagonal(shell));
 }
 
-// Cheapest first: on the hollow sphere (wall 1) at size 0.7 the first grid keeps inverted cells;
-// the grid for the walls (spacing 0.5, fewer cells than a halving to 0.35) comes next and, valid
-// with the volume within 1%, ends the search: no halving. Without it the halving is made instead,
-// with more than twice the cells.
-TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
+// The hollow sphere (wall 1) at `size`, whose first grid keeps inverted cells: the grid for the
+// walls (spacing 0.5) is made and no halving; valid, the volume within 1%.
+namespace {
+overlay::OverlayResult walls_grid_without_halving(double size) {
   const mesh::SurfaceMesh shell = hollow_sphere();
   const double volume = mesh::enclosed_volume(shell.V, shell.F);
   overlay::OverlayOptions o;
-  o.size = 0.7;
+  o.size = size;
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const overlay::OverlayResult walls = overlay::overlay_mesh(shell, o);
+  overlay::OverlayResult walls = overlay::overlay_mesh(shell, o);
   EXPECT_NE(log.find("for the walls"), std::string::npos) << log;
   EXPECT_EQ(log.find("halving"), std::string::npos) << log;
   EXPECT_NEAR(walls.spacing, 0.5, 0.01);
   EXPECT_EQ(inverted(walls.quality), 0);
   EXPECT_NEAR(walls.quality.total_volume, volume, 0.01 * volume);
+  return walls;
+}
+}  // namespace
+
+// Cheapest first: at size 0.7 the grid for the walls (spacing 0.5, fewer cells than a halving to
+// 0.35) comes next and, valid with the volume within 1%, ends the search: no halving. Without it
+// the halving is made instead, with more than twice the cells.
+TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
+  const overlay::OverlayResult walls = walls_grid_without_halving(0.7);
+  overlay::OverlayOptions o;
+  o.size = 0.7;
   o.wall_fallback = 0;
-  o.log = nullptr;
-  const overlay::OverlayResult halved = overlay::overlay_mesh(shell, o);
+  const overlay::OverlayResult halved = overlay::overlay_mesh(hollow_sphere(), o);
   EXPECT_NEAR(halved.spacing, 0.35, 0.01);
   EXPECT_EQ(inverted(halved.quality), 0);
   EXPECT_GT(halved.mesh.num_cells(), 2 * walls.mesh.num_cells());
 }
 
-// Not much finer than a halving, the grid for the walls takes its place: on the hollow sphere
-// (wall 1) at size 1.2 the first grid keeps inverted cells; the walls' grid (spacing 0.5, 0.83 of
-// the halving's 0.6) is made next and no halving at all (a halving would leave the wall 1.7 cells
-// across, for 1.7 times fewer cells). Valid, the volume within 1%.
+// Not much finer than a halving, the grid for the walls takes its place: at size 1.2 the walls'
+// grid (spacing 0.5, 0.83 of the halving's 0.6) is the second grid and the last (a halving would
+// leave the wall 1.7 cells across, for 1.7 times fewer cells).
 TEST(OverlayWalls, TheGridForTheWallsTakesTheHalvingsPlaceWhenNotMuchFiner) {
-  const mesh::SurfaceMesh shell = hollow_sphere();
-  const double volume = mesh::enclosed_volume(shell.V, shell.F);
-  overlay::OverlayOptions o;
-  o.size = 1.2;
-  std::string log;
-  o.log = [&](int, const std::string& m) { log += m + "\n"; };
-  const overlay::OverlayResult walls = overlay::overlay_mesh(shell, o);
-  EXPECT_NE(log.find("for the walls"), std::string::npos) << log;
-  EXPECT_EQ(log.find("halving"), std::string::npos) << log;
-  EXPECT_EQ(walls.grids, 2) << log;
-  EXPECT_NEAR(walls.spacing, 0.5, 0.01);
-  EXPECT_EQ(inverted(walls.quality), 0);
-  EXPECT_NEAR(walls.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_EQ(walls_grid_without_halving(1.2).grids, 2);
 }
 
 // Local sizes: the spacing as asked when one of its levels is within 1.2 of the smallest size,
