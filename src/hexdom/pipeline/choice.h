@@ -41,8 +41,10 @@ struct KeptMessages {
 struct PathCut {
   std::chrono::steady_clock::time_point at;
   bool on = false;  ///< a cut at all (polycube_seconds_overlay_met > 0)
-  std::atomic<bool> step1_done{false}, overlay_done{false};        ///< set by the thread that ran it
-  std::atomic<bool> step1_stopped{false}, overlay_stopped{false};  ///< set by the thread that stopped it
+  /// Set by the thread that ran it (polycube_done: the polycube's steps 1 and 3 are over).
+  std::atomic<bool> step1_done{false}, overlay_done{false}, polycube_done{false};
+  /// Set by the thread that stopped it.
+  std::atomic<bool> step1_stopped{false}, step3_stopped{false}, overlay_stopped{false};
   explicit PathCut(double seconds)
       : at(std::chrono::steady_clock::now() +
            std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds))),
@@ -53,6 +55,19 @@ struct PathCut {
     while (on && !done.load() && !until.passed() && std::chrono::steady_clock::now() < at)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     return on && !done.load() && !until.passed();
+  }
+  /// The overlay's thread, its mesh meeting the targets: waits until the cut unless the polycube's
+  /// steps end (polycube_done) or `until` passes first; at the cut, step 1 is stopped if it runs
+  /// (its deadline `step1` cancelled: it keeps what it has) and step 3 (`step3`), unfinished or
+  /// not yet begun, too: then it counts for nothing.
+  void stop_polycube(const Deadline& until, const Deadline& step1, const Deadline& step3) {
+    if (!wait(polycube_done, until)) return;
+    if (!step1_done.load()) {
+      step1_stopped.store(true);
+      step1.cancel();
+    }
+    step3_stopped.store(true);
+    step3.cancel();
   }
 };
 
@@ -151,8 +166,11 @@ inline std::string step1_note(bool met, const MeshSurfaceRun& first, double refe
 ///     polycube path again with its candidates (the labelling repaired once, taken from step 1),
 ///     started beside the overlay as soon as step 1 ends; when step 1 gave no mesh because its
 ///     labelling defeated the repair, the segmentation with the options' further edge weights
-///     (retry_edge_weights; step 1 tries the first weight only). It is called off, and counts for
-///     nothing, when the overlay's mesh meets those targets. When its own mesh meets every target
+///     (retry_edge_weights; step 1 tries the first weight only). When the overlay's mesh meets
+///     those targets, it is called off if it still runs (or has not begun) polycube_seconds_overlay_met
+///     after the start, and then counts for nothing; ended before, it is weighed with the others (the
+///     overlay's speed does not decide between a mesh that meets the targets and a better one that
+///     ends within the cut). When its own mesh meets every target
 ///     and the overlay still runs polycube_seconds_overlay_met after the start, the overlay is
 ///     called off then. The best of the meshes is kept. Where both paths end within
 ///     polycube_seconds_overlay_met, the mesh kept does not depend on which thread ends first.
@@ -206,13 +224,8 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
       polycube_grant.set(all_threads);
       have_grid = true;
       cut.overlay_done.store(true);
-      // Every target met, the edge ratio aside: step 3 called off, step 1 stopped at the cut if it runs.
-      const bool met = meets_targets(run_of(grid), reference, mo);
-      if (met) step3.cancel();
-      if (met && cut.wait(cut.step1_done, overlay.deadline)) {
-        cut.step1_stopped.store(true);
-        quick.deadline.cancel();
-      }
+      // Every target met, the edge ratio aside: the polycube's steps stopped at the cut if they run.
+      if (meets_targets(run_of(grid), reference, mo)) cut.stop_polycube(overlay.deadline, quick.deadline, step3);
     } catch (...) {
       polycube_grant.set(all_threads);
       grid_error = std::current_exception();
@@ -276,6 +289,7 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
                              : "the polycube with the further edge weights: " + polycube_failure_note(e, run_of(again).stage);
     }
   }
+  cut.polycube_done.store(true);
   overlay_grant.set(all_threads);
   join.cancel = false;
   worker.join();
@@ -300,11 +314,9 @@ void choose_path(const MeshSurfaceOptions& mo, double reference, MeshPath mesh_p
     }
     return false;
   };
-  // The further candidates mend the worst SJ, inverted cells or the volume, seldom the edge ratio.
-  const bool grid_enough = have_grid && meets_targets(run_of(grid), reference, mo);
   if (!again_heading.empty()) {
-    if (grid_enough) {
-      say(again_heading + ": called off, the overlay mesh meets the targets");
+    if (cut.step3_stopped.load()) {  // what it kept when stopped counts for nothing
+      say(again_heading + fmt(": called off after %g s, the overlay mesh meets the targets", mo.polycube_seconds_overlay_met));
     } else {
       say(again_heading);
       again_said.say(mo.log);

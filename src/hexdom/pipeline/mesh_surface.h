@@ -60,7 +60,8 @@ struct MeshSurfaceOptions {
   /// Method::Auto (pipeline/choice.h): seconds from the start of the choice after which a path
   /// that still runs is stopped when the other one has a mesh that meets every target: the
   /// polycube's first candidate when the overlay's mesh does, the edge ratio aside (meets_targets;
-  /// it keeps what it has), the overlay when the polycube's further candidates' mesh does
+  /// it keeps what it has) and its further candidates then (what they have counts for nothing),
+  /// the overlay when the polycube's further candidates' mesh does
   /// (meets_path_targets). Paths that end before it are chosen between as without it. 0: no such stop.
   double polycube_seconds_overlay_met = 5;
   /// When set, the polycube path's deadline in Auto and Polycube, instead of polycube_seconds: a

@@ -129,21 +129,35 @@ TEST(ChoosePath, TheOverlaysMessagesFollowTheFirstCandidatesAndTheFurtherOnesFol
   }
 }
 
-TEST(ChoosePath, AnOverlayMeshThatMeetsTheTargetsCallsTheFurtherCandidatesOffWhicheverEndsFirst) {
-  // The further candidates would give a better worst SJ (0.6 > 0.5), but once the overlay's mesh
-  // meets the targets they count for nothing, whether they had ended before it or not.
-  for (int further_millis : {0, 20000}) {
-    SCOPED_TRACE(further_millis);
+TEST(ChoosePath, AnOverlayMeshThatMeetsTheTargetsCallsTheFurtherCandidatesOffAtTheCut) {
+  // The further candidates give a better worst SJ (0.6 > 0.5). Ended before the cut (0.3 s after
+  // the start), they are weighed with the overlay's mesh and kept, whichever thread ended first;
+  // still running at the cut, they are stopped then and count for nothing (what they had is not
+  // kept), their messages not said.
+  for (int overlay_millis : {0, 200}) {
+    SCOPED_TRACE(overlay_millis);
     Fake f;
-    f.overlay_millis = 200;
-    f.further_millis = further_millis;
+    f.seconds_overlay_met = 0.3;
+    f.overlay_millis = overlay_millis;
+    f.further_millis = 100;
     const MeshSurfaceRun r = f.choose();
-    EXPECT_EQ(r.method, Method::Overlay);
-    EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.5);
-    EXPECT_EQ(f.further_cancelled.load(), further_millis > 0);
-    EXPECT_GE(f.index("the polycube again with its further candidates: called off"), 0);
-    EXPECT_EQ(f.index("fake further candidates"), -1);  // its messages are not said
+    EXPECT_EQ(r.method, Method::Polycube);
+    EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.6);
+    EXPECT_FALSE(f.further_cancelled.load());
+    EXPECT_GE(f.index("kept the polycube mesh"), 0);
   }
+  Fake f;
+  f.seconds_overlay_met = 0.3;
+  f.overlay_millis = 100;
+  f.further_millis = 20000;
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshSurfaceRun r = f.choose();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  EXPECT_EQ(r.method, Method::Overlay);
+  EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.5);
+  EXPECT_TRUE(f.further_cancelled.load());
+  EXPECT_GE(f.index("the polycube again with its further candidates: called off after 0.3 s"), 0);
+  EXPECT_EQ(f.index("fake further candidates"), -1);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
