@@ -14,6 +14,7 @@
 #include "hexdom/cad/face_projector.h"
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/common/error.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/mesh/edge_key.h"
@@ -118,7 +119,7 @@ SecondOrderResult make_second_order(const Shape& shape, const mesh::Mesh& linear
   }
   rep.curve = optimize::curve_mid_nodes(m, target, has_target, curve);
   r.quality = quality::quality_report(m);
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rep.seconds = seconds_since(t0);
   return r;
 }
 

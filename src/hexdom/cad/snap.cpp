@@ -22,6 +22,7 @@
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/optimize/improve.h"
@@ -32,7 +33,6 @@ namespace hexdom::cad {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// For each sub-shape of `kind` (1-based as in `map`), the sorted 1-based ids of the faces holding it.
 std::vector<std::vector<int>> faces_of(const Shape::Impl& s, TopAbs_ShapeEnum kind, const TopTools_IndexedMapOfShape& map) {
@@ -543,7 +543,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     rep.edge_nodes += r.kind[v] == SnapKind::Edge;
     rep.vertex_nodes += r.kind[v] == SnapKind::Vertex;
   }
-  rep.seconds_project = since(t0);
+  rep.seconds_project = seconds_since(t0);
 
   // Restoration. Every cell that gets worse stays at or above min(keep, worst before the snap).
   const double keep = opt.keep < 0 ? -2.0 : std::min(opt.keep, rep.worst_sj_before);
@@ -560,7 +560,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
                 rep.boundary_nodes, rep.face_nodes, rep.edge_nodes, rep.vertex_nodes, rep.max_move, rep.worst_sj_before,
                 rep.worst_sj_snapped, rep.inverted_snapped);
   say(opt, line);
-  rep.seconds_restore = since(t1);
+  rep.seconds_restore = seconds_since(t1);
   rep.worst_sj = worst_sj(m, &rep.inverted);
 
   for (int v : boundary) {

@@ -27,6 +27,7 @@
 
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/cad/tessellate_merge.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
@@ -430,7 +431,7 @@ mesh::SurfaceMesh tessellate_once(const Shape& shape, const TessellateOptions& o
       *stats = tessellation_stats(shape, out);
       stats->size = z.size;
       stats->splits = splits;
-      stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+      stats->seconds = seconds_since(t_start);
       if (options.log && stats->brep_volume != 0 &&
           std::abs(stats->volume - stats->brep_volume) > 0.01 * std::abs(stats->brep_volume))
         options.log(1, source + ": the tessellation encloses " + std::to_string(stats->volume) +

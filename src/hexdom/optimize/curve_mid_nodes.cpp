@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "hexdom/common/error.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/mesh/edge_key.h"
@@ -134,7 +135,7 @@ mesh::Mesh second_order_on_surface(const mesh::Mesh& linear, const mesh::Surface
     rep.max_offset = std::max(rep.max_offset, (target.row(v) - m.V.row(v)).norm());
   }
   rep.curve = curve_mid_nodes(m, target, has_target, opt);
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rep.seconds = seconds_since(t0);
   if (report) *report = rep;
   return m;
 }

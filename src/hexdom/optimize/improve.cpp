@@ -10,6 +10,7 @@
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
 #include "hexdom/common/parallel_for.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/optimize/improver.h"
 #include "hexdom/optimize/node_kinds.h"
 #include "hexdom/optimize/pillow.h"
@@ -23,10 +24,6 @@ using quality::TypeStats;
 using Vec = Eigen::Vector3d;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Whether cell c, changed since the input was optimised (ImproveOptions::optimised_at: the nodes
 // were at `was`, they are at `now`), needs the smoothing: inverted, fallen below `worst_was` (the

@@ -9,6 +9,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/mesh.h"
 #include "hexdom/optimize/improve.h"
@@ -444,7 +445,7 @@ class Grids {
       r.spacing = spacing.maxCoeff();
       r.thinnest = spacing.minCoeff() / std::pow(3.0, r.octree_levels);
     }
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // this grid's
+    r.seconds = seconds_since(t0);  // this grid's
     return r;
   }
 
@@ -626,7 +627,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   best.grids = grid.made();
   best.frame = frame;
   if (frame.turned()) best.mesh.V = best.mesh.V * frame.rotation;  // x = R^T x_frame, row-wise
-  best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  best.seconds = seconds_since(t0);
   return best;
 }
 

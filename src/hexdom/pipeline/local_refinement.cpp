@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "hexdom/common/format.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
 #include "hexdom/mesh/edge_key.h"
@@ -72,7 +73,7 @@ void refine_to_local_sizes(const overlay::LocalSizeField& field, const mesh::Sur
   if (opt.log)
     opt.log(0, fmt("local sizes: %.0f levels by thirds (%.0f cells split, ", double(levels), double(split)) +
                    fmt("%.0f transition templates), %.0f cells", double(templates), double(generated.num_cells())) +
-                   fmt(", in %.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()));
+                   fmt(", in %.2f s", seconds_since(t)));
 }
 
 namespace {

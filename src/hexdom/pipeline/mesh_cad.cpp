@@ -13,6 +13,7 @@
 #include "hexdom/cad/second_order.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/common/time_limit.h"
 #include "hexdom/mesh/surface_check.h"
 #include "hexdom/pipeline/choice.h"
@@ -44,7 +45,7 @@ void mesh_path_and_snap(const cad::Shape& shape, const MeshSurfaceOptions& mo, c
   r.snap = std::move(sr);
   r.snap.mesh = mesh::Mesh{};
   r.snapped = true;
-  r.snap_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.snap_seconds = seconds_since(t0);
 }
 
 // mesh_path_and_snap with mo's method; Auto: choose_path (choice.h) between the snapped meshes of

@@ -10,6 +10,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/common/time_limit.h"
 #include "hexdom/generation/generate.h"
 #include "hexdom/mesh/surface_check.h"
@@ -28,7 +29,6 @@ std::string frame_text(const segmentation::CubeFrame& f) {
 }
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Relative volume error of a run against the input surface's enclosed volume.
 double volume_error(const MeshSurfaceRun& r, double reference) {
@@ -517,11 +517,11 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     so.log = inner;
     r.labels = surface;
     r.labels.patch = segmentation::segment_cvt(surface, so).label;
-    r.seconds[0] += since(t);
+    r.seconds[0] += seconds_since(t);
     ++r.segmentations;
     r.edge_weight = weights[attempt];
     say(fmt("segment: %.0f triangles labelled (lambda %g) in %.2f s", static_cast<double>(surface.F.rows()), weights[attempt],
-            since(t)));
+            seconds_since(t)));
     // A labelling that an earlier weight gave and the polycube failed on fails the same way again
     // (autopolycube depends on the labels alone): not built twice.
     const auto same = std::find_if(defeated.begin(), defeated.end(), [&](const auto& d) { return d.second == r.labels.patch; });
@@ -541,10 +541,10 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
     try {
       autopolycube::autopolycube(r.labels, ao, &r.polycube);
     } catch (const TimeoutError&) {  // no retry: the time is up
-      r.seconds[1] += since(t);
+      r.seconds[1] += seconds_since(t);
       throw;
     } catch (const Error& e) {  // GeometryError (labelling) or MeshingError (cutting)
-      r.seconds[1] += since(t);
+      r.seconds[1] += seconds_since(t);
       if (!first_error) {
         first_error = std::current_exception();
         first_labels = r.labels;
@@ -555,7 +555,7 @@ void mesh_once(const mesh::SurfaceMesh& surface, const MeshSurfaceOptions& opt, 
       say(std::string("autopolycube: ") + e.what() + "; segmenting again with lambda " + fmt("%g", weights[attempt + 1]));
       continue;
     }
-    r.seconds[1] += since(t);
+    r.seconds[1] += seconds_since(t);
     break;
   }
   say(fmt("autopolycube: %.0f charts (%.0f relabelled), %.0f blocks of %g", r.polycube.charts, r.polycube.relabelled,
@@ -608,7 +608,7 @@ void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& st
   r.generated = generation::generate(patches, structure, go);
   if (local) refine_to_local_sizes(*local, patches, opt, r.generated);
   r.generated_quality = quality::quality_report(r.generated);
-  r.seconds[2] = since(t);
+  r.seconds[2] = seconds_since(t);
   say(fmt("generate: %.0f cells, ", r.generated.num_cells()) + worst_by_type(r.generated_quality) +
       fmt(", in %.2f s", r.seconds[2]));
 
@@ -631,7 +631,7 @@ void generate_and_improve(const mesh::SurfaceMesh& patches, const mesh::Mesh& st
     r.mesh = r.generated;
     r.quality = r.generated_quality;
   }
-  r.seconds[3] = since(t);
+  r.seconds[3] = seconds_since(t);
   say(fmt("improve: %.0f cells, ", r.mesh.num_cells()) + worst_by_type(r.quality) +
       (r.quality.hex.count > 0 ? fmt(", mean hex %.3f", r.quality.hex.sj_mean) : std::string()) +
       fmt(", in %.2f s", r.seconds[3]) + (stopped ? " (stopped early: time budget)" : ""));

@@ -7,15 +7,12 @@
 
 #include "hexdom/common/error.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/common/time_limit.h"
 
 using namespace hexdom;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // Work that looks at the interrupt every millisecond, for at most `limit` seconds.
 void busy(double limit, const char* where) {

@@ -1,6 +1,7 @@
 // choose_path (Method::Auto) with fake paths whose meshes are only their quality figures: which run
 // is kept, what the threads call off, and the order of the messages, independent of which thread
 // finishes first.
+#include "hexdom/common/stopwatch.h"
 #include "hexdom/pipeline/choice.h"
 
 #include <gtest/gtest.h>
@@ -152,16 +153,12 @@ TEST(ChoosePath, AnOverlayMeshThatMeetsTheTargetsCallsTheFurtherCandidatesOffAtT
   f.further_millis = 20000;
   const auto t0 = std::chrono::steady_clock::now();
   const MeshSurfaceRun r = f.choose();
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  EXPECT_LT(seconds_since(t0), 10.0);
   EXPECT_EQ(r.method, Method::Overlay);
   EXPECT_DOUBLE_EQ(r.quality.hex.sj_min, 0.5);
   EXPECT_TRUE(f.further_cancelled.load());
   EXPECT_GE(f.index("the polycube again with its further candidates: called off after 0.3 s"), 0);
   EXPECT_EQ(f.index("fake further candidates"), -1);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 TEST(ChoosePath, AnOverlayMeshThatMeetsEveryTargetStopsASlowFirstCandidateAtTheCut) {
