@@ -542,9 +542,7 @@ def shaft(d):
             gz = d.mm(f"groove{k}_z", z0 + 4, z1 - 4 - gw)
             pts += [(r, gz), (r - gd, gz), (r - gd, gz + gw), (r, gz + gw)]
             grooves.append(k)
-        if k + 1 < n:
-            if abs(radii[k + 1] - r) < 1e-9:
-                continue
+        if k + 1 < n and abs(radii[k + 1] - r) >= 1e-9:  # a shoulder; equal diameters run on
             pts += [(r, z1), (radii[k + 1], z1)]
         z = z1
     total = z
@@ -907,6 +905,17 @@ def single_solid(shape):
     return s
 
 
+def not_self_intersecting(solid):
+    """ValueError when OpenCASCADE's boolean check finds faces or edges of `solid` crossing each
+    other (a profile folding back on itself, tools overlapping): a surface no mesher should take."""
+    try:
+        solid.check(True)
+    except Exception as e:  # Part.OCCError / ValueError naming the BOP errors
+        # Only crossings: a helical sweep's C0 surface ("BOPAlgo GeomAbs_C0") is a valid part.
+        if "SelfIntersect" in str(e):
+            raise ValueError("self-intersecting: " + " ".join(str(e).split())[:120])
+
+
 def reloads(solid, path):
     """Writes the STEP file and checks that it reads back as one valid solid of the same volume."""
     solid.exportStep(path)
@@ -939,6 +948,7 @@ def build(family, index, seed, attempts, tmp):
         d = Draw(rng, index, cycle=k <= attempts // 2)
         try:
             s = single_solid(FAMILIES[family](d))
+            not_self_intersecting(s)
             reloads(s, os.path.join(tmp, "check.step"))
             return s, k, d.params
         except Exception as e:  # OpenCASCADE raises Part.OCCError, ValueError, ...

@@ -79,3 +79,21 @@ def test_another_seed_draws_other_parts(corpus, tmp_path):
     other, _ = generate(tmp_path / "other", "--count", "12", "--no-fixed", "--seed", str(first["seed"] + 1))
     assert set(other["parts"]) <= set(first["parts"])
     assert sum(other["parts"][n]["volume"] != first["parts"][n]["volume"] for n in other["parts"]) >= 10
+
+
+def test_a_shaft_with_equal_diameters_side_by_side_is_as_long_as_its_sections(freecad, tmp_path):
+    # Seed 40's first shaft draws d0 = d1 = 11: the two sections run on without a shoulder. The
+    # generator once skipped the first one's length there, folding the profile back over itself
+    # (a self-intersecting solid, which the meshers rightly refuse). FreeCAD measures the solid.
+    FreeCAD, Part = freecad
+    manifest, _ = generate(tmp_path, "--count", "1", "--no-fixed", "--families", "shaft", "--seed", "40")
+    params = manifest["parts"]["shaft_000"]["params"]
+    diameters = [params[f"d{k}"] for k in range(params["sections"])]
+    assert any(a == b for a, b in zip(diameters, diameters[1:])), diameters  # the case this test is about
+    solid = Part.read(str(tmp_path / "shaft_000.step")).Solids[0]
+    length = sum(params[f"l{k}"] for k in range(params["sections"]))
+    assert solid.BoundBox.ZLength == pytest.approx(length, abs=1e-6)
+    try:
+        solid.check(True)
+    except Exception as e:  # BOP errors; a C0 surface would be no crossing
+        assert "SelfIntersect" not in str(e), str(e)
