@@ -48,7 +48,9 @@ struct OverlayOptions {
   /// when it meets the targets the halvings are for), else after the halvings.
   double wall_fallback = 2;
   double wall_quantile = 0.5;
-  double max_wall_refinement = 8;
+  /// How much finer than the first grid the walls' spacing (wall_across, wall_fallback) may be: at
+  /// 16, walls down to an eighth of a cell thick get two cells across.
+  double max_wall_refinement = 16;
   /// No cell shorter than this (0: no bound): the thin-axis rule above, the halvings and the octree
   /// stop at it, so a part thinner than `across` times min_size gets fewer cells across.
   double min_size = 0;

@@ -432,6 +432,28 @@ TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
   EXPECT_GT(halved.mesh.num_cells(), 2 * walls.mesh.num_cells());
 }
 
+// Walls a fifth of a cell thick (the hollow sphere, wall 1, at size 5) need a spacing 10 times
+// smaller for their two cells across: the grid for the walls gets it (0.5), where a cap at 8 times
+// (max_wall_refinement, 8 until session 40) left them 1.6 cells across (0.625).
+TEST(OverlayWalls, WallsAFifthOfACellThickGetTheirTwoCellsAcross) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  overlay::OverlayOptions o;
+  o.size = 5;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult r = overlay::overlay_mesh(shell, o);
+  EXPECT_NE(log.find("made 10.0"), std::string::npos) << log;  // 10.01: the wall measures 0.999
+  EXPECT_NEAR(r.spacing, 0.5, 0.01);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, shell), 1e-9 * diagonal(shell));
+  o.max_wall_refinement = 8;
+  log.clear();
+  overlay::overlay_mesh(shell, o);
+  EXPECT_NE(log.find("made 8.00 times smaller"), std::string::npos) << log;
+}
+
 // Not much finer than a halving, the grid for the walls takes its place: at size 1.2 the walls'
 // grid (spacing 0.5, 0.83 of the halving's 0.6) is the second grid and the last (a halving would
 // leave the wall 1.7 cells across, for 1.7 times fewer cells).
@@ -644,12 +666,13 @@ TEST(Overlay, TheEdgeOfASplitFaceIsFollowed) {
 
 // A grid for the walls whose spacing a halving already had is not made again: the hollow sphere
 // (wall 1) at size 8 (a grid of 6.67 over its extent) has walls of 0.15 cell, so the factor for
-// them is cut at 1 / 8, the spacing 0.83 of the third halving. The log says so and the mesh is
-// that of the halvings alone.
+// them, cut at 1 / 8 here (max_wall_refinement), gives the spacing 0.83 of the third halving. The
+// log says so and the mesh is that of the halvings alone.
 TEST(OverlayWalls, TheGridForTheWallsIsNotMadeTwice) {
   const mesh::SurfaceMesh shell = hollow_sphere();
   overlay::OverlayOptions o;
   o.size = 8;
+  o.max_wall_refinement = 8;
   o.refinements_for_quality = 0;
   std::string log;
   o.log = [&](int, const std::string& m) { log += m + "\n"; };
