@@ -941,7 +941,8 @@ def entry(solid, family, seed, draws=1, params=None):
 
 def build(family, index, seed, attempts, tmp):
     """(solid, draws, params) of part `index` of `family`: the first of at most `attempts` draws of
-    its seeded generator that builds one valid closed solid which reloads from STEP."""
+    its seeded generator that builds one valid closed solid, not crossing itself, which reloads
+    from STEP."""
     rng = random.Random(f"hexdom-corpus:{seed}:{family}:{index}")
     errors = []
     for k in range(1, attempts + 1):

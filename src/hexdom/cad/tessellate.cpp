@@ -27,10 +27,10 @@
 
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/cad/tessellate_merge.h"
-#include "hexdom/common/stopwatch.h"
-#include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/stopwatch.h"
+#include "hexdom/mesh/remesh_surface.h"
 #include "hexdom/segmentation/cube_frame.h"
 
 namespace hexdom::cad {
