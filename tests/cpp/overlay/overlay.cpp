@@ -434,7 +434,7 @@ TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
 
 // Walls a fifth of a cell thick (the hollow sphere, wall 1, at size 5) need a spacing 10 times
 // smaller for their two cells across: the grid for the walls gets it (0.5), where a cap at 8 times
-// (max_wall_refinement, 8 until session 40) left them 1.6 cells across (0.625).
+// (max_wall_refinement = 8) leaves them 1.6 cells across (0.625).
 TEST(OverlayWalls, WallsAFifthOfACellThickGetTheirTwoCellsAcross) {
   const mesh::SurfaceMesh shell = hollow_sphere();
   const double volume = mesh::enclosed_volume(shell.V, shell.F);

@@ -1,7 +1,6 @@
 // choose_path (Method::Auto) with fake paths whose meshes are only their quality figures: which run
 // is kept, what the threads call off, and the order of the messages, independent of which thread
 // finishes first.
-#include "hexdom/common/stopwatch.h"
 #include "hexdom/pipeline/choice.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +11,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "hexdom/common/stopwatch.h"
 
 using namespace hexdom;
 using namespace hexdom::pipeline;
