@@ -49,6 +49,9 @@ TriangleProjector::TriangleProjector(const Eigen::MatrixXd& V, const Eigen::Matr
   }
   nodes_.reserve(2 * n / 4 + 2);
   if (n > 0) build(0, n);
+  corners_.resize(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) corners_[3 * i + k] = V.row(F(order_[i], k)).transpose();
 }
 
 int TriangleProjector::build(int begin, int end) {
@@ -94,11 +97,10 @@ Vec TriangleProjector::project(const Vec& p, int* triangle) const {
     if (box_dist(n) >= best) continue;
     if (n.left < 0) {
       for (int i = n.begin; i < n.end; ++i) {
-        const int t = order_[i];
-        Vec q = closest_point_on_triangle(p, V_.row(F_(t, 0)).transpose(), V_.row(F_(t, 1)).transpose(),
-                                          V_.row(F_(t, 2)).transpose());
+        const Vec* c = &corners_[3 * i];
+        Vec q = closest_point_on_triangle(p, c[0], c[1], c[2]);
         const double d = (q - p).squaredNorm();
-        if (d < best) { best = d; result = q; best_tri = t; }
+        if (d < best) { best = d; result = q; best_tri = order_[i]; }
       }
     } else {
       const double dl = box_dist(nodes_[n.left]), dr = box_dist(nodes_[n.right]);
@@ -170,10 +172,9 @@ double TriangleProjector::ray_distance(const Vec& origin, const Vec& direction, 
     if (n.left < 0) {
       for (int i = n.begin; i < n.end; ++i) {
         const int t = order_[i];
+        const Vec* c = &corners_[3 * i];
         double u;
-        if (t != skip &&
-            line_meets_triangle(origin, d, V_.row(F_(t, 0)).transpose(), V_.row(F_(t, 1)).transpose(),
-                                V_.row(F_(t, 2)).transpose(), &u) &&
+        if (t != skip && line_meets_triangle(origin, d, c[0], c[1], c[2], &u) &&
             u > from && u <= best) {
           best = u;
           hit = true;

@@ -45,6 +45,9 @@ class TriangleProjector {
   std::vector<int> order_;
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<Node> nodes_;
+  /// The corners of triangle order_[i] at corners_[3 i .. 3 i + 2]: a leaf's triangles side by
+  /// side in memory (V_'s rows are strided), which is most of a query's time.
+  std::vector<Eigen::Vector3d> corners_;
 };
 
 /// A projector onto the segments (a, b) of points of V (rows), each held as the degenerate triangle
