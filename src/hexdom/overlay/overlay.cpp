@@ -542,16 +542,25 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
   // wall_fallback cells across (wall_f times h0, measured once), the better kept; made once. With
   // `next` (the spacing of the halving that would follow), only when it is finer than that
   // halving by at most kWallsFirst (the halving would leave the walls fewer cells across for a
-  // saving of at most kWallsFirst^3 in cells), or, before the first halving (`first`), coarser.
-  // Returns its longest spacing when it was made (or had been, as a halving), else 0.
+  // saving of at most kWallsFirst^3 in cells), or coarser (fewer cells: cheapest first). After a
+  // halving (`now`, the spacing of the grid that kept inverted cells; 0 before the first), only
+  // when it saves at least a quarter of the halving's cells (kWallsFirst) and is finer than `now`
+  // by kWallsFirst too (not nearly the grid that failed). walls_due says whether it is to be made
+  // (`next` 0: after the halvings); walls_grid makes it and returns its longest spacing (also when
+  // it had been made as a halving).
   double wall_f = 0;
   bool walls_made = false;
   constexpr double kWallsFirst = 0.75;
-  auto walls_grid = [&](double next, bool first) {
+  auto walls_due = [&](double next, double now) {
     if (wall_f == 0) wall_f = opt.wall_across == 0 && opt.wall_fallback > 0 ? wall_factor(opt.wall_fallback) : 1.0;
     const double hw = wall_f * h0.maxCoeff();
-    if (walls_made || wall_f >= 1 || (next > 0 && (hw < kWallsFirst * next || (hw > (1 + 1e-9) * next && !first))))
-      return 0.0;
+    const bool in_place = hw >= kWallsFirst * next && hw <= (1 + 1e-9) * next;
+    const bool cheaper = hw > (1 + 1e-9) * next &&
+                         (now == 0 || (std::pow(next / hw, 3) <= kWallsFirst && hw <= kWallsFirst * now));
+    return !walls_made && wall_f < 1 && (next == 0 || in_place || cheaper);
+  };
+  auto walls_grid = [&]() {
+    const double hw = wall_f * h0.maxCoeff();
     walls_made = true;
     const Eigen::Vector3d h = h0 * wall_f;
     for (const Eigen::Vector3d& made : halvings)
@@ -600,16 +609,26 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       best = std::move(r);
       have = true;
     }
+    auto short_of = [&](const OverlayResult& x) {
+      return inverted(x.quality) > 0 || rank.volume_off(x) || quality::worst_sj(x.quality) < opt.refine_below_sj;
+    };
     // The grid kept left cells inverted: the grid for thin walls before the next halving when it
-    // is not much finer, or, before the first halving, coarser (fewer cells; cheapest first); in
-    // place of the halvings when finer (the last grid, as when it follows them).
+    // is not much finer, or coarser (fewer cells; cheapest first); in place of the halvings when
+    // finer (the last grid, as when it follows them). Made coarser after a halving, it ends the
+    // halvings only when it meets every target they are for: else the next halving is judged by
+    // the grid kept before it (its inverted cells), so that a walls' grid that is merely valid
+    // does not stop the finer grid that would raise the worst cell.
+    std::optional<OverlayResult> before_walls;
     if (inverted(best.quality) > 0 && k < opt.refinements) {
-      const double next = h.maxCoeff() / 2, hw = walls_grid(next, k == 0);
-      if (hw > 0 && hw <= (1 + 1e-9) * next) break;
+      const double next = h.maxCoeff() / 2;
+      if (walls_due(next, k == 0 ? 0.0 : h.maxCoeff())) {
+        if (k > 0) before_walls = best;
+        if (walls_grid() <= (1 + 1e-9) * next) break;
+      }
     }
-    const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || quality::worst_sj(best.quality) < opt.refine_below_sj;
-    if (!short_of || k == opt.refinements) break;
-    if (!halve_again(best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
+    if (!short_of(best) || k == opt.refinements) break;
+    if (before_walls) say("overlay: the grid for the walls misses a target; the halving follows");
+    if (!halve_again(before_walls ? *before_walls : best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
   }
   // The finer grids lost more of the solid (or were not made): the one kept, mended after all;
   // kept when better. Not when the mesh kept is whole (the walls' grid, made after it, may be):
@@ -622,7 +641,7 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     }
   }
   // Cells still inverted after the halvings: the grid for thin walls, finer than a halving.
-  if (have && inverted(best.quality) > 0) walls_grid(0, false);
+  if (have && inverted(best.quality) > 0 && walls_due(0, 0)) walls_grid();
   if (!have) throw GeometryError("overlay: " + why);
   best.grids = grid.made();
   best.frame = frame;

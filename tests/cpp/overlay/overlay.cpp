@@ -432,6 +432,38 @@ TEST(OverlayWalls, TheGridForTheWallsComesBeforeAHalvingWhenItIsCoarser) {
   EXPECT_GT(halved.mesh.num_cells(), 2 * walls.mesh.num_cells());
 }
 
+// After a halving too, the grid for the walls comes before the next halving when it is coarser:
+// the hollow sphere (wall 1) at size 3.2 keeps inverted cells on its grid of 0.8 (1.25 cells
+// across), and the walls' grid (0.5) comes before the halving to 0.4. Meeting every target, it ends
+// the search. When it does not (a worst SJ it cannot reach asked for), the halving still follows,
+// judged by the grid before it, and the better of the two is kept.
+TEST(OverlayWalls, AfterAHalvingTheGridForTheWallsComesFirstWhenCoarser) {
+  const mesh::SurfaceMesh shell = hollow_sphere();
+  const double volume = mesh::enclosed_volume(shell.V, shell.F);
+  overlay::OverlayOptions o;
+  o.size = 3.2;
+  std::string log;
+  o.log = [&](int, const std::string& m) { log += m + "\n"; };
+  const overlay::OverlayResult r = overlay::overlay_mesh(shell, o);
+  const size_t at_08 = log.find("spacing 0.8:"), walls = log.find(" for the walls:");
+  ASSERT_NE(at_08, std::string::npos) << log;
+  ASSERT_NE(walls, std::string::npos) << log;
+  EXPECT_LT(at_08, walls);
+  EXPECT_EQ(log.find("spacing 0.4:"), std::string::npos) << log;
+  EXPECT_NEAR(r.spacing, 0.5, 0.01);
+  EXPECT_EQ(inverted(r.quality), 0);
+  EXPECT_GE(quality::worst_sj(r.quality), o.refine_below_sj);
+  EXPECT_NEAR(r.quality.total_volume, volume, 0.01 * volume);
+  EXPECT_LT(boundary_distance(r.mesh, shell), 1e-9 * diagonal(shell));
+  o.refine_below_sj = 0.99;
+  log.clear();
+  const overlay::OverlayResult halved = overlay::overlay_mesh(shell, o);
+  EXPECT_NE(log.find(" for the walls:"), std::string::npos) << log;
+  EXPECT_NE(log.find("spacing 0.4:"), std::string::npos) << log;
+  EXPECT_EQ(inverted(halved.quality), 0);
+  EXPECT_GE(quality::worst_sj(halved.quality), quality::worst_sj(r.quality));
+}
+
 // Walls a fifth of a cell thick (the hollow sphere, wall 1, at size 5) need a spacing 10 times
 // smaller for their two cells across: the grid for the walls gets it (0.5), where a cap at 8 times
 // (max_wall_refinement = 8) leaves them 1.6 cells across (0.625).
