@@ -50,8 +50,11 @@ TriangleProjector::TriangleProjector(const Eigen::MatrixXd& V, const Eigen::Matr
   nodes_.reserve(2 * n / 4 + 2);
   if (n > 0) build(0, n);
   corners_.resize(3 * static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i)
+  slot_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    slot_[order_[i]] = i;
     for (int k = 0; k < 3; ++k) corners_[3 * i + k] = V.row(F(order_[i], k)).transpose();
+  }
 }
 
 int TriangleProjector::build(int begin, int end) {
@@ -81,8 +84,16 @@ int TriangleProjector::build(int begin, int end) {
   return id;
 }
 
-Vec TriangleProjector::project(const Vec& p, int* triangle) const {
+Vec TriangleProjector::project(const Vec& p, int* triangle, int hint) const {
   double best = std::numeric_limits<double>::max();
+  if (hint >= 0 && hint < static_cast<int>(slot_.size())) {
+    // Strictly above the hint's squared distance, which is at least the least one: every node on
+    // the way to the first triangle at the least distance is still visited, and that triangle
+    // still found first (below, only a strictly nearer triangle replaces the one found).
+    const Vec* c = &corners_[3 * slot_[hint]];
+    const double d = (closest_point_on_triangle(p, c[0], c[1], c[2]) - p).squaredNorm();
+    if (std::isfinite(d)) best = std::max(d * (1 + 1e-9), std::numeric_limits<double>::min());
+  }
   Vec result = p;
   int best_tri = -1;
   auto box_dist = [&](const Node& n) { return (p - p.cwiseMax(n.lo).cwiseMin(n.hi)).squaredNorm(); };

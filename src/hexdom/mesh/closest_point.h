@@ -23,8 +23,12 @@ class TriangleProjector {
   /// V: #V by 3, F: #F by 3.
   TriangleProjector(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
   bool empty() const { return F_.rows() == 0; }
-  /// Closest point on the surface; `triangle` receives its triangle when given.
-  Eigen::Vector3d project(const Eigen::Vector3d& p, int* triangle = nullptr) const;
+  /// Closest point on the surface; `triangle` receives its triangle when given. `hint`, any
+  /// triangle (-1: none; e.g. the one an earlier query near p returned), bounds the search from the
+  /// start; the answer is the same point and triangle, bit for bit, with or without it (the bound
+  /// is just above the hint's distance, so the triangle found first among equally near ones is the
+  /// same), only found sooner.
+  Eigen::Vector3d project(const Eigen::Vector3d& p, int* triangle = nullptr, int hint = -1) const;
   /// The distance along the ray from `origin` in `direction` (any length) to the first triangle it
   /// meets beyond `from` and up to `up_to`, triangle `skip` left out (the ray's own, or -1);
   /// +infinity when it meets none. `triangle` receives the triangle met (-1 for none).
@@ -48,6 +52,7 @@ class TriangleProjector {
   /// The corners of triangle order_[i] at corners_[3 i .. 3 i + 2]: a leaf's triangles side by
   /// side in memory (V_'s rows are strided), which is most of a query's time.
   std::vector<Eigen::Vector3d> corners_;
+  std::vector<int> slot_;  ///< per triangle: its place i in order_
 };
 
 /// A projector onto the segments (a, b) of points of V (rows), each held as the degenerate triangle

@@ -83,6 +83,8 @@ Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints&
   for (int q = 0; q < m.num_cells(); ++q) sj_[q] = cell_sj(m, q);
   dirty_.assign(m.num_nodes(), 1);
   climb_.assign(m.num_nodes(), 1);
+  surface_hint_.assign(m.num_nodes(), -1);
+  curve_hint_.assign(m.num_nodes(), -1);
   edge_.assign(m.num_nodes(), 0.0);
   for (int v = 0; v < m.num_nodes(); ++v) {
     double s = 0;
@@ -199,9 +201,11 @@ double Improver::local_min(int v) const {
 Vec Improver::constrain(int v, const Vec& x) const {
   if (c_.project && (t_.kind[v] == Surface || t_.kind[v] == Curve)) return c_.project(v, x);
   switch (t_.kind[v]) {
-    case Surface: return c_.surface.project(x);
+    case Surface: return c_.surface.project(x, &surface_hint_[v], surface_hint_[v]);
     // On the feature curve (chords of the boundary), then back onto the surface it bounds.
-    case Curve: return c_.curves.empty() ? c_.surface.project(x) : c_.surface.project(c_.curves.project(x));
+    case Curve:
+      return c_.surface.project(c_.curves.empty() ? x : c_.curves.project(x, &curve_hint_[v], curve_hint_[v]),
+                                &surface_hint_[v], surface_hint_[v]);
     case Corner: return m_.V.row(v).transpose();
     default: return x;
   }

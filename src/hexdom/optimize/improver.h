@@ -153,6 +153,10 @@ class Improver {
   std::vector<char> moved_;  // nodes moved in the colour being swept
   std::vector<char> touched_;  // nodes moved since the improver was made
   std::vector<int> colour_;  // per node
+  // Per node: the triangle of its last projection onto the surface and onto the curves, as a first
+  // bound for the next (TriangleProjector::project's hint: the same answer, sooner). Each written
+  // only by the thread that moves its node.
+  mutable std::vector<int> surface_hint_, curve_hint_;
   std::vector<std::vector<int>> colours_;  // per colour: its nodes, increasing
   int threads_ = 1;
   double keep_ = -2;  // ImproveOptions::floor

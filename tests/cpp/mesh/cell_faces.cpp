@@ -73,3 +73,41 @@ TEST(TriangleProjector, RayDistance) {
   EXPECT_EQ(t, -1);
   EXPECT_NEAR(s.ray_distance(P(3, 0.5, 1), P(-1, 0, 0.4), 0, inf), 2.5 * std::sqrt(1.16), 1e-12);  // at (0.5, 0.5, 2)
 }
+
+// A hint changes nothing but the time: on a folded grid of triangles (a flat half and a half at 90
+// degrees, so that many queries are equally near several triangles: above shared vertices and
+// edges, on the fold's bisector), every query gives the same point, bit for bit, and the same
+// triangle with any hint as without one.
+TEST(TriangleProjector, AHintGivesTheSameAnswer) {
+  const int n = 8;
+  Eigen::MatrixXd V((n + 1) * (n + 1), 3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = double(i) / n, y = double(j) / n;
+      V.row(j * (n + 1) + i) << std::min(x, 0.5), y, std::max(0.0, x - 0.5);  // folded up at x = 0.5
+    }
+  Eigen::MatrixXi F(2 * n * n, 3);
+  for (int j = 0, f = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      F.row(f++) << a, b, c;
+      F.row(f++) << a, c, d;
+    }
+  const mesh::TriangleProjector s(V, F);
+  int checked = 0;
+  for (int j = -2; j <= 2 * n + 2; ++j)
+    for (int i = -2; i <= 2 * n + 2; ++i)
+      for (const double h : {0.0, 0.05, -0.3}) {
+        const Eigen::Vector3d p(double(i) / (2 * n), double(j) / (2 * n), h + 0.25 * (i % 3 == 0));
+        int t0 = -2;
+        const Eigen::Vector3d q0 = s.project(p, &t0);
+        for (const int hint : {0, static_cast<int>(F.rows()) - 1, (i * 7 + j * 13) % static_cast<int>(F.rows()), t0}) {
+          int t = -2;
+          const Eigen::Vector3d q = s.project(p, &t, hint);
+          ASSERT_EQ(t, t0) << p.transpose() << " hint " << hint;
+          ASSERT_TRUE(q == q0) << p.transpose() << " hint " << hint;
+          ++checked;
+        }
+      }
+  EXPECT_GT(checked, 3000);
+}
