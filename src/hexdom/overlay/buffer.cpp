@@ -485,10 +485,10 @@ int loosen_nodes(Placement& p, std::vector<int> nodes, const SurfaceFeatures& fe
   return freed;
 }
 
-Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& feat, int v, const Eigen::Vector3d& x) {
+Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& feat, int v, const Eigen::Vector3d& x, int* hint) {
   switch (p.kind[v]) {
-    case optimize::Surface: return p.a[v] >= 0 ? feat.project_region(p.a[v], x) : feat.project(x);
-    case optimize::Curve: return feat.project_curve(p.a[v], p.b[v], x);
+    case optimize::Surface: return p.a[v] >= 0 ? feat.project_region(p.a[v], x, hint) : feat.project(x);
+    case optimize::Curve: return feat.project_curve(p.a[v], p.b[v], x, hint);
     case optimize::Corner: return feat.corner_position(p.a[v]);
     default: return x;
   }

@@ -99,6 +99,9 @@ std::vector<std::vector<int>> curve_neighbours(const Placement& p, const std::ve
 int loosen_nodes(Placement& p, std::vector<int> nodes, const SurfaceFeatures& features);
 
 /// Where node v of a placement goes for a candidate position x (its region, curve or corner).
-Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& features, int v, const Eigen::Vector3d& x);
+/// `hint`, when given: the node's last triangle, a first bound for the closest point, updated
+/// (any triangle index, even of another region, gives the same answer; SurfaceFeatures::project_region).
+Eigen::Vector3d place(const Placement& p, const SurfaceFeatures& features, int v, const Eigen::Vector3d& x,
+                      int* hint = nullptr);
 
 }  // namespace hexdom::overlay

@@ -104,11 +104,13 @@ Eigen::Vector3d SurfaceFeatures::project(const Eigen::Vector3d& p, int* region, 
   return q;
 }
 
-Eigen::Vector3d SurfaceFeatures::project_region(int r, const Eigen::Vector3d& p) const { return by_region_[r]->project(p); }
+Eigen::Vector3d SurfaceFeatures::project_region(int r, const Eigen::Vector3d& p, int* hint) const {
+  return by_region_[r]->project(p, hint, hint ? *hint : -1);
+}
 
-Eigen::Vector3d SurfaceFeatures::project_curve(int a, int b, const Eigen::Vector3d& p) const {
+Eigen::Vector3d SurfaceFeatures::project_curve(int a, int b, const Eigen::Vector3d& p, int* hint) const {
   if (a > b) std::swap(a, b);
-  return curves_.at({a, b})->project(p);
+  return curves_.at({a, b})->project(p, hint, hint ? *hint : -1);
 }
 
 }  // namespace hexdom::overlay

@@ -57,10 +57,12 @@ class SurfaceFeatures {
   Eigen::Vector3d project(const Eigen::Vector3d& p, int* region = nullptr, Eigen::Vector3d* normal = nullptr) const;
   /// The tree over the whole surface's triangles (its closest points, rays, triangle normals).
   const mesh::TriangleProjector& triangles() const { return all_; }
-  /// Closest point on region r.
-  Eigen::Vector3d project_region(int r, const Eigen::Vector3d& p) const;
-  /// Closest point on the curve between regions a and b (has_curve(a, b) must hold).
-  Eigen::Vector3d project_curve(int a, int b, const Eigen::Vector3d& p) const;
+  /// Closest point on region r. `hint`, when given, is read as a first bound and receives the
+  /// triangle found (mesh::TriangleProjector::project: the same answer with or without it).
+  Eigen::Vector3d project_region(int r, const Eigen::Vector3d& p, int* hint = nullptr) const;
+  /// Closest point on the curve between regions a and b (has_curve(a, b) must hold); `hint` as
+  /// for project_region.
+  Eigen::Vector3d project_curve(int a, int b, const Eigen::Vector3d& p, int* hint = nullptr) const;
 
  private:
   int regions_ = 0;

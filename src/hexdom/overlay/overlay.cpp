@@ -189,7 +189,8 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   io.surface = s;
   io.kinds = place_of.kind;
   io.curve_neighbours = curve_neighbours(place_of, outer, feat);
-  io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, feat, v, x); };
+  std::vector<int> hints(m.num_nodes(), -1);  // per node its last triangle (any is a valid bound: place)
+  io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, feat, v, x, &hints[v]); };
   io.project_concurrent = true;  // closest points on the surface's regions and curves: reads only
   io.threads = opt.threads;
   io.deadline = opt.deadline;
@@ -256,7 +257,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
     for (int v = 0; v < ir.mesh.num_nodes(); ++v)
       if (place_of.kind[v] != optimize::Interior) ir.mesh.V.row(v) = place(place_of, real, v, ir.mesh.V.row(v).transpose()).transpose();
     io.surface = *stretch->surface;
-    io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, real, v, x); };
+    io.project = [&](int v, const Eigen::Vector3d& x) { return place(place_of, real, v, x, &hints[v]); };
     optimize::ImproveResult again = optimize::improve(ir.mesh, io);
     // Stretching back keeps every cell valid; the second run only raises the worst cell.
     if (quality::inverted_cells(again.after) <= quality::inverted_cells(again.before)) ir = std::move(again);
