@@ -39,22 +39,26 @@ Vec closest_point_on_triangle(const Vec& p, const Vec& a, const Vec& b, const Ve
   return a + ab * v + ac * w;
 }
 
-TriangleProjector::TriangleProjector(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) : V_(V), F_(F) {
+TriangleProjector::TriangleProjector(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   const int n = static_cast<int>(F.rows());
   order_.resize(n);
   centroid_.resize(n);
+  corners_.resize(3 * static_cast<size_t>(n));  // by triangle while the tree is built
   for (int i = 0; i < n; ++i) {
     order_[i] = i;
+    for (int k = 0; k < 3; ++k) corners_[3 * i + k] = V.row(F(i, k)).transpose();
     centroid_[i] = (V.row(F(i, 0)) + V.row(F(i, 1)) + V.row(F(i, 2))).transpose() / 3.0;
   }
   nodes_.reserve(2 * n / 4 + 2);
   if (n > 0) build(0, n);
-  corners_.resize(3 * static_cast<size_t>(n));
+  std::vector<Vec> leaves(corners_.size());
   slot_.resize(n);
   for (int i = 0; i < n; ++i) {
     slot_[order_[i]] = i;
-    for (int k = 0; k < 3; ++k) corners_[3 * i + k] = V.row(F(order_[i], k)).transpose();
+    for (int k = 0; k < 3; ++k) leaves[3 * i + k] = corners_[3 * order_[i] + k];
   }
+  corners_.swap(leaves);
+  std::vector<Vec>().swap(centroid_);  // the tree's splits only
 }
 
 int TriangleProjector::build(int begin, int end) {
@@ -63,8 +67,8 @@ int TriangleProjector::build(int begin, int end) {
   node.hi = Vec::Constant(-std::numeric_limits<double>::max());
   for (int i = begin; i < end; ++i)
     for (int k = 0; k < 3; ++k) {
-      node.lo = node.lo.cwiseMin(V_.row(F_(order_[i], k)).transpose());
-      node.hi = node.hi.cwiseMax(V_.row(F_(order_[i], k)).transpose());
+      node.lo = node.lo.cwiseMin(corners_[3 * order_[i] + k]);
+      node.hi = node.hi.cwiseMax(corners_[3 * order_[i] + k]);
     }
   node.begin = begin;
   node.end = end;
@@ -146,8 +150,8 @@ bool line_meets_triangle(const Vec& a, const Vec& d, const Vec& p, const Vec& q,
 }  // namespace
 
 Vec TriangleProjector::normal(int t) const {
-  const Vec a = V_.row(F_(t, 0)), b = V_.row(F_(t, 1)), c = V_.row(F_(t, 2));
-  return (b - a).cross(c - a).normalized();
+  const Vec* c = &corners_[3 * slot_[t]];
+  return (c[1] - c[0]).cross(c[2] - c[0]).normalized();
 }
 
 double TriangleProjector::ray_distance(const Vec& origin, const Vec& direction, double from, double up_to,

@@ -22,7 +22,7 @@ class TriangleProjector {
   TriangleProjector() = default;
   /// V: #V by 3, F: #F by 3.
   TriangleProjector(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
-  bool empty() const { return F_.rows() == 0; }
+  bool empty() const { return slot_.empty(); }
   /// Closest point on the surface; `triangle` receives its triangle when given. `hint`, any
   /// triangle (-1: none; e.g. the one an earlier query near p returned), bounds the search from the
   /// start; the answer is the same point and triangle, bit for bit, with or without it (the bound
@@ -44,13 +44,12 @@ class TriangleProjector {
     int begin = 0, end = 0;     // leaf range in order_
   };
   int build(int begin, int end);
-  Eigen::MatrixXd V_;
-  Eigen::MatrixXi F_;
   std::vector<int> order_;
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<Node> nodes_;
-  /// The corners of triangle order_[i] at corners_[3 i .. 3 i + 2]: a leaf's triangles side by
-  /// side in memory (V_'s rows are strided), which is most of a query's time.
+  /// The corners of triangle order_[i] at corners_[3 i .. 3 i + 2] (by triangle while build()
+  /// runs): a leaf's triangles side by side in memory, which is most of a query's time. The
+  /// projector keeps no other copy of the surface.
   std::vector<Eigen::Vector3d> corners_;
   std::vector<int> slot_;  ///< per triangle: its place i in order_
 };
