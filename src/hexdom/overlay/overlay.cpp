@@ -561,9 +561,9 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
     return !walls_made && wall_f < 1 && (next == 0 || in_place || cheaper);
   };
   auto walls_grid = [&]() {
-    const double hw = wall_f * h0.maxCoeff();
     walls_made = true;
     const Eigen::Vector3d h = h0 * wall_f;
+    const double hw = h.maxCoeff();
     for (const Eigen::Vector3d& made : halvings)
       if ((made - h).norm() <= 1e-9 * h.norm()) {
         say(fmt("overlay: the grid for the walls has the spacing %g, already meshed", h.maxCoeff()));
@@ -610,9 +610,6 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
       best = std::move(r);
       have = true;
     }
-    auto short_of = [&](const OverlayResult& x) {
-      return inverted(x.quality) > 0 || rank.volume_off(x) || quality::worst_sj(x.quality) < opt.refine_below_sj;
-    };
     // The grid kept left cells inverted: the grid for thin walls before the next halving when it
     // is not much finer, or coarser (fewer cells; cheapest first); in place of the halvings when
     // finer (the last grid, as when it follows them). Made coarser after a halving, it ends the
@@ -627,7 +624,8 @@ OverlayResult overlay_mesh(const mesh::SurfaceMesh& surface, const OverlayOption
         if (walls_grid() <= (1 + 1e-9) * next) break;
       }
     }
-    if (!short_of(best) || k == opt.refinements) break;
+    const bool short_of = inverted(best.quality) > 0 || rank.volume_off(best) || quality::worst_sj(best.quality) < opt.refine_below_sj;
+    if (!short_of || k == opt.refinements) break;
     if (before_walls) say("overlay: the grid for the walls misses a target; the halving follows");
     if (!halve_again(before_walls ? *before_walls : best, cells, kept, field.empty(), rank, opt, finer_for_quality)) break;
   }
