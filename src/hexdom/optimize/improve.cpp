@@ -166,10 +166,13 @@ class Run {
     for (int round = 0; round < max_rounds && stale < stale_limit + (imp_->inverted() > 0); ++round) {
       update_floors();
       // Untangling: every node may help; on an input optimised before (optimised_at), the nodes
-      // around its changes and around every node moved since.
+      // around its changes and around every node moved since. After the first round the smoothing
+      // visits only the nodes whose neighbourhood a move changed (marked by the passes; the others
+      // would be refused again, see climb_all), and every node may climb.
       if (imp_->inverted() > 0) {
         if (from_start_) imp_->mark_only(start_);
-        else imp_->mark_all();
+        else if (round == 0) imp_->mark_all();
+        else imp_->climb_all();
       }
       imp_->smooth_pass();
       const double thr = std::max(worst + 0.2, 0.3);

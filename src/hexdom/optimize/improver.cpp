@@ -231,6 +231,8 @@ void Improver::mark_all() {
   std::fill(climb_.begin(), climb_.end(), 1);
 }
 
+void Improver::climb_all() { std::fill(climb_.begin(), climb_.end(), 1); }
+
 void Improver::mark_only(const std::vector<int>& nodes) {
   std::fill(dirty_.begin(), dirty_.end(), 0);
   for (int v : nodes) mark_around(v);

@@ -61,6 +61,11 @@ class Improver {
   // Nodes whose neighbourhood changed since they were last visited by a pass: only they can move.
   void mark_around(int v);
   void mark_all();
+  // Every node may climb again (optimize_round), the smoothing's marks left as they are: a node a
+  // smoothing pass left unmarked would be refused the same move again while the floors stay (its
+  // cells, their values and its edge neighbours are where they were), but the climb's pattern
+  // moves depend on the worst cell of the whole mesh.
+  void climb_all();
   // Only the nodes of the cells around `nodes` and around every node moved so far.
   void mark_only(const std::vector<int>& nodes);
   // Moves shorter than this are not worth an evaluation (and would keep converged nodes busy).
