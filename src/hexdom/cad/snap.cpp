@@ -22,6 +22,7 @@
 #include "hexdom/cad/project.h"
 #include "hexdom/cad/shape_impl.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/parallel_for.h"
 #include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/closest_point.h"
@@ -568,7 +569,7 @@ SnapResult snap(const Shape& shape, const mesh::Mesh& input, const mesh::Surface
     rep.max_after = std::max(rep.max_after, d);
     rep.mean_after += d / boundary.size();
   }
-  r.quality = quality::quality_report(m);
+  r.quality = quality::quality_report(m, thread_count(opt.threads));
   r.mesh = std::move(m);
   std::snprintf(line, sizeof line,
                 "snap: B-rep distance max %.3g -> %.3g (%.2e of the diagonal), mean %.3g -> %.3g; worst SJ %.4f, %d inverted",

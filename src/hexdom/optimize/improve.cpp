@@ -105,9 +105,8 @@ class Run {
       unhooked_ = std::make_unique<BoundaryConstraints>(cons);
       unhooked_->project = nullptr;
     }
-    imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons);
+    imp_ = std::make_unique<Improver>(m_, t_, unhooked_ ? *unhooked_ : cons, thread_count(opt.threads));
     imp_->set_keep(opt.floor);
-    imp_->set_threads(thread_count(opt.threads));
     if (!with_pillow && opt.optimised_at.rows() > 0) {
       // Where the input was optimised before: its passes start from the cells changed since.
       // Each node once in each list (mark_only marks around it).
@@ -269,7 +268,7 @@ class Run {
 
   ImproveResult finish() {
     r_.mesh = std::move(m_);
-    r_.after = quality_report(r_.mesh);
+    r_.after = quality_report(r_.mesh, imp_->threads());
     return std::move(r_);
   }
 
@@ -330,7 +329,7 @@ ImproveResult improve(const mesh::Mesh& input, const ImproveOptions& opt) {
   BoundaryConstraints cons = boundary_constraints(input, t0, opt.surface);
   cons.project = opt.project;
   cons.project_concurrent = opt.project_concurrent;
-  const QualityReport before = quality_report(input);
+  const QualityReport before = quality_report(input, thread_count(opt.threads));
   const std::vector<char>* sp = have_sharp ? &sharp : nullptr;
   const std::vector<char> layer = opt.kinds.empty() ? smooth_layer_faces(input, t0) : std::vector<char>();
 

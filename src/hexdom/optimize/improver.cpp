@@ -78,15 +78,16 @@ void Improver::axis_steps(int q, int v, double h, double out[3]) const {
   }
 }
 
-Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c) : m_(m), t_(t), c_(c) {
+Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c, int threads)
+    : m_(m), t_(t), c_(c), threads_(std::max(1, threads)) {
   sj_.resize(m.num_cells());
-  for (int q = 0; q < m.num_cells(); ++q) sj_[q] = cell_sj(m, q);
+  parallel_for(m.num_cells(), threads_, [&](int q) { sj_[q] = cell_sj(m, q); });
   dirty_.assign(m.num_nodes(), 1);
   climb_.assign(m.num_nodes(), 1);
   surface_hint_.assign(m.num_nodes(), -1);
   curve_hint_.assign(m.num_nodes(), -1);
   edge_.assign(m.num_nodes(), 0.0);
-  for (int v = 0; v < m.num_nodes(); ++v) {
+  parallel_for(m.num_nodes(), threads_, [&](int v) {
     double s = 0;
     int k = 0;
     for (int q : t.node_cells[v]) {
@@ -95,7 +96,7 @@ Improver::Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints&
       for (int i = 0; i < n; ++i) { s += (P.row(i) - m.V.row(v)).norm(); ++k; }
     }
     edge_[v] = k ? s / k : 0.0;  // mean distance to the corners of incident cells
-  }
+  });
   // Greedy colouring in node order: each node takes the lowest colour no node of its cells has.
   moved_.assign(m.num_nodes(), 0);
   touched_.assign(m.num_nodes(), 0);

@@ -32,8 +32,9 @@ class Improver {
  public:
   using Vec = Eigen::Vector3d;
   using CellType = mesh::CellType;
-  /// Works on `m` in place; `t` and `c` must outlive the improver (it keeps references).
-  Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c);
+  /// Works on `m` in place; `t` and `c` must outlive the improver (it keeps references). The
+  /// passes run on `threads` threads (set_threads), and so does the first measure of the cells.
+  Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c, int threads = 1);
 
   // Worst hex when there are hexes (the figure the paper reports), else the worst cell.
   double worst_hex() const;
@@ -135,6 +136,7 @@ class Improver {
   /// grant, common/thread_grant.h, the grant's count at each sweep instead). Boundary nodes
   /// whose projection hook is not BoundaryConstraints::project_concurrent move on the calling thread.
   void set_threads(int n) { threads_ = std::max(1, n); }
+  int threads() const { return threads_; }
   int colours() const { return static_cast<int>(colours_.size()); }
   int colour(int v) const { return colour_[v]; }
 

@@ -9,6 +9,7 @@
 
 #include "hexdom/common/format.h"
 #include "hexdom/common/interrupt.h"
+#include "hexdom/common/parallel_for.h"
 #include "hexdom/common/stopwatch.h"
 #include "hexdom/mesh/cell_faces.h"
 #include "hexdom/mesh/mesh.h"
@@ -91,8 +92,8 @@ Core octree_core(const OctreeMesh& tree, const mesh::SurfaceMesh& s, const mesh:
 
 // The nodes at both ends of the shortest edge of each cell above `max_ratio` whose two ends are
 // both held on a curve or at a corner.
-std::vector<int> held_short_edges(const mesh::Mesh& m, const Placement& place_of, double max_ratio) {
-  const quality::CellMetrics metrics = quality::compute_metrics(m);
+std::vector<int> held_short_edges(const mesh::Mesh& m, const Placement& place_of, double max_ratio, int threads) {
+  const quality::CellMetrics metrics = quality::compute_metrics(m, threads);
   auto held = [&](int v) { return place_of.kind[v] == optimize::Curve || place_of.kind[v] == optimize::Corner; };
   std::vector<int> out;
   for (int c = 0; c < m.num_cells(); ++c) {
@@ -218,7 +219,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   // those nodes let off one level (loosen_nodes), the optimiser again, the better kept; three times
   // at most (a corner node can end anywhere on the surface).
   for (int round = 0; mend && round < 3 && inverted(ir.after) > 0; ++round) {
-    const quality::CellMetrics metrics = quality::compute_metrics(ir.mesh);
+    const quality::CellMetrics metrics = quality::compute_metrics(ir.mesh, thread_count(opt.threads));
     std::vector<int> bad;  // the nodes of the cells left inverted
     for (int c = 0; c < ir.mesh.num_cells(); ++c)
       if (!(metrics.scaled_jacobian(c) > 0))
@@ -240,7 +241,7 @@ OverlayResult mesh_with_grid(const mesh::SurfaceMesh& s, const SurfaceFeatures& 
   for (int round = 0; mend && round < 2 && opt.max_edge_ratio > 0 && inverted(ir.after) == 0; ++round) {
     const double ratio = quality::max_edge_ratio(ir.after);
     if (!(ratio > opt.max_edge_ratio)) break;
-    const std::vector<int> held = held_short_edges(ir.mesh, place_of, opt.max_edge_ratio);
+    const std::vector<int> held = held_short_edges(ir.mesh, place_of, opt.max_edge_ratio, thread_count(opt.threads));
     if (held.empty() || loosen_nodes(place_of, held, feat) == 0) break;
     optimize::ImproveResult again = improve_again(held);
     if (opt.log)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hexdom/common/parallel_for.h"
 #include "hexdom/mesh/cell_faces.h"
 
 namespace hexdom::quality {
@@ -227,18 +228,18 @@ double signed_sj(double sj) { return std::isfinite(sj) && sj < 2 ? sj : -1.0; }
 
 double signed_sj(mesh::CellType type, const CellPoints& P) { return signed_sj(scaled_jacobian(type, P)); }
 
-CellMetrics compute_metrics(const mesh::Mesh& m) {
+CellMetrics compute_metrics(const mesh::Mesh& m, int threads) {
   CellMetrics r;
   const int n = m.num_cells();
   r.scaled_jacobian.resize(n);
   r.edge_ratio.resize(n);
   r.volume.resize(n);
-  for (int c = 0; c < n; ++c) {
-    CellPoints P = cell_points(m, c);
+  parallel_for(n, threads, [&](int c) {
+    const CellPoints P = cell_points(m, c);
     r.scaled_jacobian(c) = scaled_jacobian(m.type(c), P);
     r.edge_ratio(c) = edge_ratio(m.type(c), P);
     r.volume(c) = volume(m.type(c), P);
-  }
+  });
   return r;
 }
 

@@ -68,6 +68,7 @@ struct CellMetrics {
   Eigen::VectorXd edge_ratio;
   Eigen::VectorXd volume;
 };
-CellMetrics compute_metrics(const mesh::Mesh& mesh);
+/// The cells are measured on `threads` threads (parallel_for): the same figures on any number.
+CellMetrics compute_metrics(const mesh::Mesh& mesh, int threads = 1);
 
 }  // namespace hexdom::quality

@@ -35,7 +35,7 @@ void add_second_order(const mesh::Mesh& m, QualityReport& r) {
 
 }  // namespace
 
-QualityReport quality_report(const mesh::Mesh& m) { return quality_report(m, compute_metrics(m)); }
+QualityReport quality_report(const mesh::Mesh& m, int threads) { return quality_report(m, compute_metrics(m, threads)); }
 
 QualityReport quality_report(const mesh::Mesh& m, const CellMetrics& q) {
   QualityReport r;

@@ -38,7 +38,8 @@ struct QualityReport {
   SecondOrderStats hex20, wedge15, tet10;
 };
 
-QualityReport quality_report(const mesh::Mesh& mesh);
+/// The cells measured on `threads` threads (compute_metrics): the same report on any number.
+QualityReport quality_report(const mesh::Mesh& mesh, int threads = 1);
 /// Inverted cells of every type: of the curved cells in a second-order mesh.
 inline int inverted_cells(const QualityReport& q) {
   return q.second_order ? q.hex20.inverted + q.wedge15.inverted + q.tet10.inverted
