@@ -91,7 +91,7 @@ Core octree_core(const OctreeMesh& tree, const mesh::SurfaceMesh& s, const mesh:
 }
 
 // The nodes at both ends of the shortest edge of each cell above `max_ratio` whose two ends are
-// both held on a curve or at a corner.
+// both held on a curve or at a corner (the cells measured on `threads` threads).
 std::vector<int> held_short_edges(const mesh::Mesh& m, const Placement& place_of, double max_ratio, int threads) {
   const quality::CellMetrics metrics = quality::compute_metrics(m, threads);
   auto held = [&](int v) { return place_of.kind[v] == optimize::Curve || place_of.kind[v] == optimize::Corner; };
