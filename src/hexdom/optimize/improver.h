@@ -6,7 +6,7 @@
 // in which no two nodes of one colour share a cell), in increasing order within a colour. Nodes of
 // one colour read and write nothing another of them reads or writes, so they may move at the same
 // time; the nodes moved are marked for the next passes once their colour is done. The meshes are
-// therefore the same whatever the number of threads (set_threads).
+// therefore the same whatever the number of threads (the constructor's).
 #pragma once
 
 #include <Eigen/Core>
@@ -33,7 +33,7 @@ class Improver {
   using Vec = Eigen::Vector3d;
   using CellType = mesh::CellType;
   /// Works on `m` in place; `t` and `c` must outlive the improver (it keeps references). The
-  /// passes run on `threads` threads (set_threads), and so does the first measure of the cells.
+  /// first measure of the cells and the passes run on `threads` threads (see threads()).
   Improver(mesh::Mesh& m, const NodeKinds& t, const BoundaryConstraints& c, int threads = 1);
 
   // Worst hex when there are hexes (the figure the paper reports), else the worst cell.
@@ -135,7 +135,6 @@ class Improver {
   /// Threads the passes share a colour's nodes among (1: the calling thread only; under a thread
   /// grant, common/thread_grant.h, the grant's count at each sweep instead). Boundary nodes
   /// whose projection hook is not BoundaryConstraints::project_concurrent move on the calling thread.
-  void set_threads(int n) { threads_ = std::max(1, n); }
   int threads() const { return threads_; }
   int colours() const { return static_cast<int>(colours_.size()); }
   int colour(int v) const { return colour_[v]; }
